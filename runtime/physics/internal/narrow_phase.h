@@ -1,0 +1,15 @@
+#pragma once
+// Narrow phase: contact manifolds between pairs of shapes.
+#include "physics/body.h"
+#include "physics/internal/manifold.h"
+
+namespace tumble::physics {
+
+/// Fills m.normal (from a to b) and up to four points whose separation is at
+/// most margin_m (speculative contacts). Returns the number of points.
+int collideBodies(const Body& a, const Body& b, Real margin_m, Manifold& m);
+
+/// Closest points of segments p0-p1 and q0-q1: parameters s, t in [0, 1].
+void closestSegmentPoints(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Real& s, Real& t);
+
+}  // namespace tumble::physics

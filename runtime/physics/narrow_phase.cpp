@@ -1,0 +1,441 @@
+// Contact generation for every pair of shapes.
+//
+// Conventions: the manifold normal points from body a to body b; a point's
+// separation is the signed gap along the normal (negative = overlap); the
+// point is midway between the two surfaces. Points are kept while their
+// separation is at most `margin` so the solver can stop fast bodies before
+// they meet (speculative contacts, see contact_solver.cpp).
+//
+// Box-box uses the separating-axis test over all 15 axes (3 + 3 face
+// normals, 9 edge cross products; Gottschalk's OBB test, Eberly 5.3) and then
+// builds a manifold by clipping the incident face against the side planes of
+// the reference face (Sutherland-Hodgman), or one point for an edge-edge
+// contact. Face axes are preferred over nearly-equal edge axes so that
+// resting boxes keep a stable face manifold (as in Box2D).
+#include "physics/internal/narrow_phase.h"
+
+#include <algorithm>
+#include <array>
+
+namespace tumble::physics {
+namespace {
+
+struct Xf {
+  Vec3 p;
+  Mat3 R;
+};
+Xf xfOf(const Body& b) { return {b.position_m, b.orientation.toRotationMatrix()}; }
+
+void addPoint(Manifold& m, const Vec3& p, Real sep, std::uint32_t id) {
+  if (m.count >= kMaxManifoldPoints) return;
+  ContactPoint& c = m.points[m.count++];
+  c.point_m = p;
+  c.separation_m = sep;
+  c.id = id;
+}
+
+// Sphere of radius ra at ca against sphere rb at cb.
+int spheres(const Vec3& ca, Real ra, const Vec3& cb, Real rb, Real margin, Manifold& m, std::uint32_t id) {
+  Vec3 d = cb - ca;
+  Real dist = d.norm();
+  Real sep = dist - ra - rb;
+  if (sep > margin) return 0;
+  Vec3 n = dist > Real(1e-9) ? Vec3(d / dist) : Vec3::UnitY();
+  if (m.count == 0) m.normal = n;
+  addPoint(m, ca + n * (ra + sep / 2), sep, id);
+  return m.count;
+}
+
+Vec3 capsuleEnd(const Xf& x, Real hh, int end) {
+  return x.p + x.R.col(1) * (end == 0 ? -hh : hh);
+}
+
+// Point against box: closest point on the box surface and the outward normal.
+// Returns signed distance (negative inside).
+Real pointBox(const Vec3& pw, const Xf& box, const Vec3& h, Vec3& closest, Vec3& normal) {
+  Vec3 local = box.R.transpose() * (pw - box.p);
+  Vec3 q = local.cwiseMax(-h).cwiseMin(h);
+  if (q != local) {
+    Vec3 d = local - q;
+    Real dist = d.norm();
+    closest = box.p + box.R * q;
+    normal = box.R * (d / dist);
+    return dist;
+  }
+  // Inside: push out through the nearest face.
+  Vec3 depth = h - local.cwiseAbs();
+  int axis = 0;
+  depth.minCoeff(&axis);
+  Vec3 nLocal = Vec3::Zero();
+  nLocal[axis] = local[axis] >= 0 ? 1 : -1;
+  q = local;
+  q[axis] = nLocal[axis] * h[axis];
+  closest = box.p + box.R * q;
+  normal = box.R * nLocal;
+  return -depth[axis];
+}
+
+int sphereBox(const Vec3& c, Real r, const Xf& box, const Vec3& h, Real margin, Manifold& m, std::uint32_t id) {
+  Vec3 closest, nBox;
+  Real dist = pointBox(c, box, h, closest, nBox);
+  Real sep = dist - r;
+  if (sep > margin) return 0;
+  // normal from sphere to box = -nBox
+  if (m.count == 0) m.normal = -nBox;
+  addPoint(m, closest + nBox * (sep / 2), sep, id);
+  return m.count;
+}
+
+int planePoints(const Xf& plane, const Vec3* pts, int n, Real radius, Real margin, Manifold& m, bool planeIsA) {
+  Vec3 normal = plane.R.col(1);
+  // Keep the deepest four.
+  std::pair<Real, int> cand[8];
+  int k = 0;
+  for (int i = 0; i < n && i < 8; ++i) {
+    Real sep = normal.dot(pts[i] - plane.p) - radius;
+    if (sep > margin) continue;
+    // Insertion keeps cand sorted by separation, deepest first.
+    int j = k++;
+    while (j > 0 && cand[j - 1].first > sep) {
+      cand[j] = cand[j - 1];
+      --j;
+    }
+    cand[j] = {sep, i};
+  }
+  m.normal = planeIsA ? normal : Vec3(-normal);
+  for (int j = 0; j < std::min(k, kMaxManifoldPoints); ++j) {
+    auto [sep, i] = cand[j];
+    Vec3 onShape = pts[i] - normal * radius;
+    addPoint(m, onShape - normal * (sep / 2), sep, std::uint32_t(i));
+  }
+  return m.count;
+}
+
+std::array<Vec3, 8> boxVertices(const Xf& x, const Vec3& h) {
+  std::array<Vec3, 8> v;
+  for (int i = 0; i < 8; ++i) {
+    Vec3 s((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+    v[i] = x.p + x.R * s;
+  }
+  return v;
+}
+
+// ---- box-box ---------------------------------------------------------------
+
+struct ClipVertex {
+  Vec3 p;
+  std::uint32_t id;
+};
+
+// Clips polygon `in` against plane n.x <= d, recording which edge/plane
+// created new vertices so their ids stay stable between steps. Vertices up to
+// kClipTolerance outside still count as inside: stacked boxes of equal size
+// have corners exactly on the side planes, and without the tolerance
+// round-off flips them between "vertex" and "clipped" ids every step, which
+// defeats warm starting and makes stacks jitter.
+constexpr Real kClipTolerance = Real(1e-3);  // m
+int clipPolygon(const ClipVertex* in, int n, const Vec3& normal, Real d, std::uint32_t planeId, ClipVertex* out) {
+  int k = 0;
+  d += kClipTolerance;
+  for (int i = 0; i < n; ++i) {
+    const ClipVertex& a = in[i];
+    const ClipVertex& b = in[(i + 1) % n];
+    Real da = normal.dot(a.p) - d, db = normal.dot(b.p) - d;
+    if (da <= 0) out[k++] = a;
+    if ((da <= 0) != (db <= 0)) {
+      Real t = da / (da - db);
+      out[k++] = {a.p + (b.p - a.p) * t, 0x100u | (planeId << 4) | std::uint32_t(i)};
+    }
+  }
+  return k;
+}
+
+int boxBox(const Xf& A, const Vec3& hA, const Xf& B, const Vec3& hB, Real margin, Manifold& m) {
+  const Vec3 d = B.p - A.p;
+  const Mat3 C = A.R.transpose() * B.R;  // C(i,j) = Ai . Bj
+  Mat3 absC = C.cwiseAbs().array() + Real(1e-6);
+  const Vec3 dA = A.R.transpose() * d, dB = B.R.transpose() * d;
+
+  // Face axes of A and B.
+  Real bestA = -std::numeric_limits<Real>::max(), bestB = bestA, bestE = bestA;
+  int faceA = 0, faceB = 0, edgeI = 0, edgeJ = 0;
+  for (int i = 0; i < 3; ++i) {
+    Real s = std::abs(dA[i]) - (hA[i] + absC.row(i).dot(hB));
+    if (s > margin) return 0;
+    if (s > bestA) bestA = s, faceA = i;
+  }
+  for (int j = 0; j < 3; ++j) {
+    Real s = std::abs(dB[j]) - (hB[j] + absC.col(j).dot(hA));
+    if (s > margin) return 0;
+    if (s > bestB) bestB = s, faceB = j;
+  }
+  Vec3 edgeAxis = Vec3::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Vec3 axis = A.R.col(i).cross(B.R.col(j));
+      Real len = axis.norm();
+      if (len < Real(1e-4)) continue;  // parallel edges: covered by face axes
+      axis /= len;
+      Real ra = (A.R.transpose() * axis).cwiseAbs().dot(hA);
+      Real rb = (B.R.transpose() * axis).cwiseAbs().dot(hB);
+      Real s = std::abs(d.dot(axis)) - (ra + rb);
+      if (s > margin) return 0;
+      if (s > bestE) bestE = s, edgeI = i, edgeJ = j, edgeAxis = axis;
+    }
+
+  // Prefer faces unless an edge axis is clearly better (stable manifolds).
+  constexpr Real kRel = Real(0.95), kAbs = Real(0.01);
+  bool useB = bestB > kRel * bestA + kAbs * std::max(hA.minCoeff(), Real(0.01));
+  Real bestFace = useB ? bestB : bestA;
+  if (bestE > kRel * bestFace + kAbs * std::max(hA.minCoeff(), Real(0.01)) && edgeAxis != Vec3::Zero()) {
+    Vec3 n = edgeAxis.dot(d) < 0 ? Vec3(-edgeAxis) : edgeAxis;
+    // Support edges: on A the edge along Ai farthest along n, on B along Bj farthest along -n.
+    Vec3 pa = A.p, pb = B.p;
+    for (int k = 0; k < 3; ++k) {
+      if (k != edgeI) pa += A.R.col(k) * (A.R.col(k).dot(n) > 0 ? hA[k] : -hA[k]);
+      if (k != edgeJ) pb += B.R.col(k) * (B.R.col(k).dot(n) > 0 ? -hB[k] : hB[k]);
+    }
+    Vec3 a0 = pa - A.R.col(edgeI) * hA[edgeI], a1 = pa + A.R.col(edgeI) * hA[edgeI];
+    Vec3 b0 = pb - B.R.col(edgeJ) * hB[edgeJ], b1 = pb + B.R.col(edgeJ) * hB[edgeJ];
+    Real s, t;
+    closestSegmentPoints(a0, a1, b0, b1, s, t);
+    Vec3 qa = a0 + (a1 - a0) * s, qb = b0 + (b1 - b0) * t;
+    m.normal = n;
+    addPoint(m, (qa + qb) / 2, bestE, 0x10000u | std::uint32_t(edgeI * 3 + edgeJ));
+    return m.count;
+  }
+
+  // Face contact. Reference box R owns the face; incident box I.
+  const Xf& R = useB ? B : A;
+  const Xf& I = useB ? A : B;
+  const Vec3& hR = useB ? hB : hA;
+  const Vec3& hI = useB ? hA : hB;
+  int refAxis = useB ? faceB : faceA;
+  Vec3 toI = I.p - R.p;
+  Vec3 nRef = R.R.col(refAxis);
+  if (nRef.dot(toI) < 0) nRef = -nRef;  // reference face normal, pointing at the incident box
+  // Incident face: the face of I most anti-parallel to nRef.
+  Vec3 dots = I.R.transpose() * nRef;
+  int incAxis = 0;
+  dots.cwiseAbs().maxCoeff(&incAxis);
+  Real incSign = dots[incAxis] > 0 ? -1 : 1;
+  Vec3 incCenter = I.p + I.R.col(incAxis) * (incSign * hI[incAxis]);
+  int u = (incAxis + 1) % 3, v = (incAxis + 2) % 3;
+  Vec3 eu = I.R.col(u) * hI[u], ev = I.R.col(v) * hI[v];
+  ClipVertex poly[16], tmp[16];
+  poly[0] = {incCenter + eu + ev, 0};
+  poly[1] = {incCenter - eu + ev, 1};
+  poly[2] = {incCenter - eu - ev, 2};
+  poly[3] = {incCenter + eu - ev, 3};
+  int n = 4;
+  // Side planes of the reference face.
+  int ru = (refAxis + 1) % 3, rv = (refAxis + 2) % 3;
+  const int sideAxes[2] = {ru, rv};
+  std::uint32_t plane = 0;
+  for (int sa : sideAxes) {
+    Vec3 ax = R.R.col(sa);
+    Real c = ax.dot(R.p);
+    n = clipPolygon(poly, n, ax, c + hR[sa], plane++, tmp);
+    if (n == 0) return 0;
+    n = clipPolygon(tmp, n, Vec3(-ax), -c + hR[sa], plane++, poly);
+    if (n == 0) return 0;
+  }
+  Vec3 refCenter = R.p + nRef * hR[refAxis];
+  // Collect points within the margin.
+  struct Cand {
+    Vec3 p;
+    Real sep;
+    std::uint32_t id;
+  };
+  Cand cands[16];
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    Real sep = nRef.dot(poly[i].p - refCenter);
+    if (sep <= margin) cands[k++] = {poly[i].p - nRef * (sep / 2), sep, poly[i].id};
+  }
+  if (k == 0) return 0;
+  // Reduce to four: deepest, farthest from it, then the two that span the
+  // largest area on either side (keeps the support polygon).
+  if (k > 4) {
+    int i0 = 0;
+    for (int i = 1; i < k; ++i)
+      if (cands[i].sep < cands[i0].sep) i0 = i;
+    int i1 = -1;
+    Real best = -1;
+    for (int i = 0; i < k; ++i) {
+      Real d2 = (cands[i].p - cands[i0].p).squaredNorm();
+      if (i != i0 && d2 > best) best = d2, i1 = i;
+    }
+    int i2 = -1, i3 = -1;
+    Real maxPos = 0, maxNeg = 0;
+    Vec3 e = cands[i1].p - cands[i0].p;
+    for (int i = 0; i < k; ++i) {
+      if (i == i0 || i == i1) continue;
+      Real area = nRef.dot(e.cross(cands[i].p - cands[i0].p));
+      if (area > maxPos) maxPos = area, i2 = i;
+      if (area < maxNeg) maxNeg = area, i3 = i;
+    }
+    Cand kept[4];
+    int kk = 0;
+    for (int idx : {i0, i1, i2, i3})
+      if (idx >= 0) kept[kk++] = cands[idx];
+    std::copy(kept, kept + kk, cands);
+    k = kk;
+  }
+  m.normal = useB ? Vec3(-nRef) : nRef;
+  std::uint32_t faceKey = (std::uint32_t(useB) << 15) | (std::uint32_t(refAxis) << 12) | (std::uint32_t(incAxis) << 10);
+  for (int i = 0; i < k; ++i) addPoint(m, cands[i].p, cands[i].sep, faceKey | cands[i].id);
+  return m.count;
+}
+
+// ---- capsules ----------------------------------------------------------------
+
+int capsuleCapsule(const Xf& A, const Shape& a, const Xf& B, const Shape& b, Real margin, Manifold& m) {
+  Vec3 p0 = capsuleEnd(A, a.halfHeight_m, 0), p1 = capsuleEnd(A, a.halfHeight_m, 1);
+  Vec3 q0 = capsuleEnd(B, b.halfHeight_m, 0), q1 = capsuleEnd(B, b.halfHeight_m, 1);
+  Vec3 da = p1 - p0, db = q1 - q0;
+  Real la = da.norm(), lb = db.norm();
+  // Nearly parallel segments: two points from the overlap of their extents,
+  // so a capsule resting on another does not rock on a single point.
+  if (la > Real(1e-6) && lb > Real(1e-6) && da.cross(db).norm() < Real(0.05) * la * lb) {
+    Vec3 dir = da / la;
+    Real t0 = dir.dot(q0 - p0), t1 = dir.dot(q1 - p0);
+    Real lo = std::max<Real>(0, std::min(t0, t1)), hi = std::min<Real>(la, std::max(t0, t1));
+    if (lo <= hi) {
+      int n0 = m.count;
+      for (int e = 0; e < 2; ++e) {
+        Vec3 pa = p0 + dir * (e == 0 ? lo : hi);
+        Real s, t;
+        closestSegmentPoints(pa, pa, q0, q1, s, t);
+        spheres(pa, a.radius_m, q0 + db * t, b.radius_m, margin, m, std::uint32_t(e));
+      }
+      if (m.count > n0) return m.count;
+    }
+  }
+  Real s, t;
+  closestSegmentPoints(p0, p1, q0, q1, s, t);
+  return spheres(p0 + da * s, a.radius_m, q0 + db * t, b.radius_m, margin, m, 2);
+}
+
+// Capsule (as a) against box (as b): the segment's closest point to the box
+// by alternating projection (both sets are convex, so it converges), plus
+// the two end caps, so a capsule lying on a box gets two points.
+int capsuleBox(const Xf& A, const Shape& a, const Xf& B, const Vec3& hB, Real margin, Manifold& m) {
+  Vec3 p0 = capsuleEnd(A, a.halfHeight_m, 0), p1 = capsuleEnd(A, a.halfHeight_m, 1);
+  for (int e = 0; e < 2; ++e) sphereBox(e == 0 ? p0 : p1, a.radius_m, B, hB, margin, m, std::uint32_t(e));
+  if (m.count == 2) return m.count;
+  Vec3 seg = p1 - p0;
+  Real len2 = seg.squaredNorm();
+  Real t = Real(0.5);
+  for (int it = 0; it < 8; ++it) {
+    Vec3 onSeg = p0 + seg * t;
+    Vec3 local = B.R.transpose() * (onSeg - B.p);
+    Vec3 onBox = B.p + B.R * local.cwiseMax(-hB).cwiseMin(hB);
+    t = len2 > 0 ? std::clamp<Real>(seg.dot(onBox - p0) / len2, 0, 1) : 0;
+  }
+  if (t > Real(0.02) && t < Real(0.98)) {
+    Manifold mid = m;
+    mid.count = 0;
+    if (sphereBox(p0 + seg * t, a.radius_m, B, hB, margin, mid, 2)) {
+      // Use the middle point when it is deeper than what the caps found.
+      bool deeper = m.count == 0 || mid.points[0].separation_m < m.points[0].separation_m - Real(1e-4);
+      if (deeper) {
+        if (m.count == 0) m.normal = mid.normal;
+        addPoint(m, mid.points[0].point_m, mid.points[0].separation_m, 2);
+      }
+    }
+  }
+  return m.count;
+}
+
+}  // namespace
+
+void closestSegmentPoints(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Real& s, Real& t) {
+  // Ericson, Real-Time Collision Detection 5.1.9.
+  Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  Real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  constexpr Real eps = Real(1e-12);
+  if (a <= eps && e <= eps) {
+    s = t = 0;
+    return;
+  }
+  if (a <= eps) {
+    s = 0;
+    t = std::clamp<Real>(f / e, 0, 1);
+    return;
+  }
+  Real c = d1.dot(r);
+  if (e <= eps) {
+    t = 0;
+    s = std::clamp<Real>(-c / a, 0, 1);
+    return;
+  }
+  Real b = d1.dot(d2), denom = a * e - b * b;
+  s = denom > eps ? std::clamp<Real>((b * f - c * e) / denom, 0, 1) : 0;
+  t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp<Real>(-c / a, 0, 1);
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp<Real>((b - c) / a, 0, 1);
+  }
+}
+
+int collideBodies(const Body& ba, const Body& bb, Real margin, Manifold& m) {
+  m.count = 0;
+  // Order by shape type so each pair has one routine; flip the normal back.
+  bool swapped = ba.shape.type > bb.shape.type;
+  const Body& a = swapped ? bb : ba;
+  const Body& b = swapped ? ba : bb;
+  Xf A = xfOf(a), B = xfOf(b);
+  const Shape& sa = a.shape;
+  const Shape& sb = b.shape;
+  switch (sa.type) {
+    case ShapeType::Sphere:
+      switch (sb.type) {
+        case ShapeType::Sphere: spheres(A.p, sa.radius_m, B.p, sb.radius_m, margin, m, 0); break;
+        case ShapeType::Box: sphereBox(A.p, sa.radius_m, B, sb.halfExtents_m, margin, m, 0); break;
+        case ShapeType::Capsule: {
+          Vec3 q0 = capsuleEnd(B, sb.halfHeight_m, 0), q1 = capsuleEnd(B, sb.halfHeight_m, 1);
+          Real s, t;
+          closestSegmentPoints(A.p, A.p, q0, q1, s, t);
+          spheres(A.p, sa.radius_m, q0 + (q1 - q0) * t, sb.radius_m, margin, m, 0);
+          break;
+        }
+        case ShapeType::Plane: planePoints(B, &A.p, 1, sa.radius_m, margin, m, false); break;
+      }
+      break;
+    case ShapeType::Box:
+      switch (sb.type) {
+        case ShapeType::Box: boxBox(A, sa.halfExtents_m, B, sb.halfExtents_m, margin, m); break;
+        case ShapeType::Capsule:
+          capsuleBox(B, sb, A, sa.halfExtents_m, margin, m);
+          m.normal = -m.normal;  // computed capsule -> box
+          break;
+        case ShapeType::Plane: {
+          auto v = boxVertices(A, sa.halfExtents_m);
+          planePoints(B, v.data(), 8, 0, margin, m, false);
+          break;
+        }
+        default: break;
+      }
+      break;
+    case ShapeType::Capsule:
+      switch (sb.type) {
+        case ShapeType::Capsule: capsuleCapsule(A, sa, B, sb, margin, m); break;
+        case ShapeType::Plane: {
+          Vec3 ends[2] = {capsuleEnd(A, sa.halfHeight_m, 0), capsuleEnd(A, sa.halfHeight_m, 1)};
+          planePoints(B, ends, 2, sa.radius_m, margin, m, false);
+          break;
+        }
+        default: break;
+      }
+      break;
+    case ShapeType::Plane: break;  // plane-plane never collides
+  }
+  if (swapped && m.count > 0) m.normal = -m.normal;
+  return m.count;
+}
+
+}  // namespace tumble::physics

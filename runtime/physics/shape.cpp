@@ -1,0 +1,116 @@
+#include "physics/shape.h"
+
+#include <string>
+
+namespace tumble::physics {
+
+Shape Shape::sphere(Real r) {
+  Shape s;
+  s.type = ShapeType::Sphere;
+  s.radius_m = r;
+  return s;
+}
+Shape Shape::box(const Vec3& h) {
+  Shape s;
+  s.type = ShapeType::Box;
+  s.halfExtents_m = h;
+  return s;
+}
+Shape Shape::capsule(Real r, Real hh) {
+  Shape s;
+  s.type = ShapeType::Capsule;
+  s.radius_m = r;
+  s.halfHeight_m = hh;
+  return s;
+}
+Shape Shape::plane() {
+  Shape s;
+  s.type = ShapeType::Plane;
+  return s;
+}
+
+Real Shape::volume() const {
+  switch (type) {
+    case ShapeType::Sphere: return Real(4.0 / 3.0) * kPi * radius_m * radius_m * radius_m;
+    case ShapeType::Box: return 8 * halfExtents_m.prod();
+    case ShapeType::Capsule: {
+      Real r = radius_m;
+      return kPi * r * r * (2 * halfHeight_m) + Real(4.0 / 3.0) * kPi * r * r * r;
+    }
+    case ShapeType::Plane: return 0;
+  }
+  return 0;
+}
+
+Vec3 Shape::unitInertia() const {
+  switch (type) {
+    case ShapeType::Sphere: return Vec3::Constant(Real(0.4) * radius_m * radius_m);
+    case ShapeType::Box: {
+      Vec3 s = 2 * halfExtents_m;
+      Vec3 s2 = s.cwiseProduct(s);
+      return Vec3(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()) / Real(12);
+    }
+    case ShapeType::Capsule: {
+      // Cylinder of height h plus two hemispheres, mass split by volume.
+      // Hemisphere about its own centre of mass, shifted by the parallel-axis
+      // theorem to the capsule centre (Eberly, Game Physics 2.5; the
+      // hemisphere's centroid sits 3r/8 from its flat face).
+      Real r = radius_m, h = 2 * halfHeight_m;
+      Real vCyl = kPi * r * r * h, vCaps = Real(4.0 / 3.0) * kPi * r * r * r;
+      Real mCyl = vCyl / (vCyl + vCaps), mCaps = vCaps / (vCyl + vCaps);
+      Real iyCyl = mCyl * r * r / 2;
+      Real ixCyl = mCyl * (3 * r * r + h * h) / 12;
+      Real iyCaps = mCaps * Real(0.4) * r * r;
+      Real ixCaps = mCaps * (Real(0.4) * r * r + h * h / 4 + Real(3.0 / 8.0) * h * r);
+      return Vec3(ixCyl + ixCaps, iyCyl + iyCaps, ixCyl + ixCaps);
+    }
+    case ShapeType::Plane: return Vec3::Zero();
+  }
+  return Vec3::Zero();
+}
+
+Real Shape::boundingRadius() const {
+  switch (type) {
+    case ShapeType::Sphere: return radius_m;
+    case ShapeType::Box: return halfExtents_m.norm();
+    case ShapeType::Capsule: return radius_m + halfHeight_m;
+    case ShapeType::Plane: return std::numeric_limits<Real>::infinity();
+  }
+  return 0;
+}
+
+static bool positiveFinite(Real v) { return std::isfinite(v) && v > 0; }
+
+Status validateShape(const Shape& s) {
+  auto bad = [](const char* field, Real v) {
+    return makeError(std::string("shape field '") + field + "' must be a finite number > 0 (metres), got " +
+                     std::to_string(v));
+  };
+  switch (s.type) {
+    case ShapeType::Sphere:
+      if (!positiveFinite(s.radius_m)) return bad("radius", s.radius_m);
+      break;
+    case ShapeType::Box:
+      for (int i = 0; i < 3; ++i)
+        if (!positiveFinite(s.halfExtents_m[i])) return bad("half_extents", s.halfExtents_m[i]);
+      break;
+    case ShapeType::Capsule:
+      if (!positiveFinite(s.radius_m)) return bad("radius", s.radius_m);
+      if (!std::isfinite(s.halfHeight_m) || s.halfHeight_m < 0) return bad("half_height", s.halfHeight_m);
+      break;
+    case ShapeType::Plane: break;
+  }
+  return Ok{};
+}
+
+const char* shapeTypeName(ShapeType t) {
+  switch (t) {
+    case ShapeType::Sphere: return "sphere";
+    case ShapeType::Box: return "box";
+    case ShapeType::Capsule: return "capsule";
+    case ShapeType::Plane: return "plane";
+  }
+  return "?";
+}
+
+}  // namespace tumble::physics

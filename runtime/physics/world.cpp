@@ -1,0 +1,718 @@
+// World stepping. The order inside step() is the one documented in world.h.
+//
+// Integration (semi-implicit Euler, per substep h):
+//   v += h (g + F/m);  w += h I^-1 tau;  then the gyroscopic term;
+//   contacts change v, w;  x += h v;  q += h/2 (0, w) q;  q normalised.
+// The gyroscopic term w x (I w) is integrated implicitly in the body frame
+// with one Newton step (Catto, "Numerical Methods", GDC 2015): solve
+//   f(w2) = I (w2 - w1) + h w2 x (I w2) = 0,
+// J = I + h (skew(w1) I - skew(I w1)), w2 = w1 - J^-1 f(w1). The explicit
+// form gains energy and makes a spinning T-handle blow up; the implicit one
+// loses a little energy, so the Dzhanibekov flip stays bounded.
+#include "physics/world.h"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/hash.h"
+#include "physics/internal/broad_phase.h"
+#include "physics/internal/contact_solver.h"
+#include "physics/internal/narrow_phase.h"
+
+namespace tumble::physics {
+
+/// How far (m) a contact point may move between steps and still inherit the
+/// old point's impulses when its feature id changed.
+constexpr Real kWarmStartMatchDistance_m = Real(0.01);
+
+Status validateBodyDef(const BodyDef& d) {
+  if (auto s = validateShape(d.shape); !s) return s;
+  auto finite3 = [](const Vec3& v) { return v.allFinite(); };
+  if (!finite3(d.position_m)) return makeError("body field 'position' must be finite (metres)");
+  if (!d.orientation.coeffs().allFinite() || d.orientation.norm() < Real(1e-6))
+    return makeError("body field 'orientation' must be a finite, non-zero quaternion");
+  if (!finite3(d.linearVelocity_mps)) return makeError("body field 'velocity' must be finite (m/s)");
+  if (!finite3(d.angularVelocity_radps)) return makeError("body field 'angular_velocity' must be finite (rad/s)");
+  if (!std::isfinite(d.mass_kg) || d.mass_kg < 0)
+    return makeError("body field 'mass' must be a finite number >= 0 (kg; 0 = from density), got " +
+                     std::to_string(d.mass_kg));
+  if (!std::isfinite(d.density_kgpm3) || d.density_kgpm3 <= 0)
+    return makeError("body field 'density' must be a finite number > 0 (kg/m^3)");
+  if (!std::isfinite(d.friction) || d.friction < 0)
+    return makeError("body field 'friction' must be a finite number >= 0, got " + std::to_string(d.friction));
+  if (!std::isfinite(d.restitution) || d.restitution < 0 || d.restitution > 1)
+    return makeError("body field 'restitution' must be between 0 and 1, got " + std::to_string(d.restitution));
+  if (!std::isfinite(d.linearDamping_per_s) || d.linearDamping_per_s < 0 || !std::isfinite(d.angularDamping_per_s) ||
+      d.angularDamping_per_s < 0)
+    return makeError("body fields 'linear_damping' and 'angular_damping' must be finite numbers >= 0 (1/s)");
+  if (d.shape.type == ShapeType::Plane && d.type != BodyType::Static)
+    return makeError("a plane must be a static body (type = \"static\")");
+  return Ok{};
+}
+
+World::World(const WorldSettings& settings) : m_settings(settings), m_broad(std::make_unique<BroadPhase>()) {}
+World::~World() = default;
+
+BodyId World::idOf(std::uint32_t index) const { return BodyId{index, m_bodies[index].generation}; }
+
+bool World::isValid(BodyId id) const {
+  return !id.isNull() && id.index < m_bodies.size() && m_bodies[id.index].alive &&
+         m_bodies[id.index].generation == id.generation;
+}
+
+const Body& World::body(BodyId id) const {
+  TUMBLE_ASSERT(isValid(id), "stale or null BodyId; check World::isValid first");
+  return m_bodies[id.index];
+}
+
+Body& World::mutableBody(BodyId id) {
+  TUMBLE_ASSERT(isValid(id), "stale or null BodyId; check World::isValid first");
+  return m_bodies[id.index];
+}
+
+Result<BodyId> World::createBody(const BodyDef& def) {
+  if (auto s = validateBodyDef(def); !s) return makeError(s.error());
+  std::uint32_t index;
+  if (!m_freeList.empty()) {
+    index = m_freeList.back();
+    m_freeList.pop_back();
+  } else {
+    index = std::uint32_t(m_bodies.size());
+    m_bodies.emplace_back();
+    m_stepStartPosition.emplace_back(Vec3::Zero());
+    m_stepStartOrientation.emplace_back(Quat::Identity());
+    m_sleepIsland.push_back(0);
+  }
+  Body& b = m_bodies[index];
+  std::uint32_t generation = b.generation + 1;  // generations start at 1: the zero handle is null
+  b = Body{};
+  b.generation = generation;
+  b.alive = true;
+  b.type = def.type;
+  b.shape = def.shape;
+  b.position_m = def.position_m;
+  b.orientation = def.orientation.normalized();
+  b.friction = def.friction;
+  b.restitution = def.restitution;
+  b.linearDamping_per_s = def.linearDamping_per_s;
+  b.angularDamping_per_s = def.angularDamping_per_s;
+  b.allowSleep = def.allowSleep;
+  b.userData = def.userData;
+  if (def.type != BodyType::Static) {
+    b.linearVelocity_mps = def.linearVelocity_mps;
+    b.angularVelocity_radps = def.angularVelocity_radps;
+  }
+  if (def.type == BodyType::Dynamic) {
+    b.mass_kg = def.mass_kg > 0 ? def.mass_kg : def.density_kgpm3 * def.shape.volume();
+    b.invMass_per_kg = 1 / b.mass_kg;
+    b.inertiaLocal_kgm2 = b.mass_kg * def.shape.unitInertia();
+    b.invInertiaLocal = b.inertiaLocal_kgm2.cwiseInverse();
+  }
+  updateInertia(b);
+  m_sleepIsland[index] = 0;
+  ++m_bodyCount;
+  return BodyId{index, generation};
+}
+
+bool World::destroyBody(BodyId id) {
+  if (!isValid(id)) return false;
+  // Wake whatever rested on it.
+  for (const Manifold& m : m_manifolds)
+    if (m.a == id.index || m.b == id.index) {
+      wakeIsland(m.a);
+      wakeIsland(m.b);
+    }
+  Body& b = m_bodies[id.index];
+  b.alive = false;
+  ++b.generation;
+  m_freeList.push_back(id.index);
+  --m_bodyCount;
+  m_manifolds.erase(std::remove_if(m_manifolds.begin(), m_manifolds.end(),
+                                   [&](const Manifold& m) { return m.a == id.index || m.b == id.index; }),
+                    m_manifolds.end());
+  return true;
+}
+
+void World::updateInertia(Body& b) {
+  if (!b.isDynamic()) {
+    b.invInertiaWorld.setZero();
+    return;
+  }
+  Mat3 R = b.orientation.toRotationMatrix();
+  b.invInertiaWorld = R * b.invInertiaLocal.asDiagonal() * R.transpose();
+}
+
+void World::setPosition(BodyId id, const Vec3& p) {
+  Body& b = mutableBody(id);
+  b.position_m = p;
+  wakeIsland(id.index);
+}
+void World::setOrientation(BodyId id, const Quat& q) {
+  Body& b = mutableBody(id);
+  b.orientation = q.normalized();
+  updateInertia(b);
+  wakeIsland(id.index);
+}
+void World::setLinearVelocity(BodyId id, const Vec3& v) {
+  Body& b = mutableBody(id);
+  if (b.type == BodyType::Static) return;
+  b.linearVelocity_mps = v;
+  wakeIsland(id.index);
+}
+void World::setAngularVelocity(BodyId id, const Vec3& w) {
+  Body& b = mutableBody(id);
+  if (b.type == BodyType::Static) return;
+  b.angularVelocity_radps = w;
+  wakeIsland(id.index);
+}
+void World::setMaterial(BodyId id, Real friction, Real restitution) {
+  Body& b = mutableBody(id);
+  b.friction = friction;
+  b.restitution = restitution;
+}
+void World::applyForce(BodyId id, const Vec3& f, const Vec3& point) {
+  Body& b = mutableBody(id);
+  if (!b.isDynamic()) return;
+  b.force_N += f;
+  b.torque_Nm += (point - b.position_m).cross(f);
+  wakeIsland(id.index);
+}
+void World::applyTorque(BodyId id, const Vec3& t) {
+  Body& b = mutableBody(id);
+  if (!b.isDynamic()) return;
+  b.torque_Nm += t;
+  wakeIsland(id.index);
+}
+void World::applyImpulse(BodyId id, const Vec3& J, const Vec3& point) {
+  Body& b = mutableBody(id);
+  if (!b.isDynamic()) return;
+  wakeIsland(id.index);
+  double before = 0.5 * b.mass_kg * b.linearVelocity_mps.squaredNorm() +
+                  0.5 * b.angularVelocity_radps.dot(b.invInertiaWorld.inverse() * b.angularVelocity_radps);
+  b.linearVelocity_mps += b.invMass_per_kg * J;
+  b.angularVelocity_radps += b.invInertiaWorld * (point - b.position_m).cross(J);
+  double after = 0.5 * b.mass_kg * b.linearVelocity_mps.squaredNorm() +
+                 0.5 * b.angularVelocity_radps.dot(b.invInertiaWorld.inverse() * b.angularVelocity_radps);
+  m_externalWork += after - before;
+  m_externalImpulse += J.cast<double>();
+}
+void World::wake(BodyId id) {
+  if (isValid(id)) wakeIsland(id.index);
+}
+
+void World::wakeIsland(std::uint32_t index) {
+  if (index >= m_bodies.size()) return;
+  std::uint32_t island = m_sleepIsland[index];
+  if (island == 0) {
+    m_bodies[index].awake = true;
+    m_bodies[index].sleepTime_s = 0;
+    return;
+  }
+  for (std::uint32_t i = 0; i < m_bodies.size(); ++i)
+    if (m_sleepIsland[i] == island) {
+      m_bodies[i].awake = true;
+      m_bodies[i].sleepTime_s = 0;
+      m_sleepIsland[i] = 0;
+    }
+}
+
+// ---- stepping ------------------------------------------------------------------
+
+static Aabb shapeBounds(const Body& b) {
+  Aabb box;
+  const Shape& s = b.shape;
+  Vec3 ext = Vec3::Zero();
+  switch (s.type) {
+    case ShapeType::Sphere: ext = Vec3::Constant(s.radius_m); break;
+    case ShapeType::Box: ext = b.orientation.toRotationMatrix().cwiseAbs() * s.halfExtents_m; break;
+    case ShapeType::Capsule:
+      ext = (b.orientation * Vec3(0, s.halfHeight_m, 0)).cwiseAbs() + Vec3::Constant(s.radius_m);
+      break;
+    case ShapeType::Plane: ext = Vec3::Constant(std::numeric_limits<Real>::infinity()); break;
+  }
+  box.lo = b.position_m - ext;
+  box.hi = b.position_m + ext;
+  return box;
+}
+
+void World::collide(Real dt) {
+  // Keep last step's manifolds by pair for warm starting.
+  std::unordered_map<std::uint64_t, std::size_t> previous;
+  previous.reserve(m_manifolds.size() * 2);
+  for (std::size_t i = 0; i < m_manifolds.size(); ++i)
+    previous[pairKey(m_manifolds[i].a, m_manifolds[i].b)] = i;
+  std::vector<Manifold> old;
+  old.swap(m_manifolds);
+
+  // Boxes grown by the distance each body can travel this step
+  // (speculative margin), so fast bodies find their contacts in time.
+  const std::size_t n = m_bodies.size();
+  static thread_local std::vector<Aabb> boxes;
+  static thread_local std::vector<std::uint8_t> active;
+  static thread_local std::vector<std::uint32_t> planes;
+  static thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  boxes.resize(n);
+  active.assign(n, 0);
+  planes.clear();
+  const Real spec = m_settings.speculativeDistance_m;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Body& b = m_bodies[i];
+    if (!b.alive) continue;
+    if (b.shape.type == ShapeType::Plane) {
+      planes.push_back(i);
+      continue;
+    }
+    Aabb box = shapeBounds(b);
+    Vec3 travel = b.moves() ? Vec3(b.linearVelocity_mps * dt) : Vec3::Zero();
+    Real spin = b.moves() ? b.angularVelocity_radps.norm() * dt * b.shape.boundingRadius() : 0;
+    Vec3 grow = Vec3::Constant(spec + std::min(spin, b.shape.boundingRadius()));
+    box.lo += travel.cwiseMin(Vec3::Zero()) - grow;
+    box.hi += travel.cwiseMax(Vec3::Zero()) + grow;
+    boxes[i] = box;
+    active[i] = 1;
+  }
+  auto canCollide = [&](std::uint32_t a, std::uint32_t b) {
+    const Body& A = m_bodies[a];
+    const Body& B = m_bodies[b];
+    return A.moves() || B.moves();
+  };
+  m_broad->findPairs(boxes, active, canCollide, pairs);
+  for (std::uint32_t p : planes)
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (active[i] && m_bodies[i].moves()) pairs.emplace_back(std::min(p, i), std::max(p, i));
+
+  m_events.clear();
+  int points = 0;
+  for (auto [ia, ib] : pairs) {
+    const Body& a = m_bodies[ia];
+    const Body& b = m_bodies[ib];
+    // Margin: the closing speed along any direction this step, bounded.
+    Vec3 dv = b.linearVelocity_mps - a.linearVelocity_mps;
+    Real margin = spec + dv.norm() * dt;
+    Manifold m;
+    m.a = ia;
+    m.b = ib;
+    if (collideBodies(a, b, margin, m) == 0) continue;
+    m.friction = std::sqrt(a.friction * b.friction);
+    m.restitution = std::max(a.restitution, b.restitution);
+    // Warm start from matching feature ids; a point whose id changed but
+    // which sits where an old point was (features flicker when faces are
+    // exactly aligned) takes that point's impulses.
+    auto it = previous.find(pairKey(ia, ib));
+    if (it != previous.end() && old[it->second].a == ia) {
+      const Manifold& pm = old[it->second];
+      m.touchedBefore = pm.count > 0;
+      bool used[kMaxManifoldPoints] = {};
+      for (int i = 0; i < m.count; ++i) {
+        int match = -1;
+        for (int j = 0; j < pm.count; ++j)
+          if (!used[j] && pm.points[j].id == m.points[i].id) match = j;
+        if (match < 0) {
+          Real best = kWarmStartMatchDistance_m * kWarmStartMatchDistance_m;
+          for (int j = 0; j < pm.count; ++j) {
+            Real d2 = (pm.points[j].point_m - m.points[i].point_m).squaredNorm();
+            if (!used[j] && d2 < best) best = d2, match = j;
+          }
+        }
+        if (match < 0) continue;
+        used[match] = true;
+        m.points[i].normalImpulse = pm.points[match].normalImpulse;
+        m.points[i].tangentImpulse[0] = pm.points[match].tangentImpulse[0];
+        m.points[i].tangentImpulse[1] = pm.points[match].tangentImpulse[1];
+      }
+    }
+    // A moving body touching a sleeping one wakes it (and its island).
+    bool touching = false;
+    for (int i = 0; i < m.count; ++i) {
+      touching |= m.points[i].separation_m < m_settings.linearSlop_m;
+      m_error.penetrationMax_m = std::max(m_error.penetrationMax_m, -m.points[i].separation_m);
+    }
+    if (touching) {
+      if (a.isDynamic() && !a.awake && b.moves()) wakeIsland(ia);
+      if (b.isDynamic() && !b.awake && a.moves()) wakeIsland(ib);
+    }
+    points += m.count;
+    m_manifolds.push_back(m);
+  }
+  m_lastContactPoints = points;
+  m_error.contactsMax = std::max(m_error.contactsMax, points);
+}
+
+void World::integrateVelocities(Real h) {
+  const Vec3 g = m_settings.gravity_mps2;
+  for (Body& b : m_bodies) {
+    if (!b.alive || !b.isDynamic() || !b.awake) continue;
+    m_externalImpulse += double(h * b.mass_kg) * g.cast<double>();
+    b.linearVelocity_mps += h * (g + b.invMass_per_kg * b.force_N);
+    b.angularVelocity_radps += h * (b.invInertiaWorld * b.torque_Nm);
+    if (b.force_N != Vec3::Zero() || b.torque_Nm != Vec3::Zero()) {
+      m_externalImpulse += double(h) * b.force_N.cast<double>();
+      m_externalWork += double(h) * (b.force_N.dot(b.linearVelocity_mps) + b.torque_Nm.dot(b.angularVelocity_radps));
+    }
+    if (m_settings.gyroscopic) {
+      // Implicit gyroscopic step in the body frame (see top of file).
+      const Vec3& I = b.inertiaLocal_kgm2;
+      Vec3 w1 = b.orientation.conjugate() * b.angularVelocity_radps;
+      Vec3 Iw = I.cwiseProduct(w1);
+      Vec3 f = h * w1.cross(Iw);
+      Mat3 J = Mat3(I.asDiagonal()) + h * (skew(w1) * I.asDiagonal() - skew(Iw));
+      Vec3 w2 = w1 - J.partialPivLu().solve(f);
+      b.angularVelocity_radps = b.orientation * w2;
+    }
+    if (b.linearDamping_per_s > 0) {
+      Vec3 before = b.linearVelocity_mps;
+      b.linearVelocity_mps *= 1 / (1 + h * b.linearDamping_per_s);
+      m_externalImpulse += b.mass_kg * (b.linearVelocity_mps - before).cast<double>();
+    }
+    b.angularVelocity_radps *= 1 / (1 + h * b.angularDamping_per_s);
+  }
+}
+
+void World::integratePositions(Real h) {
+  for (Body& b : m_bodies) {
+    if (!b.alive || !b.moves()) continue;
+    b.position_m += h * b.linearVelocity_mps;
+    const Vec3& w = b.angularVelocity_radps;
+    Quat dq(0, w.x(), w.y(), w.z());
+    dq = dq * b.orientation;
+    b.orientation.coeffs() += (h / 2) * dq.coeffs();
+    b.orientation.normalize();
+    updateInertia(b);
+  }
+}
+
+void World::freezeNonFinite() {
+  // A body whose state is not finite is put back where the step began and
+  // frozen, so the fault never spreads through contacts.
+  for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
+    Body& b = m_bodies[i];
+    if (!b.alive || b.frozen) continue;
+    bool finite = b.position_m.allFinite() && b.orientation.coeffs().allFinite() &&
+                  b.linearVelocity_mps.allFinite() && b.angularVelocity_radps.allFinite();
+    if (finite) continue;
+    b.frozen = true;
+    b.position_m = m_stepStartPosition[i].allFinite() ? m_stepStartPosition[i] : Vec3::Zero();
+    b.orientation = m_stepStartOrientation[i];
+    b.linearVelocity_mps.setZero();
+    b.angularVelocity_radps.setZero();
+    b.invInertiaWorld.setZero();
+    ++m_error.nanEvents;
+  }
+}
+
+void World::updateSleep(Real dt) {
+  if (!m_settings.enableSleep) return;
+  const std::size_t n = m_bodies.size();
+  // Islands: union-find over touching contacts between dynamic bodies.
+  std::vector<std::uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const Manifold& m : m_manifolds) {
+    if (!m_bodies[m.a].isDynamic() || !m_bodies[m.b].isDynamic()) continue;
+    parent[find(m.a)] = find(m.b);
+  }
+  std::vector<Real> islandMin(n, std::numeric_limits<Real>::max());
+  const Real lin2 = m_settings.sleepLinearSpeed_mps * m_settings.sleepLinearSpeed_mps;
+  const Real ang2 = m_settings.sleepAngularSpeed_radps * m_settings.sleepAngularSpeed_radps;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    Body& b = m_bodies[i];
+    if (!b.alive || !b.isDynamic() || !b.awake) continue;
+    bool slow = b.linearVelocity_mps.squaredNorm() < lin2 && b.angularVelocity_radps.squaredNorm() < ang2;
+    b.sleepTime_s = (slow && b.allowSleep) ? b.sleepTime_s + dt : 0;
+    Real& mn = islandMin[find(i)];
+    mn = std::min(mn, b.sleepTime_s);
+  }
+  // Kinematic bodies touching an island keep it awake.
+  for (const Manifold& m : m_manifolds) {
+    const Body& a = m_bodies[m.a];
+    const Body& b = m_bodies[m.b];
+    if (a.type == BodyType::Kinematic && b.isDynamic()) islandMin[find(m.b)] = 0;
+    if (b.type == BodyType::Kinematic && a.isDynamic()) islandMin[find(m.a)] = 0;
+  }
+  std::vector<std::uint32_t> islandId(n, 0);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    Body& b = m_bodies[i];
+    if (!b.alive || !b.isDynamic() || !b.awake) continue;
+    std::uint32_t root = find(i);
+    if (islandMin[root] < m_settings.timeToSleep_s) continue;
+    if (islandId[root] == 0) islandId[root] = m_nextIsland++;
+    b.awake = false;
+    m_externalImpulse -= b.mass_kg * b.linearVelocity_mps.cast<double>();  // zeroed below
+    b.linearVelocity_mps.setZero();
+    b.angularVelocity_radps.setZero();
+    m_sleepIsland[i] = islandId[root];
+  }
+}
+
+void World::step(Real dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) return;
+  if (!m_trackingStarted) resetErrorStats();
+  freezeNonFinite();  // catches non-finite values set from outside (scripts)
+  for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
+    m_stepStartPosition[i] = m_bodies[i].position_m;
+    m_stepStartOrientation[i] = m_bodies[i].orientation;
+  }
+  collide(dt);
+
+  const int substeps = std::max(1, m_settings.substeps);
+  SolverSettings ss;
+  ss.h = dt / Real(substeps);
+  ss.contactHertz = m_settings.contactHertz;
+  ss.contactDampingRatio = m_settings.contactDampingRatio;
+  ss.maxPushout_mps = m_settings.maxPushoutSpeed_mps;
+  ss.restitutionThreshold_mps = m_settings.restitutionThreshold_mps;
+  ss.linearSlop_m = m_settings.linearSlop_m;
+  ss.softContacts = m_settings.softContacts;
+  ss.baumgarte = m_settings.baumgarte;
+  StepStart start{&m_stepStartPosition, &m_stepStartOrientation};
+
+  prepareContacts(m_manifolds, m_bodies, ss);
+  for (int s = 0; s < substeps; ++s) {
+    integrateVelocities(ss.h);
+    warmStartContacts(m_manifolds, m_bodies);
+    for (int it = 0; it < m_settings.velocityIterations; ++it) solveContacts(m_manifolds, m_bodies, start, ss, true);
+    integratePositions(ss.h);
+    freezeNonFinite();  // a fault must not reach the neighbours in the next substep
+    for (int it = 0; it < m_settings.relaxIterations; ++it) solveContacts(m_manifolds, m_bodies, start, ss, false);
+  }
+  applyRestitution(m_manifolds, m_bodies, ss);
+
+  // Begin-contact events and impulses on static bodies (momentum bookkeeping).
+  for (const Manifold& m : m_manifolds) {
+    Real total = 0;
+    for (int i = 0; i < m.count; ++i) total += m.points[i].normalImpulse;
+    // Impulses from static, kinematic or sleeping bodies are external to the
+    // moving set; between two moving bodies they cancel exactly.
+    m_externalImpulse += m.externalImpulse_Ns;
+    if (!m.touchedBefore && total > 0) {
+      ContactEvent e;
+      e.a = idOf(m.a);
+      e.b = idOf(m.b);
+      e.point_m = m.points[0].point_m;
+      e.normal = m.normal;
+      e.impulse_Ns = total;
+      m_events.push_back(e);
+    }
+  }
+  for (Body& b : m_bodies) {
+    b.force_N.setZero();
+    b.torque_Nm.setZero();
+  }
+  freezeNonFinite();
+  updateSleep(dt);
+  trackErrors(dt);
+}
+
+// ---- error bookkeeping -----------------------------------------------------------
+
+double World::totalEnergy() const {
+  double e = 0;
+  const Eigen::Vector3d g = m_settings.gravity_mps2.cast<double>();
+  for (const Body& b : m_bodies) {
+    if (!b.alive || !b.isDynamic()) continue;
+    Eigen::Vector3d v = b.linearVelocity_mps.cast<double>();
+    Eigen::Vector3d wl = (b.orientation.conjugate() * b.angularVelocity_radps).cast<double>();
+    e += 0.5 * b.mass_kg * v.squaredNorm() + 0.5 * wl.dot(b.inertiaLocal_kgm2.cast<double>().cwiseProduct(wl));
+    e -= b.mass_kg * g.dot(b.position_m.cast<double>());
+  }
+  return e;
+}
+
+Eigen::Vector3d World::totalMomentum() const {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (const Body& b : m_bodies)
+    if (b.alive && b.isDynamic()) p += b.mass_kg * b.linearVelocity_mps.cast<double>();
+  return p;
+}
+
+void World::resetErrorStats() {
+  m_error = ErrorStats{};
+  m_energy0 = totalEnergy();
+  m_externalWork = 0;
+  m_momentum0 = totalMomentum();
+  m_externalImpulse.setZero();
+  m_trackingStarted = true;
+  // Energy scale: the energy that could be converted in the scene, so that a
+  // resting scene (E ~ 0) does not divide by zero: sum of |kinetic| plus
+  // m g (height above the lowest body) plus 1 J.
+  double lowest = 0, ke = 0, mg = 0;
+  bool first = true;
+  const double g = m_settings.gravity_mps2.cast<double>().norm();
+  for (const Body& b : m_bodies)
+    if (b.alive && b.isDynamic()) {
+      double y = b.position_m.y() - b.shape.boundingRadius();
+      lowest = first ? y : std::min(lowest, y);
+      first = false;
+    }
+  double ms = 0;
+  for (const Body& b : m_bodies)
+    if (b.alive && b.isDynamic()) {
+      ke += 0.5 * b.mass_kg * b.linearVelocity_mps.squaredNorm();
+      mg += b.mass_kg * g * (b.position_m.y() - lowest);
+      ms += b.mass_kg * b.linearVelocity_mps.norm();
+    }
+  m_energyScale = ke + mg + 1.0;
+  m_momentumScale = ms;
+}
+
+void World::trackErrors(Real dt) {
+  // Energy: contacts (restitution <= 1, friction, soft constraints) and
+  // damping can only remove energy, so any gain beyond the work done by
+  // scripts is numerical error. energy_rel_drift_max is the largest such gain
+  // relative to the scene's energy scale.
+  double e = totalEnergy();
+  double gain = (e - m_energy0 - m_externalWork) / m_energyScale;
+  m_error.energyRelDriftMax = std::max<Real>(m_error.energyRelDriftMax, Real(std::max(gain, 0.0)));
+  // Momentum: gravity, forces and impulses from static bodies and scripts are
+  // external; what remains must cancel pairwise between dynamic bodies.
+  (void)dt;
+  double ms = 0;
+  for (const Body& b : m_bodies)
+    if (b.alive && b.isDynamic() && b.awake) ms += b.mass_kg * b.linearVelocity_mps.norm();
+  m_momentumScale = std::max(m_momentumScale, ms);
+  Eigen::Vector3d drift = totalMomentum() - m_momentum0 - m_externalImpulse;
+  if (m_momentumScale > 0)
+    m_error.momentumRelDriftMax = std::max<Real>(m_error.momentumRelDriftMax, Real(drift.norm() / m_momentumScale));
+}
+
+std::uint64_t World::stateHash() const {
+  Hasher h;
+  for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
+    const Body& b = m_bodies[i];
+    if (!b.alive) continue;
+    h.value(i);
+    h.bytes(b.position_m.data(), sizeof(Real) * 3);
+    h.bytes(b.orientation.coeffs().data(), sizeof(Real) * 4);
+    h.bytes(b.linearVelocity_mps.data(), sizeof(Real) * 3);
+    h.bytes(b.angularVelocity_radps.data(), sizeof(Real) * 3);
+  }
+  return h.digest();
+}
+
+// ---- queries -----------------------------------------------------------------------
+
+static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit) {
+  // d is unit length here.
+  const Shape& s = b.shape;
+  auto raySphere = [&](const Vec3& c, Real r, Real& t, Vec3& n) {
+    Vec3 m = o - c;
+    Real bq = m.dot(d), cq = m.squaredNorm() - r * r;
+    if (cq > 0 && bq > 0) return false;
+    Real disc = bq * bq - cq;
+    if (disc < 0) return false;
+    t = std::max<Real>(-bq - std::sqrt(disc), 0);
+    if (t > maxT) return false;
+    n = (o + d * t - c).normalized();
+    return true;
+  };
+  switch (s.type) {
+    case ShapeType::Sphere: return raySphere(b.position_m, s.radius_m, tHit, nHit);
+    case ShapeType::Plane: {
+      Vec3 n = b.orientation * Vec3::UnitY();
+      Real denom = n.dot(d);
+      Real dist = n.dot(o - b.position_m);
+      if (dist < 0) return false;  // starts behind the plane
+      if (denom >= 0) return false;
+      Real t = -dist / denom;
+      if (t > maxT) return false;
+      tHit = t;
+      nHit = n;
+      return true;
+    }
+    case ShapeType::Box: {
+      Mat3 R = b.orientation.toRotationMatrix();
+      Vec3 lo = R.transpose() * (o - b.position_m), ld = R.transpose() * d;
+      Real tmin = 0, tmax = maxT;
+      int axis = -1;
+      Real sign = 1;
+      for (int i = 0; i < 3; ++i) {
+        if (std::abs(ld[i]) < Real(1e-12)) {
+          if (std::abs(lo[i]) > s.halfExtents_m[i]) return false;
+          continue;
+        }
+        Real inv = 1 / ld[i];
+        Real t1 = (-s.halfExtents_m[i] - lo[i]) * inv, t2 = (s.halfExtents_m[i] - lo[i]) * inv;
+        Real sg = -1;
+        if (t1 > t2) std::swap(t1, t2), sg = 1;
+        if (t1 > tmin) tmin = t1, axis = i, sign = sg;
+        tmax = std::min(tmax, t2);
+        if (tmin > tmax) return false;
+      }
+      tHit = tmin;
+      Vec3 nl = Vec3::Zero();
+      if (axis >= 0) nl[axis] = sign;
+      else nl = -ld;  // started inside
+      nHit = (R * nl).normalized();
+      return true;
+    }
+    case ShapeType::Capsule: {
+      Vec3 axis = b.orientation * Vec3::UnitY();
+      Vec3 p0 = b.position_m - axis * s.halfHeight_m, p1 = b.position_m + axis * s.halfHeight_m;
+      // Infinite cylinder, then the caps.
+      Real best = std::numeric_limits<Real>::max();
+      Vec3 bestN = Vec3::UnitY();
+      Vec3 m = o - p0, dperp = d - axis * d.dot(axis), mperp = m - axis * m.dot(axis);
+      Real a = dperp.squaredNorm(), bq = mperp.dot(dperp), c = mperp.squaredNorm() - s.radius_m * s.radius_m;
+      if (a > Real(1e-12)) {
+        Real disc = bq * bq - a * c;
+        if (disc >= 0) {
+          Real t = (-bq - std::sqrt(disc)) / a;
+          if (c < 0) t = 0;
+          Real along = (o + d * t - p0).dot(axis);
+          if (t >= 0 && t <= maxT && along >= 0 && along <= 2 * s.halfHeight_m) {
+            best = t;
+            Vec3 q = o + d * t;
+            bestN = (q - (p0 + axis * along)).normalized();
+          }
+        }
+      }
+      for (const Vec3& c2 : {p0, p1}) {
+        Real t;
+        Vec3 n;
+        if (raySphere(c2, s.radius_m, t, n) && t < best) best = t, bestN = n;
+      }
+      if (best > maxT) return false;
+      tHit = best;
+      nHit = bestN;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<RayHit> World::rayCastAll(const Vec3& origin, const Vec3& dir, Real maxDistance) const {
+  std::vector<RayHit> hits;
+  Real len = dir.norm();
+  if (!(len > 0) || !origin.allFinite() || !std::isfinite(maxDistance)) return hits;
+  Vec3 d = dir / len;
+  for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
+    const Body& b = m_bodies[i];
+    if (!b.alive) continue;
+    Real t;
+    Vec3 n;
+    if (rayShape(b, origin, d, maxDistance, t, n)) hits.push_back({idOf(i), t, origin + d * t, n});
+  }
+  std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) { return a.distance_m < b.distance_m; });
+  return hits;
+}
+
+bool World::rayCast(const Vec3& origin, const Vec3& dir, Real maxDistance, RayHit* hit) const {
+  auto hits = rayCastAll(origin, dir, maxDistance);
+  if (hits.empty()) return false;
+  if (hit) *hit = hits.front();
+  return true;
+}
+
+void World::debugDraw(DebugDraw& draw) const {
+  for (const Manifold& m : m_manifolds)
+    for (int i = 0; i < m.count; ++i) {
+      const Vec3& p = m.points[i].point_m;
+      draw.line(p, p + m.normal * Real(0.3), Vec3(1, 1, 0));
+    }
+}
+
+}  // namespace tumble::physics

@@ -1,0 +1,183 @@
+#pragma once
+// The rigid-body world: bodies, collision, the contact solver and stepping.
+//
+// One step of length dt (see world.cpp for the derivation and the choices):
+//   broad phase (sweep and prune) -> narrow phase (contact manifolds, once per
+//   step, speculative so fast bodies do not tunnel) -> K substeps of
+//   { integrate velocities (gravity, forces, implicit gyroscopic term),
+//     warm start, solve contacts with soft constraints, integrate positions,
+//     relax contacts without bias } -> restitution -> sleep.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "core/result.h"
+#include "physics/body.h"
+
+namespace tumble::physics {
+
+struct WorldSettings {
+  Vec3 gravity_mps2 = Vec3(0, -kStandardGravity, 0);
+  int substeps = 8;            ///< solver substeps per step (>= 1); see contact_solver.cpp
+  int velocityIterations = 4;  ///< solve iterations per substep
+  int relaxIterations = 1;     ///< bias-free iterations per substep
+  /// Approach speed (m/s) below which contacts do not bounce, so resting
+  /// bodies do not jitter.
+  Real restitutionThreshold_mps = 1;
+  /// Overlap removal. Rigid (default): the solve pass pushes with
+  /// baumgarte * depth / h (at most maxPushoutSpeed), and the relax pass
+  /// removes that velocity again, so correction never turns into bounce.
+  /// Soft: a mass-normalised spring-damper (contactHertz, damping ratio);
+  /// smoother, but a light body under a heavy one sinks by F / (m w^2).
+  /// See contact_solver.cpp for the measurements behind the default.
+  bool softContacts = false;
+  Real baumgarte = Real(0.2);
+  /// Contact stiffness of the soft model (Hz) and its damping ratio.
+  Real contactHertz = 30;
+  Real contactDampingRatio = 10;
+  /// Largest speed (m/s) at which overlapping bodies are pushed apart.
+  Real maxPushoutSpeed_mps = 3;
+  /// Contacts are kept up to this separation (m) ahead of touching, plus the
+  /// distance the bodies can close in one step (speculative contacts / CCD).
+  Real speculativeDistance_m = Real(0.02);
+  /// Allowed overlap (m) that is not corrected, so resting contacts persist.
+  Real linearSlop_m = Real(0.005);
+  bool enableSleep = true;
+  Real sleepLinearSpeed_mps = Real(0.05);
+  Real sleepAngularSpeed_radps = Real(0.1);
+  Real timeToSleep_s = Real(0.5);
+  bool gyroscopic = true;  ///< include the gyroscopic term w x Iw (implicit)
+};
+
+/// A contact event for scripts: reported once when a pair first touches,
+/// with the normal impulse of that step.
+struct ContactEvent {
+  BodyId a, b;
+  Vec3 point_m = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();  ///< from a to b
+  Real impulse_Ns = 0;
+};
+
+struct RayHit {
+  BodyId body;
+  Real distance_m = 0;  ///< along the ray from its origin
+  Vec3 point_m = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+
+/// Error figures gathered while stepping (filled into the run report).
+struct ErrorStats {
+  Real penetrationMax_m = 0;     ///< deepest overlap seen by the narrow phase
+  Real energyRelDriftMax = 0;    ///< largest relative energy gain, see world.cpp
+  Real momentumRelDriftMax = 0;  ///< largest unexplained change of momentum, relative
+  int nanEvents = 0;             ///< bodies frozen because their state became non-finite
+  int contactsMax = 0;           ///< most contact points in one step
+};
+
+class DebugDraw {
+ public:
+  virtual ~DebugDraw() = default;
+  virtual void line(const Vec3& a, const Vec3& b, const Vec3& color) = 0;
+};
+
+struct Manifold;
+class BroadPhase;
+
+class World {
+ public:
+  explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  WorldSettings& settings() { return m_settings; }
+  const WorldSettings& settings() const { return m_settings; }
+
+  /// Creates a body; refuses bad definitions (negative mass, zero size, NaN)
+  /// with a message naming the field.
+  Result<BodyId> createBody(const BodyDef& def);
+  /// Removes a body; returns false for a stale or null handle.
+  bool destroyBody(BodyId id);
+  bool isValid(BodyId id) const;
+  /// Read access; asserts on a stale handle (check isValid first).
+  const Body& body(BodyId id) const;
+  int bodyCount() const { return m_bodyCount; }
+  BodyId idOf(std::uint32_t index) const;
+
+  void setPosition(BodyId id, const Vec3& p_m);
+  void setOrientation(BodyId id, const Quat& q);
+  void setLinearVelocity(BodyId id, const Vec3& v_mps);
+  void setAngularVelocity(BodyId id, const Vec3& w_radps);
+  void setMaterial(BodyId id, Real friction, Real restitution);
+  /// Force (N) at a world point (m), applied over the next step.
+  void applyForce(BodyId id, const Vec3& force_N, const Vec3& point_m);
+  void applyTorque(BodyId id, const Vec3& torque_Nm);
+  /// Impulse (N s) at a world point, applied at once.
+  void applyImpulse(BodyId id, const Vec3& impulse_Ns, const Vec3& point_m);
+  void wake(BodyId id);
+
+  void step(Real dt_s);
+
+  /// Contacts that began during the last step.
+  const std::vector<ContactEvent>& contactEvents() const { return m_events; }
+  int contactPointCount() const { return m_lastContactPoints; }
+
+  /// Closest hit along origin + t*dir, t in [0, maxDistance]; dir need not be unit.
+  bool rayCast(const Vec3& origin_m, const Vec3& dir, Real maxDistance_m, RayHit* hit) const;
+  /// Every hit, nearest first.
+  std::vector<RayHit> rayCastAll(const Vec3& origin_m, const Vec3& dir, Real maxDistance_m) const;
+
+  /// Kinetic + gravitational potential energy of dynamic bodies (J).
+  double totalEnergy() const;
+  /// Total linear momentum of dynamic bodies (kg m/s).
+  Eigen::Vector3d totalMomentum() const;
+  /// Hash of every live body's position, orientation and velocities (exact bits).
+  std::uint64_t stateHash() const;
+  const ErrorStats& errorStats() const { return m_error; }
+  /// Starts energy / momentum bookkeeping from the current state.
+  void resetErrorStats();
+
+  void debugDraw(DebugDraw& draw) const;
+
+  /// Calls f(id, body) for every live body.
+  template <typename F>
+  void forEachBody(F&& f) const {
+    for (std::uint32_t i = 0; i < m_bodies.size(); ++i)
+      if (m_bodies[i].alive) f(idOf(i), m_bodies[i]);
+  }
+
+ private:
+  Body& mutableBody(BodyId id);
+  void updateInertia(Body& b);
+  void collide(Real dt);
+  void integrateVelocities(Real h);
+  void integratePositions(Real h);
+  void updateSleep(Real dt);
+  void freezeNonFinite();
+  void trackErrors(Real dt);
+  void wakeIsland(std::uint32_t index);
+
+  WorldSettings m_settings;
+  std::vector<Body> m_bodies;
+  std::vector<std::uint32_t> m_freeList;
+  int m_bodyCount = 0;
+  std::unique_ptr<BroadPhase> m_broad;
+  std::vector<Manifold> m_manifolds;
+  std::vector<ContactEvent> m_events;
+  std::vector<Vec3> m_stepStartPosition;
+  std::vector<Quat> m_stepStartOrientation;
+  std::vector<std::uint32_t> m_sleepIsland;  ///< per body: island it fell asleep with (0 = none)
+  std::uint32_t m_nextIsland = 1;
+  int m_lastContactPoints = 0;
+  ErrorStats m_error;
+  // Energy / momentum bookkeeping (double: sums over many bodies).
+  double m_energy0 = 0, m_energyScale = 0, m_externalWork = 0;
+  Eigen::Vector3d m_momentum0 = Eigen::Vector3d::Zero(), m_externalImpulse = Eigen::Vector3d::Zero();
+  double m_momentumScale = 0;
+  bool m_trackingStarted = false;
+};
+
+}  // namespace tumble::physics
