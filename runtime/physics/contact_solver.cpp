@@ -17,22 +17,26 @@
 // "relaxes" without bias so the push-out velocity does not turn into bounce
 // (this is what split impulses achieve, without a second velocity set).
 // Two push-out models are implemented (WorldSettings::softContacts):
-//  - rigid (default): the solve pass pushes with bias = beta * depth / h,
-//    capped at maxPushout; the relax pass then removes that velocity, so the
-//    correction moves positions but never turns into bounce (the effect of
-//    split impulses, without a second velocity set);
-//  - soft: Box2D v3's mass-normalised spring-damper. Its steady-state overlap
+//  - split impulses (default): the velocity solve never pushes overlapping
+//    bodies apart; a separate pass computes pseudo-velocities that remove
+//    beta * depth / h of the overlap (at most maxPushout), positions move by
+//    them, and they are then discarded (Catto 2006; Bullet's split impulse).
+//    Correction cannot add kinetic energy, so a clump of deeply overlapping
+//    bodies separates without being launched;
+//  - soft: Box2D v3's mass-normalised spring-damper in the solve pass, with a
+//    bias-free relax pass after the position update. Its steady-state overlap
 //    is F / (m_eff w^2): a light body under a heavy one sinks deeply.
-// Measured on 2026-11-22 (/tmp sweep over substeps x iterations; 10 s of a
-// 20-box stack, 5 s of a 1 kg box under a 1000 kg box, dt = 1/60):
-//   model  substeps x iters   stack drift   stack sink   1:1000 sink
+// Measured on 2026-11-22 (10 s of a 20-box stack, 5 s of a 1 kg box under a
+// 1000 kg box, 6 s of 50 boxes spawned overlapping; dt = 1/60):
+//   model  substeps x iters   stack drift   stack sink   1:1000 sink   overlap max speed
 //   soft        4 x 1            6 mm         208 mm      collapses
 //   soft        8 x 8            5 mm         208 mm      558 mm
-//   rigid       4 x 1          196 mm          23 mm      collapses
-//   rigid       4 x 4           24 mm           8 mm      collapses
-//   rigid       8 x 4            3 mm           2 mm        9 mm
-// so the default is rigid, 8 substeps of 4 iterations.
-//
+//   rigid Baumgarte bias in the velocity solve (+relax), 8 x 4:
+//                                3 mm           2 mm        9 mm        20 m/s (launched)
+//   split impulses, 8 x 4:       3 mm           2 mm       12 mm         6.3 m/s (the fall)
+//   split impulses, 4 x 4:      24 mm           8 mm       24 mm
+//   split impulses, 8 x 8:       7 mm           1 mm        7 mm
+// so the default is split impulses with 8 substeps of 4 iterations.
 // Speculative contacts: a point with positive separation s allows the bodies
 // to approach by at most s in this substep (bias = s/h), so a fast body stops
 // at the surface instead of tunnelling through it.
@@ -79,6 +83,31 @@ void applyImpulse(Manifold& m, Body& a, Body& b, const BodyView& A, const BodyVi
   a.angularVelocity_radps -= *A.invI * rA.cross(P);
   b.linearVelocity_mps += B.invMass * P;
   b.angularVelocity_radps += *B.invI * rB.cross(P);
+}
+
+// Split-impulse position correction for one manifold: pseudo-velocities that
+// remove beta * (depth - slop) / h of the overlap, accumulated per substep.
+void solvePseudo(Manifold& m, const BodyView& A, const BodyView& B, const StepStart& start, const SolverSettings& s) {
+  Vec3& lA = (*start.pseudoLinear)[m.a];
+  Vec3& aA = (*start.pseudoAngular)[m.a];
+  Vec3& lB = (*start.pseudoLinear)[m.b];
+  Vec3& aB = (*start.pseudoAngular)[m.b];
+  const Real invH = 1 / s.h;
+  for (int i = 0; i < m.count; ++i) {
+    ContactPoint& c = m.points[i];
+    Real depth = -(c.currentSeparation_m + s.linearSlop_m);
+    if (depth <= 0 && c.pseudoImpulse == 0) continue;
+    Real target = std::min(s.baumgarte * invH * std::max<Real>(depth, 0), s.maxPushout_mps);
+    Real pvn = m.normal.dot(lB + aB.cross(c.rB) - lA - aA.cross(c.rA));
+    Real newImpulse = std::max<Real>(c.pseudoImpulse + c.normalMass * (target - pvn), 0);
+    Real dl = newImpulse - c.pseudoImpulse;
+    c.pseudoImpulse = newImpulse;
+    Vec3 P = dl * m.normal;
+    lA -= A.invMass * P;
+    aA -= *A.invI * c.rA.cross(P);
+    lB += B.invMass * P;
+    aB += *B.invI * c.rB.cross(P);
+  }
 }
 
 }  // namespace
@@ -156,9 +185,8 @@ void solveContacts(std::vector<Manifold>& manifolds, std::vector<Body>& bodies, 
         bias = std::max(biasRate * std::min<Real>(sep + s.linearSlop_m, 0), -s.maxPushout_mps);
         massScale = softMassScale;
         impulseScale = softImpulseScale;
-      } else if (useBias) {
-        bias = std::max(s.baumgarte * invH * std::min<Real>(sep + s.linearSlop_m, 0), -s.maxPushout_mps);
       }
+      c.currentSeparation_m = sep;
       Real vn = n.dot(relativeVelocity(a, b, c.rA, c.rB));
       // Newton's law needs the approach speed at impact: remember the normal
       // velocity of the substep in which this point first pushes.
@@ -189,6 +217,7 @@ void solveContacts(std::vector<Manifold>& manifolds, std::vector<Body>& bodies, 
       Vec3 P = (t0 - old0) * m.tangent[0] + (t1 - old1) * m.tangent[1];
       applyImpulse(m, a, b, A, B, c.rA, c.rB, P);
     }
+    if (useBias && !s.softContacts) solvePseudo(m, A, B, start, s);
   }
 }
 

@@ -27,12 +27,12 @@ struct WorldSettings {
   /// Approach speed (m/s) below which contacts do not bounce, so resting
   /// bodies do not jitter.
   Real restitutionThreshold_mps = 1;
-  /// Overlap removal. Rigid (default): the solve pass pushes with
-  /// baumgarte * depth / h (at most maxPushoutSpeed), and the relax pass
-  /// removes that velocity again, so correction never turns into bounce.
-  /// Soft: a mass-normalised spring-damper (contactHertz, damping ratio);
-  /// smoother, but a light body under a heavy one sinks by F / (m w^2).
-  /// See contact_solver.cpp for the measurements behind the default.
+  /// Overlap removal. Default: split impulses, pseudo-velocities that remove
+  /// baumgarte * depth / h of the overlap per substep (at most
+  /// maxPushoutSpeed) and never enter the real velocities, so correction
+  /// never turns into bounce. Soft: a mass-normalised spring-damper
+  /// (contactHertz, damping ratio); smoother, but a light body under a heavy
+  /// one sinks by F / (m w^2). contact_solver.cpp has the measurements.
   bool softContacts = false;
   Real baumgarte = Real(0.2);
   /// Contact stiffness of the soft model (Hz) and its damping ratio.
@@ -169,6 +169,7 @@ class World {
   std::vector<ContactEvent> m_events;
   std::vector<Vec3> m_stepStartPosition;
   std::vector<Quat> m_stepStartOrientation;
+  std::vector<Vec3> m_pseudoLinear, m_pseudoAngular;  ///< split-impulse velocities, per substep
   std::vector<std::uint32_t> m_sleepIsland;  ///< per body: island it fell asleep with (0 = none)
   std::uint32_t m_nextIsland = 1;
   int m_lastContactPoints = 0;

@@ -15,10 +15,14 @@ struct SolverSettings {
   Real baumgarte = Real(0.2);  ///< fraction of the overlap removed per substep (rigid model)
 };
 
-/// Per-step positions at the start of the step, for updating separations.
+/// Positions at the start of the step (for updating separations) and the
+/// split-impulse pseudo-velocities, which move positions but are never part
+/// of the bodies' real velocities.
 struct StepStart {
   const std::vector<Vec3>* position;
   const std::vector<Quat>* orientation;
+  std::vector<Vec3>* pseudoLinear;
+  std::vector<Vec3>* pseudoAngular;
 };
 
 void prepareContacts(std::vector<Manifold>& manifolds, const std::vector<Body>& bodies, const SolverSettings& s);

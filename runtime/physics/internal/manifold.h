@@ -19,6 +19,8 @@ struct ContactPoint {
   Real normalMass = 0, tangentMass[2] = {0, 0};
   Real normalImpulse = 0, tangentImpulse[2] = {0, 0};  ///< accumulated (N s), warm started
   Real maxNormalImpulse = 0;
+  Real pseudoImpulse = 0;
+  Real currentSeparation_m = 0;  ///< separation at the last solve, updated per substep  ///< split-impulse position correction, per substep
   Real relativeVelocity_mps = 0;  ///< normal velocity before the step (restitution)
 };
 
