@@ -1,0 +1,44 @@
+#pragma once
+// The Dear ImGui heads-up display: frame timings, simulation counters, the
+// pause / step / slow-motion controls, and messages (script errors) in red.
+// Owns its ImGui context and the SDL2 + OpenGL3 backends from libimgui.
+#include <SDL.h>
+
+#include <memory>
+
+#include "core/result.h"
+#include "render/renderer.h"
+
+struct ImGuiContext;
+
+namespace tumble::render {
+
+class Hud {
+ public:
+  static Result<std::unique_ptr<Hud>> create(SDL_Window* window, SDL_GLContext context);
+  ~Hud();
+  Hud(const Hud&) = delete;
+  Hud& operator=(const Hud&) = delete;
+
+  void processEvent(const SDL_Event& event);
+  /// True while the HUD uses the keyboard / mouse (typing, dragging a
+  /// slider, pointer over a HUD window); the game should then ignore them.
+  bool wantsKeyboard() const;
+  bool wantsMouse() const;
+
+  /// Lays out and draws the HUD into the bound framebuffer. Button and
+  /// slider changes go into `controls`.
+  void draw(const HudStats& stats, Controls& controls, CameraMode cameraMode);
+
+ private:
+  Hud() = default;
+  void newFrame();
+  void build(const HudStats& stats, Controls& controls, CameraMode cameraMode);
+
+  ImGuiContext* m_context = nullptr;
+  bool m_sdlBackend = false, m_glBackend = false;
+  bool m_primed = false;
+  bool m_hadMessages = false;
+};
+
+}  // namespace tumble::render

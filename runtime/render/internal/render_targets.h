@@ -1,0 +1,39 @@
+#pragma once
+// The renderer's own framebuffers. The scene is drawn into a multisampled
+// colour + depth target, resolved into a single-sample colour target, and
+// the HUD is drawn on top of the resolved image. That resolved image is
+// "the frame": screenshots read it (so they work with the offscreen driver
+// and with hidden or covered windows, where reading the window's buffer is
+// undefined) and presenting copies it to the window.
+#include "core/result.h"
+#include "render/internal/gl_util.h"
+
+namespace tumble::render {
+
+class RenderTargets {
+ public:
+  /// (Re)creates the targets at this size; a no-op if nothing changed.
+  /// samples is clamped to [1, GL_MAX_SAMPLES]; 1 means no multisampling.
+  Status resize(int width, int height, int samples);
+
+  int width() const { return m_width; }
+  int height() const { return m_height; }
+  int samples() const { return m_samples; }
+
+  /// Binds the target the scene is drawn into and sets the viewport.
+  void bindScene() const;
+  /// Resolves the scene into the frame and leaves the frame bound for the HUD.
+  void resolve() const;
+  GLuint frameFramebuffer() const { return m_frame.get(); }
+  /// Copies the frame to the window's framebuffer (0).
+  void blitToWindow(int windowWidth, int windowHeight) const;
+
+ private:
+  int m_width = 0, m_height = 0, m_samples = 0, m_requestedSamples = 0;
+  GlFramebuffer m_scene;      // empty when samples == 1: the scene draws into m_frame
+  GlRenderbuffer m_sceneColor, m_sceneDepth;
+  GlFramebuffer m_frame;
+  GlRenderbuffer m_frameColor, m_frameDepth;
+};
+
+}  // namespace tumble::render

@@ -1,0 +1,34 @@
+#pragma once
+// Renderer's private state, shared by renderer.cpp (frames, screenshots) and
+// event_handling.cpp (input). Members are declared in creation order so they
+// are destroyed in reverse: HUD and GL objects go while the context that owns
+// them is still alive, the context and window last.
+#include <memory>
+
+#include "render/internal/environment.h"
+#include "render/internal/gl_context.h"
+#include "render/internal/hud.h"
+#include "render/internal/line_pass.h"
+#include "render/internal/render_targets.h"
+#include "render/internal/shape_pass.h"
+#include "render/internal/sky_pass.h"
+#include "render/renderer.h"
+
+namespace tumble::render {
+
+struct Renderer::Impl {
+  WindowConfig config;
+  std::unique_ptr<GlContext> context;
+  RenderTargets targets;
+  SkyPass sky;
+  ShapePass shapes;
+  LinePass lines;
+  std::unique_ptr<Hud> hud;  // null when config.hud is false
+  Environment environment;
+  Camera camera;
+  bool hasFrame = false;         // a finished frame exists for saveScreenshot
+  bool reportedGlError = false;  // GL errors are logged once, not every frame
+  bool dragging = false;         // mouse button held down on the scene
+};
+
+}  // namespace tumble::render

@@ -1,0 +1,160 @@
+#include "render/internal/shaders.h"
+
+namespace tumble::render::shaders {
+
+// The lighting model, kept deliberately simple so shapes read clearly:
+// one directional "sun" with Lambert diffuse and a faint Blinn-Phong
+// highlight, plus a hemisphere ambient (sky colour from above, ground bounce
+// from below) so faces turned away from the sun keep their shape. Distance
+// fog blends into the sky's horizon colour, which hides the edge of the
+// finite ground plane and the aliasing of far checker squares.
+
+const char* const kShapeVertex = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in float aCapOffset;
+layout(location = 3) in vec3 iPosition;
+layout(location = 4) in vec4 iRotation;   // unit quaternion (x, y, z, w)
+layout(location = 5) in vec3 iScale;
+layout(location = 6) in float iHalfHeight;
+layout(location = 7) in vec3 iColor;
+
+uniform mat4 uViewProjection;
+
+out vec3 vWorldPosition;
+out vec3 vNormal;
+out vec3 vColor;
+out vec2 vPlaneCoord;
+
+vec3 rotate(vec4 q, vec3 v) {
+  vec3 t = 2.0 * cross(q.xyz, v);
+  return v + q.w * t + cross(q.xyz, t);
+}
+
+void main() {
+  vec3 local = aPosition * iScale + vec3(0.0, aCapOffset * iHalfHeight, 0.0);
+  vec3 world = rotate(iRotation, local) + iPosition;
+  vWorldPosition = world;
+  // Normals transform with the inverse transpose of R*S, which is R*S^-1.
+  vNormal = rotate(iRotation, aNormal / iScale);
+  vColor = iColor;
+  vPlaneCoord = local.xz;
+  gl_Position = uViewProjection * vec4(world, 1.0);
+}
+)glsl";
+
+const char* const kShapeFragment = R"glsl(
+#version 330 core
+in vec3 vWorldPosition;
+in vec3 vNormal;
+in vec3 vColor;
+in vec2 vPlaneCoord;
+
+uniform vec3 uEye;
+uniform vec3 uLightDirection;   // unit, towards the light
+uniform vec3 uLightColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform vec3 uFogColor;
+uniform float uFogDensity;      // 1/m
+uniform int uChecker;           // 1: 1 m checkerboard in local XZ (planes)
+
+out vec4 fragColor;
+
+// Box-filtered checkerboard (after Inigo Quilez): integrates the pattern over
+// the pixel footprint, so squares fade to grey in the distance instead of
+// shimmering.
+float checker(vec2 p) {
+  vec2 w = fwidth(p) + 1e-4;
+  vec2 i = 2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) -
+                  abs(fract((p + 0.5 * w) * 0.5) - 0.5)) / w;
+  return 0.5 - 0.5 * i.x * i.y;
+}
+
+void main() {
+  vec3 n = normalize(vNormal);
+  vec3 albedo = vColor;
+  if (uChecker != 0) albedo *= mix(1.0, 0.55, checker(vPlaneCoord));
+
+  float diffuse = max(dot(n, uLightDirection), 0.0);
+  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
+  vec3 toEye = normalize(uEye - vWorldPosition);
+  vec3 halfway = normalize(toEye + uLightDirection);
+  float specular = diffuse > 0.0 ? 0.12 * pow(max(dot(n, halfway), 0.0), 40.0) : 0.0;
+  vec3 color = albedo * (ambient + uLightColor * diffuse) + uLightColor * specular;
+
+  float d = length(uEye - vWorldPosition) * uFogDensity;
+  color = mix(color, uFogColor, 1.0 - exp(-d * d));
+  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+}
+)glsl";
+
+// Sky: one triangle covering the screen (no vertex buffer; positions come
+// from gl_VertexID), drawn at the far plane. The view ray through each pixel
+// is rebuilt from the camera basis, which stays exact where inverting the
+// projection at the far plane loses float precision.
+const char* const kSkyVertex = R"glsl(
+#version 330 core
+out vec2 vNdc;
+void main() {
+  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)) * 2.0 - 1.0;
+  vNdc = p;
+  gl_Position = vec4(p, 1.0, 1.0);
+}
+)glsl";
+
+const char* const kSkyFragment = R"glsl(
+#version 330 core
+in vec2 vNdc;
+
+uniform vec3 uRight;       // camera basis, world space
+uniform vec3 uUp;
+uniform vec3 uForward;
+uniform vec2 uTanHalfFov;  // (tan(fovX / 2), tan(fovY / 2))
+uniform vec3 uZenithColor;
+uniform vec3 uHorizonColor;
+uniform vec3 uGroundColor;
+uniform vec3 uLightDirection;
+uniform vec3 uLightColor;
+
+out vec4 fragColor;
+
+void main() {
+  vec3 dir = normalize(uForward + vNdc.x * uTanHalfFov.x * uRight +
+                       vNdc.y * uTanHalfFov.y * uUp);
+  vec3 color;
+  if (dir.y >= 0.0) {
+    color = mix(uHorizonColor, uZenithColor, pow(dir.y, 0.6));
+  } else {
+    color = mix(uHorizonColor, uGroundColor, min(1.0, -dir.y * 6.0));
+  }
+  // A soft glow around the sun shows where the light comes from.
+  float sun = max(dot(dir, uLightDirection), 0.0);
+  color += uLightColor * (0.25 * pow(sun, 64.0) + 0.6 * pow(sun, 2048.0));
+  fragColor = vec4(pow(color, vec3(1.0 / 2.2)), 1.0);
+}
+)glsl";
+
+const char* const kLineVertex = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aColor;
+uniform mat4 uViewProjection;
+out vec3 vColor;
+void main() {
+  vColor = aColor;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)glsl";
+
+const char* const kLineFragment = R"glsl(
+#version 330 core
+in vec3 vColor;
+out vec4 fragColor;
+void main() {
+  fragColor = vec4(pow(clamp(vColor, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}
+)glsl";
+
+}  // namespace tumble::render::shaders

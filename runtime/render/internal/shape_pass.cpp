@@ -1,0 +1,174 @@
+#include "render/internal/shape_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "render/internal/mesh_builder.h"
+#include "render/internal/shaders.h"
+
+namespace tumble::render {
+
+namespace {
+
+// Mesh resolution: smooth enough for a sphere filling a third of a 720p
+// frame, cheap enough for a few hundred instances on a software rasteriser.
+constexpr int kRoundSlices = 32;
+constexpr int kSphereStacks = 16;
+constexpr int kCapsuleStacksPerCap = 8;
+constexpr float kMinSize_m = 1e-4f;
+
+std::size_t kindIndex(ShapeKind kind) { return static_cast<std::size_t>(kind); }
+
+float safeSize(float size) { return std::isfinite(size) ? std::max(size, kMinSize_m) : kMinSize_m; }
+
+MeshData meshFor(ShapeKind kind) {
+  switch (kind) {
+    case ShapeKind::Box: return buildBoxMesh();
+    case ShapeKind::Sphere: return buildSphereMesh(kRoundSlices, kSphereStacks);
+    case ShapeKind::Capsule: return buildCapsuleMesh(kRoundSlices, kCapsuleStacksPerCap);
+    case ShapeKind::Plane: return buildPlaneMesh();
+  }
+  return buildBoxMesh();
+}
+
+void instanceAttribute(GLuint location, GLint components, std::size_t offset) {
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, sizeof(ShapeInstance),
+                        reinterpret_cast<const void*>(offset));
+  glVertexAttribDivisor(location, 1);
+}
+
+void meshAttribute(GLuint location, GLint components, std::size_t offset) {
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, sizeof(MeshVertex),
+                        reinterpret_cast<const void*>(offset));
+}
+
+}  // namespace
+
+ShapeInstance makeInstance(const DrawShape& shape) {
+  ShapeInstance instance{};
+  Eigen::Quaternionf q = shape.orientation;
+  // The shader assumes a unit quaternion; callers renormalise, but a
+  // zero or NaN quaternion from a broken body must not blank the batch.
+  const float norm = q.norm();
+  q = (std::isfinite(norm) && norm > 1e-6f) ? Eigen::Quaternionf(q.coeffs() / norm)
+                                            : Eigen::Quaternionf::Identity();
+  for (int i = 0; i < 3; ++i) instance.position[i] = shape.position[i];
+  instance.rotation[0] = q.x();
+  instance.rotation[1] = q.y();
+  instance.rotation[2] = q.z();
+  instance.rotation[3] = q.w();
+  instance.halfHeight = 0.0f;
+  switch (shape.kind) {
+    case ShapeKind::Box:
+      for (int i = 0; i < 3; ++i) instance.scale[i] = safeSize(shape.halfExtents[i]);
+      break;
+    case ShapeKind::Sphere:
+    case ShapeKind::Capsule: {
+      const float r = safeSize(shape.radius_m);
+      instance.scale[0] = instance.scale[1] = instance.scale[2] = r;
+      if (shape.kind == ShapeKind::Capsule) {
+        instance.halfHeight = std::isfinite(shape.halfHeight_m) ? std::max(shape.halfHeight_m, 0.0f)
+                                                                : 0.0f;
+      }
+      break;
+    }
+    case ShapeKind::Plane:
+      instance.scale[0] = instance.scale[2] = kPlaneHalfSize_m;
+      instance.scale[1] = 1.0f;
+      break;
+  }
+  const float shade = shape.sleeping ? kSleepingShade : 1.0f;
+  for (int i = 0; i < 3; ++i) instance.color[i] = std::clamp(shape.color[i], 0.0f, 1.0f) * shade;
+  return instance;
+}
+
+Status ShapePass::init() {
+  auto program = buildProgram("shape shader", shaders::kShapeVertex, shaders::kShapeFragment);
+  if (!program) return makeError(program.error());
+  m_program = std::move(*program);
+  m_viewProjection = uniformLocation(m_program, "uViewProjection");
+  m_eye = uniformLocation(m_program, "uEye");
+  m_lightDirection = uniformLocation(m_program, "uLightDirection");
+  m_lightColor = uniformLocation(m_program, "uLightColor");
+  m_skyAmbient = uniformLocation(m_program, "uSkyAmbient");
+  m_groundAmbient = uniformLocation(m_program, "uGroundAmbient");
+  m_fogColor = uniformLocation(m_program, "uFogColor");
+  m_fogDensity = uniformLocation(m_program, "uFogDensity");
+  m_checker = uniformLocation(m_program, "uChecker");
+
+  for (ShapeKind kind : {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule, ShapeKind::Plane}) {
+    Batch& batch = m_batches[kindIndex(kind)];
+    const MeshData mesh = meshFor(kind);
+    batch.vao = makeVertexArray();
+    batch.vertices = makeBuffer();
+    batch.indices = makeBuffer();
+    batch.instances = makeBuffer();
+    batch.indexCount = static_cast<GLsizei>(mesh.indices.size());
+    glBindVertexArray(batch.vao.get());
+
+    glBindBuffer(GL_ARRAY_BUFFER, batch.vertices.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MeshVertex)),
+                 mesh.vertices.data(), GL_STATIC_DRAW);
+    meshAttribute(shaders::kAttribPosition, 3, offsetof(MeshVertex, position));
+    meshAttribute(shaders::kAttribNormal, 3, offsetof(MeshVertex, normal));
+    meshAttribute(shaders::kAttribCapOffset, 1, offsetof(MeshVertex, capOffset));
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, batch.indices.get());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                 mesh.indices.data(), GL_STATIC_DRAW);
+
+    glBindBuffer(GL_ARRAY_BUFFER, batch.instances.get());
+    instanceAttribute(shaders::kAttribInstancePosition, 3, offsetof(ShapeInstance, position));
+    instanceAttribute(shaders::kAttribInstanceRotation, 4, offsetof(ShapeInstance, rotation));
+    instanceAttribute(shaders::kAttribInstanceScale, 3, offsetof(ShapeInstance, scale));
+    instanceAttribute(shaders::kAttribInstanceHalfHeight, 1, offsetof(ShapeInstance, halfHeight));
+    instanceAttribute(shaders::kAttribInstanceColor, 3, offsetof(ShapeInstance, color));
+  }
+  glBindVertexArray(0);
+  return Ok{};
+}
+
+void ShapePass::draw(const std::vector<DrawShape>& shapes, const FrameView& view,
+                     const Environment& environment) {
+  for (Batch& batch : m_batches) batch.pending.clear();
+  for (const DrawShape& shape : shapes) {
+    m_batches[kindIndex(shape.kind)].pending.push_back(makeInstance(shape));
+  }
+
+  glUseProgram(m_program.get());
+  glUniformMatrix4fv(m_viewProjection, 1, GL_FALSE, view.viewProjection.data());  // column-major, as GL wants
+  glUniform3fv(m_eye, 1, view.eye.data());
+  glUniform3fv(m_lightDirection, 1, environment.lightDirection.data());
+  glUniform3fv(m_lightColor, 1, environment.lightColor.data());
+  glUniform3fv(m_skyAmbient, 1, environment.skyAmbient.data());
+  glUniform3fv(m_groundAmbient, 1, environment.groundAmbient.data());
+  glUniform3fv(m_fogColor, 1, environment.horizonColor.data());
+  glUniform1f(m_fogDensity, environment.fogDensity_per_m);
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  for (std::size_t k = 0; k < kKindCount; ++k) {
+    Batch& batch = m_batches[k];
+    if (batch.pending.empty()) continue;
+    glUniform1i(m_checker, k == kindIndex(ShapeKind::Plane) ? 1 : 0);
+    glBindVertexArray(batch.vao.get());
+    glBindBuffer(GL_ARRAY_BUFFER, batch.instances.get());
+    // Re-specifying the whole store each frame lets the driver hand out fresh
+    // memory instead of waiting for last frame's draw to finish reading it.
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(batch.pending.size() * sizeof(ShapeInstance)),
+                 batch.pending.data(), GL_STREAM_DRAW);
+    glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(batch.pending.size()));
+  }
+  glBindVertexArray(0);
+  glDisable(GL_CULL_FACE);
+}
+
+}  // namespace tumble::render

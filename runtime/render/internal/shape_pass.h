@@ -1,0 +1,57 @@
+#pragma once
+// Lit shapes: one shared mesh per ShapeKind, drawn with one instanced call per
+// kind. Per-instance data (position, rotation, scale, capsule half height,
+// colour) is rebuilt from the snapshot each frame into vectors that keep
+// their capacity, so a steady scene allocates nothing per frame.
+#include <array>
+#include <vector>
+
+#include "core/result.h"
+#include "render/internal/camera_math.h"
+#include "render/internal/environment.h"
+#include "render/internal/gl_util.h"
+#include "render/renderer.h"
+
+namespace tumble::render {
+
+// Half size of the square drawn for an infinite Plane. Far enough that fog
+// has fully swallowed the edge (see Environment::fogDensity_per_m).
+inline constexpr float kPlaneHalfSize_m = 1000.0f;
+// Sleeping bodies are drawn at this fraction of their colour.
+inline constexpr float kSleepingShade = 0.6f;
+
+struct ShapeInstance {
+  float position[3];
+  float rotation[4];  // x, y, z, w
+  float scale[3];
+  float halfHeight;
+  float color[3];
+};
+
+/// Converts one DrawShape into the instance the shader expects; exposed for
+/// tests. Non-finite or non-positive sizes are clamped to a tiny positive
+/// size so one bad body cannot poison the normals of the whole batch.
+ShapeInstance makeInstance(const DrawShape& shape);
+
+class ShapePass {
+ public:
+  Status init();
+  void draw(const std::vector<DrawShape>& shapes, const FrameView& view,
+            const Environment& environment);
+
+ private:
+  static constexpr std::size_t kKindCount = 4;
+  struct Batch {
+    GlVertexArray vao;
+    GlBuffer vertices, indices, instances;
+    GLsizei indexCount = 0;
+    std::vector<ShapeInstance> pending;
+  };
+  std::array<Batch, kKindCount> m_batches;
+  GlProgram m_program;
+  GLint m_viewProjection = -1, m_eye = -1, m_lightDirection = -1, m_lightColor = -1;
+  GLint m_skyAmbient = -1, m_groundAmbient = -1, m_fogColor = -1, m_fogDensity = -1;
+  GLint m_checker = -1;
+};
+
+}  // namespace tumble::render

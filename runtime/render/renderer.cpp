@@ -1,0 +1,103 @@
+#include "render/renderer.h"
+
+#include "core/log.h"
+#include "render/internal/camera_math.h"
+#include "render/internal/renderer_impl.h"
+#include "render/internal/screenshot.h"
+
+namespace tumble::render {
+
+Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
+  auto impl = std::make_unique<Impl>();
+  impl->config = config;
+  auto context = GlContext::create({config.width, config.height, config.title, config.forceOffscreen});
+  if (!context) return makeError("renderer: " + context.error());
+  impl->context = std::move(*context);
+
+  int width = 0, height = 0;
+  impl->context->drawableSize(width, height);
+  if (Status s = impl->targets.resize(width, height, config.msaaSamples); !s) {
+    return makeError("renderer: " + s.error());
+  }
+  if (Status s = impl->sky.init(); !s) return makeError("renderer: " + s.error());
+  if (Status s = impl->shapes.init(); !s) return makeError("renderer: " + s.error());
+  if (Status s = impl->lines.init(); !s) return makeError("renderer: " + s.error());
+  if (config.hud) {
+    auto hud = Hud::create(impl->context->window(), impl->context->context());
+    if (!hud) return makeError("renderer: " + hud.error());
+    impl->hud = std::move(*hud);
+  }
+  if (std::string errors = drainGlErrors(); !errors.empty()) {
+    return makeError("renderer: OpenGL errors during set-up: " + errors);
+  }
+  log::info(std::string("render: ") + reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
+            ", OpenGL " + reinterpret_cast<const char*>(glGetString(GL_VERSION)) +
+            (impl->context->offscreen() ? ", offscreen" : ""));
+  return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+}
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+bool Renderer::offscreen() const { return m_impl->context->offscreen(); }
+Camera& Renderer::camera() { return m_impl->camera; }
+
+Eigen::Vector2i Renderer::framebufferSize() const {
+  return {m_impl->targets.width(), m_impl->targets.height()};
+}
+
+Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Controls& controls,
+                           const char* screenshotPath) {
+  Impl& r = *m_impl;
+  int width = 0, height = 0;
+  r.context->drawableSize(width, height);
+  // A minimised window has a 0x0 drawable: keep the old targets, draw anyway
+  // so a requested screenshot still gets the last good size.
+  if (width > 0 && height > 0) {
+    if (Status status = r.targets.resize(width, height, r.config.msaaSamples); !status) {
+      return makeError("renderer: " + status.error());
+    }
+  }
+
+  clampCamera(r.camera);
+  const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(r.targets.height());
+  const FrameView view = makeFrameView(r.camera, aspect);
+
+  r.targets.bindScene();
+  glClear(GL_DEPTH_BUFFER_BIT);  // the sky covers every pixel, so no colour clear
+  r.sky.draw(view, r.environment);
+  r.shapes.draw(frame.shapes, view, r.environment);
+  r.lines.draw(frame.lines, view);
+  r.targets.resolve();
+  if (r.hud) r.hud->draw(hud, controls, r.camera.mode);
+  r.hasFrame = true;
+
+  Status result = Ok{};
+  if (screenshotPath != nullptr) result = saveScreenshot(screenshotPath);
+
+  // Offscreen there is no one to show the frame to; skip the copy.
+  if (!r.context->offscreen()) {
+    if (width > 0 && height > 0) r.targets.blitToWindow(width, height);
+    r.context->present();
+  }
+  if (std::string errors = drainGlErrors(); !errors.empty() && !r.reportedGlError) {
+    log::warn("render: OpenGL error during frame: " + errors + " (reported once)");
+    r.reportedGlError = true;
+  }
+  return result;
+}
+
+Status Renderer::saveScreenshot(const std::string& path) {
+  const Impl& r = *m_impl;
+  if (!r.hasFrame) {
+    return makeError(path + ": no frame to save yet; call drawFrame first");
+  }
+  const RgbImage image =
+      readFramebuffer(r.targets.frameFramebuffer(), r.targets.width(), r.targets.height());
+  if (std::string errors = drainGlErrors(); !errors.empty()) {
+    return makeError(path + ": reading the frame back failed: " + errors);
+  }
+  return writePng(path, image);
+}
+
+}  // namespace tumble::render
