@@ -37,6 +37,12 @@ struct BodyDef {
   /// Newton's restitution coefficient (0..1). A pair uses the larger of the
   /// two, so a bouncy ball bounces on any floor.
   Real restitution = 0;
+  /// Rolling resistance coefficient (dimensionless, like a tyre's C_rr:
+  /// 0.001 steel on steel, 0.01 tyre on asphalt, 0.05-0.3 ball on grass).
+  /// The rolling torque is at most C_rr * r * N for a sphere or capsule of
+  /// radius r under normal force N. A pair uses the larger coefficient. 0:
+  /// a ball rolls for ever, as a perfect sphere on a perfect plane would.
+  Real rollingResistance = 0;
   Real linearDamping_per_s = 0;   ///< velocity decays as 1/(1 + c dt) each step
   Real angularDamping_per_s = 0;  ///< likewise for angular velocity
   bool allowSleep = true;
@@ -63,6 +69,7 @@ struct Body {
   Vec3 inertiaLocal_kgm2 = Vec3::Zero();
   Real friction = Real(0.6);
   Real restitution = 0;
+  Real rollingResistance = 0;
   Real linearDamping_per_s = 0;
   Real angularDamping_per_s = 0;
   Real sleepTime_s = 0;

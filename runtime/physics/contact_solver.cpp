@@ -47,7 +47,16 @@
 //
 // Friction: Coulomb with two tangents; the tangential impulse vector is
 // clamped to the disc of radius mu * lambda_n (the friction cone, not a box).
+//
+// Rolling resistance: an angular constraint on the relative angular velocity
+// in the tangent plane, its angular impulse clamped to the disc of radius
+// arm * sum(lambda_n) with arm = C_rr * rolling radius, so a rolling ball
+// feels at most the torque C_rr r N and comes to rest. Spin about the normal
+// (drilling) is resisted with the same arm: without it a ball spinning on the
+// spot spins for ever and drags whatever rests on it round in circles.
 #include "physics/internal/contact_solver.h"
+
+#include <algorithm>
 
 namespace tumble::physics {
 namespace {
@@ -137,6 +146,13 @@ void prepareContacts(std::vector<Manifold>& manifolds, const std::vector<Body>& 
       c.relativeVelocity_mps = n.dot(relativeVelocity(a, b, c.rA, c.rB));
       c.maxNormalImpulse = 0;
     }
+    m.rollingImpulse[0] = m.rollingImpulse[1] = m.rollingImpulse[2] = 0;
+    if (m.rollingArm_m > 0)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& axis = k < 2 ? m.tangent[k] : m.normal;
+        Real kr = axis.dot((*A.invI + *B.invI) * axis);
+        m.rollingMass[k] = kr > 0 ? 1 / kr : 0;
+      }
   }
 }
 
@@ -176,7 +192,7 @@ void solveContacts(std::vector<Manifold>& manifolds, std::vector<Body>& bodies, 
     Quat dqB = b.orientation * (*start.orientation)[m.b].conjugate();
     for (int i = 0; i < m.count; ++i) {
       ContactPoint& c = m.points[i];
-      Vec3 d = dpB - dpA + (dqB * c.rB) - (dqA * c.rA);
+      Vec3 d = dpB - dpA + (m.roundB ? c.rB : Vec3(dqB * c.rB)) - (m.roundA ? c.rA : Vec3(dqA * c.rA));
       Real sep = n.dot(d) + c.baseSeparation_m;
       Real bias = 0, massScale = 1, impulseScale = 0;
       if (sep > 0) {
@@ -216,6 +232,28 @@ void solveContacts(std::vector<Manifold>& manifolds, std::vector<Body>& bodies, 
       c.tangentImpulse[1] = t1;
       Vec3 P = (t0 - old0) * m.tangent[0] + (t1 - old1) * m.tangent[1];
       applyImpulse(m, a, b, A, B, c.rA, c.rB, P);
+    }
+    if (m.rollingArm_m > 0) {
+      Real total = 0;
+      for (int i = 0; i < m.count; ++i) total += m.points[i].normalImpulse;
+      Vec3 dw = b.angularVelocity_radps - a.angularVelocity_radps;
+      Real old0 = m.rollingImpulse[0], old1 = m.rollingImpulse[1];
+      Real r0 = old0 - m.rollingMass[0] * dw.dot(m.tangent[0]);
+      Real r1 = old1 - m.rollingMass[1] * dw.dot(m.tangent[1]);
+      Real maxR = m.rollingArm_m * total, len2 = r0 * r0 + r1 * r1;
+      if (len2 > maxR * maxR) {
+        Real scale = maxR / std::sqrt(len2);
+        r0 *= scale;
+        r1 *= scale;
+      }
+      m.rollingImpulse[0] = r0;
+      m.rollingImpulse[1] = r1;
+      Real old2 = m.rollingImpulse[2];
+      Real r2 = std::clamp(old2 - m.rollingMass[2] * dw.dot(m.normal), -maxR, maxR);
+      m.rollingImpulse[2] = r2;
+      Vec3 L = (r0 - old0) * m.tangent[0] + (r1 - old1) * m.tangent[1] + (r2 - old2) * m.normal;
+      a.angularVelocity_radps -= *A.invI * L;
+      b.angularVelocity_radps += *B.invI * L;
     }
     if (useBias && !s.softContacts) solvePseudo(m, A, B, start, s);
   }

@@ -45,6 +45,8 @@ Status validateBodyDef(const BodyDef& d) {
     return makeError("body field 'density' must be a finite number > 0 (kg/m^3)");
   if (!std::isfinite(d.friction) || d.friction < 0)
     return makeError("body field 'friction' must be a finite number >= 0, got " + std::to_string(d.friction));
+  if (!std::isfinite(d.rollingResistance) || d.rollingResistance < 0)
+    return makeError("body field 'rolling_resistance' must be a finite number >= 0");
   if (!std::isfinite(d.restitution) || d.restitution < 0 || d.restitution > 1)
     return makeError("body field 'restitution' must be between 0 and 1, got " + std::to_string(d.restitution));
   if (!std::isfinite(d.linearDamping_per_s) || d.linearDamping_per_s < 0 || !std::isfinite(d.angularDamping_per_s) ||
@@ -99,6 +101,7 @@ Result<BodyId> World::createBody(const BodyDef& def) {
   b.orientation = def.orientation.normalized();
   b.friction = def.friction;
   b.restitution = def.restitution;
+  b.rollingResistance = def.rollingResistance;
   b.linearDamping_per_s = def.linearDamping_per_s;
   b.angularDamping_per_s = def.angularDamping_per_s;
   b.allowSleep = def.allowSleep;
@@ -240,6 +243,11 @@ static Aabb shapeBounds(const Body& b) {
   return box;
 }
 
+/// Radius a shape rolls on (0 for shapes that do not roll).
+static Real rollingRadius(const Shape& s) {
+  return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius_m : 0;
+}
+
 void World::collide(Real dt) {
   // Keep last step's manifolds by pair for warm starting.
   std::unordered_map<std::uint64_t, std::size_t> previous;
@@ -300,6 +308,10 @@ void World::collide(Real dt) {
     if (collideBodies(a, b, margin, m) == 0) continue;
     m.friction = std::sqrt(a.friction * b.friction);
     m.restitution = std::max(a.restitution, b.restitution);
+    m.roundA = rollingRadius(a.shape) > 0;
+    m.roundB = rollingRadius(b.shape) > 0;
+    m.rollingArm_m = std::max(a.rollingResistance, b.rollingResistance) *
+                     std::max(rollingRadius(a.shape), rollingRadius(b.shape));
     // Warm start from matching feature ids; a point whose id changed but
     // which sits where an old point was (features flicker when faces are
     // exactly aligned) takes that point's impulses.
@@ -496,8 +508,12 @@ void World::step(Real dt) {
   for (int s = 0; s < substeps; ++s) {
     integrateVelocities(ss.h);
     warmStartContacts(m_manifolds, m_bodies);
-    for (Manifold& m : m_manifolds)
+    // Rolling and split impulses are per substep (not warm started), so
+    // each substep can apply its full share again.
+    for (Manifold& m : m_manifolds) {
+      m.rollingImpulse[0] = m.rollingImpulse[1] = m.rollingImpulse[2] = 0;
       for (int i = 0; i < m.count; ++i) m.points[i].pseudoImpulse = 0;
+    }
     for (int it = 0; it < m_settings.velocityIterations; ++it) solveContacts(m_manifolds, m_bodies, start, ss, true);
     integratePositions(ss.h);
     freezeNonFinite();  // a fault must not reach the neighbours in the next substep

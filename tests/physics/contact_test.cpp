@@ -214,3 +214,31 @@ TEST(Contact, EveryShapeRestsOnThePlaneAndOnABox) {
 }
 
 }  // namespace tumble::physics::test
+
+namespace tumble::physics::test {
+
+TEST(Contact, RollingResistanceDeceleratesABallAtFiveSeventhsCrrG) {
+  // Torque balance for a rolling sphere with resisting torque C_rr r m g:
+  // m a = F, I a / r = -(r F + C_rr r m g)  =>  a = -(5/7) C_rr g.
+  const Real crr = Real(0.05), r = Real(0.3);
+  World w;
+  w.settings().enableSleep = false;
+  addGround(w, 1);
+  BodyDef d;
+  d.shape = Shape::sphere(r);
+  d.position_m = Vec3(0, r, 0);
+  d.mass_kg = 2;
+  d.friction = 1;
+  d.rollingResistance = crr;
+  d.linearVelocity_mps = Vec3(5, 0, 0);
+  d.angularVelocity_radps = Vec3(0, 0, -5 / r);  // rolling, not sliding
+  BodyId ball = w.createBody(d).value();
+  simulate(w, Real(0.2));
+  Real v0 = w.body(ball).linearVelocity_mps.x();
+  simulate(w, 2);
+  Real a = (w.body(ball).linearVelocity_mps.x() - v0) / 2;
+  Real expected = -Real(5.0 / 7.0) * crr * kStandardGravity;
+  EXPECT_NEAR(a, expected, Real(0.03) * std::abs(expected));
+}
+
+}  // namespace tumble::physics::test

@@ -31,7 +31,18 @@ struct Manifold {
   int count = 0;
   ContactPoint points[kMaxManifoldPoints];
   Real friction = 0, restitution = 0;
+  /// Rolling resistance as a lever arm (m): coefficient times the rolling
+  /// radius. The rolling torque is at most this times the normal force.
+  Real rollingArm_m = 0;
+  Real rollingImpulse[3] = {0, 0, 0};  ///< angular about tangent 0, 1 and the normal, N m s, per substep
+  Real rollingMass[3] = {0, 0, 0};
   bool touchedBefore = false;
+  /// Round shapes (spheres, capsules): the contact point slides over the
+  /// surface instead of turning with the body, so substep separation
+  /// updates must not rotate its anchor (a rolling ball would otherwise look
+  /// lifted off the ground and lose its normal force, friction and rolling
+  /// resistance).
+  bool roundA = false, roundB = false;
   /// Sum of impulses applied this step on the moving set by a static,
   /// kinematic or sleeping body of the pair (momentum bookkeeping), N s.
   Eigen::Vector3d externalImpulse_Ns = Eigen::Vector3d::Zero();  ///< had points last step (for begin-contact events)
