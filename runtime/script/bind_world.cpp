@@ -1,0 +1,256 @@
+// Lua table `world`: create bodies, gravity, queries.
+//
+//   world.box{size = {1, 1, 1}, position = {0, 2, 0}, mass = 1}
+//   world.sphere{radius = 0.5, position = {0, 5, 0}, restitution = 0.6}
+//   world.capsule{radius = 0.3, length = 1.0, ...}   -- length: core segment, m
+//   world.plane{normal = {0, 1, 0}, point = {0, 0, 0}}   -- static ground
+//
+// Common fields: position {x,y,z} m, rotation {x,y,z} rotation vector (axis
+// times angle, rad) or orientation {w=,x=,y=,z=}, velocity m/s,
+// angular_velocity rad/s, mass kg (or density kg/m^3), friction,
+// restitution (0..1), rolling_resistance (C_rr, e.g. 0.02), linear_damping and angular_damping 1/s,
+// type "dynamic" | "static" | "kinematic", color {r,g,b} 0..1, sleep (bool).
+// Unknown fields are refused, so a typo is an error, not a silent default.
+#include <set>
+
+#include "script/internal/bind_common.h"
+
+namespace tumble::script {
+
+namespace {
+
+physics::World& worldOf(lua_State* L) { return ScenarioHost::from(L)->world(); }
+
+const std::set<std::string> kCommonFields = {"position", "rotation", "orientation", "velocity", "angular_velocity",
+                                             "mass", "density", "friction", "restitution", "rolling_resistance", "linear_damping",
+                                             "angular_damping", "type", "color", "sleep"};
+
+void checkFields(lua_State* L, int t, const char* fn, std::initializer_list<const char*> shapeFields) {
+  lua_pushnil(L);
+  while (lua_next(L, t) != 0) {
+    lua_pop(L, 1);  // value
+    if (lua_type(L, -1) != LUA_TSTRING) {
+      lua_pop(L, 1);
+      throw LuaArgError(std::string(fn) + ": fields must be named (key = value)");
+    }
+    std::string key = lua_tostring(L, -1);
+    bool known = kCommonFields.count(key) > 0;
+    for (const char* f : shapeFields) known |= key == f;
+    if (!known) {
+      lua_pop(L, 1);
+      std::string valid;
+      for (const char* f : shapeFields) valid += std::string(f) + ", ";
+      for (const auto& f : kCommonFields) valid += f + ", ";
+      valid.resize(valid.size() - 2);
+      throw LuaArgError(std::string(fn) + ": unknown field '" + key + "' (valid: " + valid + ")");
+    }
+  }
+}
+
+physics::BodyDef readCommon(lua_State* L, int t, const char* fn) {
+  physics::BodyDef d;
+  try {
+    optVec3Field(L, t, "position", &d.position_m);
+    Vec3 rv;
+    if (optVec3Field(L, t, "rotation", &rv)) {
+      Real angle = rv.norm();
+      if (angle > 0) d.orientation = Quat(Eigen::AngleAxis<Real>(angle, rv / angle));
+    }
+    if (lua_getfield(L, t, "orientation") == LUA_TTABLE) {
+      Quat q(Real(optNumberField(L, -1, "w", 1)), Real(optNumberField(L, -1, "x", 0)),
+             Real(optNumberField(L, -1, "y", 0)), Real(optNumberField(L, -1, "z", 0)));
+      if (q.norm() < Real(1e-6)) throw LuaArgError("field 'orientation': quaternion must not be zero");
+      d.orientation = q.normalized();
+    }
+    lua_pop(L, 1);
+    optVec3Field(L, t, "velocity", &d.linearVelocity_mps);
+    optVec3Field(L, t, "angular_velocity", &d.angularVelocity_radps);
+    d.mass_kg = Real(optNumberField(L, t, "mass", 0));
+    if (d.mass_kg < 0) throw LuaArgError("field 'mass' must be >= 0 kg (0 = from density), got " +
+                                         std::to_string(d.mass_kg));
+    d.density_kgpm3 = Real(optNumberField(L, t, "density", d.density_kgpm3));
+    d.friction = Real(optNumberField(L, t, "friction", d.friction));
+    d.restitution = Real(optNumberField(L, t, "restitution", d.restitution));
+    d.rollingResistance = Real(optNumberField(L, t, "rolling_resistance", d.rollingResistance));
+    d.linearDamping_per_s = Real(optNumberField(L, t, "linear_damping", 0));
+    d.angularDamping_per_s = Real(optNumberField(L, t, "angular_damping", 0));
+    d.allowSleep = optBoolField(L, t, "sleep", true);
+    std::string type = optStringField(L, t, "type", "dynamic");
+    if (type == "dynamic") d.type = physics::BodyType::Dynamic;
+    else if (type == "static") d.type = physics::BodyType::Static;
+    else if (type == "kinematic") d.type = physics::BodyType::Kinematic;
+    else throw LuaArgError("field 'type' must be \"dynamic\", \"static\" or \"kinematic\", got \"" + type + "\"");
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what());
+  }
+  return d;
+}
+
+Eigen::Vector3f readColor(lua_State* L, int t, const char* fn, const Eigen::Vector3f& fallback) {
+  Vec3 c;
+  try {
+    if (!optVec3Field(L, t, "color", &c)) return fallback;
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what() + " (colour {r, g, b}, each 0..1)");
+  }
+  return c.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
+}
+
+int create(lua_State* L, physics::BodyDef d, const char* fn, const Eigen::Vector3f& color) {
+  auto r = worldOf(L).createBody(d);
+  if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
+  ScenarioHost::from(L)->setColor(*r, color);
+  pushBody(L, *r);
+  return 1;
+}
+
+void checkTable(lua_State* L, const char* fn, const char* example) {
+  if (!lua_istable(L, 1))
+    throw LuaArgError(std::string(fn) + ": expected a table of fields, e.g. " + fn + example);
+}
+
+/// @function world.box  @param def table: size {x,y,z} (full size, m) or half_extents, plus common fields
+/// @return Body
+int worldBox(lua_State* L) {
+  checkTable(L, "world.box", "{size = {1, 1, 1}, position = {0, 2, 0}}");
+  checkFields(L, 1, "world.box", {"size", "half_extents"});
+  physics::BodyDef d = readCommon(L, 1, "world.box");
+  Vec3 size = Vec3::Ones();
+  try {
+    Vec3 half;
+    if (optVec3Field(L, 1, "half_extents", &half)) size = 2 * half;
+    optVec3Field(L, 1, "size", &size);
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.box: ") + e.what());
+  }
+  d.shape = physics::Shape::box(size / 2);
+  return create(L, d, "world.box", readColor(L, 1, "world.box", {0.85f, 0.45f, 0.25f}));
+}
+
+/// @function world.sphere  @param def table: radius (m), plus common fields  @return Body
+int worldSphere(lua_State* L) {
+  checkTable(L, "world.sphere", "{radius = 0.5, position = {0, 2, 0}}");
+  checkFields(L, 1, "world.sphere", {"radius"});
+  physics::BodyDef d = readCommon(L, 1, "world.sphere");
+  try {
+    d.shape = physics::Shape::sphere(Real(optNumberField(L, 1, "radius", 0.5)));
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.sphere: ") + e.what());
+  }
+  return create(L, d, "world.sphere", readColor(L, 1, "world.sphere", {0.3f, 0.6f, 0.9f}));
+}
+
+/// @function world.capsule  @param def table: radius (m), length (core segment, m) or half_height, plus common
+/// fields; the capsule's axis is its local Y  @return Body
+int worldCapsule(lua_State* L) {
+  checkTable(L, "world.capsule", "{radius = 0.3, length = 1, position = {0, 2, 0}}");
+  checkFields(L, 1, "world.capsule", {"radius", "length", "half_height"});
+  physics::BodyDef d = readCommon(L, 1, "world.capsule");
+  try {
+    Real r = Real(optNumberField(L, 1, "radius", 0.3));
+    Real hh = Real(optNumberField(L, 1, "half_height", 0.5));
+    hh = Real(optNumberField(L, 1, "length", 2 * hh)) / 2;
+    d.shape = physics::Shape::capsule(r, hh);
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.capsule: ") + e.what());
+  }
+  return create(L, d, "world.capsule", readColor(L, 1, "world.capsule", {0.95f, 0.8f, 0.25f}));
+}
+
+/// @function world.plane  @param def table: normal {x,y,z} (default up), point {x,y,z} on the plane, friction,
+/// restitution, color. Always static.  @return Body
+int worldPlane(lua_State* L) {
+  if (lua_isnoneornil(L, 1)) lua_newtable(L), lua_replace(L, 1);
+  checkTable(L, "world.plane", "{normal = {0, 1, 0}, point = {0, 0, 0}}");
+  checkFields(L, 1, "world.plane", {"normal", "point"});
+  physics::BodyDef d = readCommon(L, 1, "world.plane");
+  d.type = physics::BodyType::Static;
+  Vec3 n = Vec3::UnitY();
+  try {
+    optVec3Field(L, 1, "normal", &n);
+    optVec3Field(L, 1, "point", &d.position_m);
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.plane: ") + e.what());
+  }
+  if (n.norm() < Real(1e-6)) throw LuaArgError("world.plane: field 'normal' must not be zero");
+  d.orientation = Quat::FromTwoVectors(Vec3::UnitY(), n.normalized());
+  d.shape = physics::Shape::plane();
+  return create(L, d, "world.plane", readColor(L, 1, "world.plane", {0.55f, 0.57f, 0.6f}));
+}
+
+/// @function world.set_gravity  @param g {x,y,z} m/s^2
+int worldSetGravity(lua_State* L) {
+  worldOf(L).settings().gravity_mps2 = checkVec3(L, 1, "world.set_gravity");
+  return 0;
+}
+/// @function world.gravity  @return {x,y,z} m/s^2
+int worldGravity(lua_State* L) {
+  pushVec3(L, worldOf(L).settings().gravity_mps2);
+  return 1;
+}
+/// @function world.raycast  @param origin {x,y,z} m  @param dir {x,y,z}  @param max_distance? m (default 1000)
+/// @return nil or {body=Body, distance=m, point={x,y,z}, normal={x,y,z}}
+int worldRaycast(lua_State* L) {
+  Vec3 o = checkVec3(L, 1, "world.raycast origin");
+  Vec3 dir = checkVec3(L, 2, "world.raycast direction");
+  double maxd = lua_isnoneornil(L, 3) ? 1000.0 : checkNumber(L, 3, "world.raycast max_distance");
+  if (dir.norm() == 0) throw LuaArgError("world.raycast: direction must not be zero");
+  physics::RayHit hit;
+  if (!worldOf(L).rayCast(o, dir, Real(maxd), &hit)) {
+    lua_pushnil(L);
+    return 1;
+  }
+  lua_createtable(L, 0, 4);
+  pushBody(L, hit.body);
+  lua_setfield(L, -2, "body");
+  lua_pushnumber(L, hit.distance_m);
+  lua_setfield(L, -2, "distance");
+  pushVec3(L, hit.point_m);
+  lua_setfield(L, -2, "point");
+  pushVec3(L, hit.normal);
+  lua_setfield(L, -2, "normal");
+  return 1;
+}
+/// @function world.bodies  @return list of every Body
+int worldBodies(lua_State* L) {
+  lua_createtable(L, worldOf(L).bodyCount(), 0);
+  int i = 0;
+  worldOf(L).forEachBody([&](physics::BodyId id, const physics::Body&) {
+    pushBody(L, id);
+    lua_rawseti(L, -2, ++i);
+  });
+  return 1;
+}
+/// @function world.body_count  @return number of bodies
+int worldBodyCount(lua_State* L) {
+  lua_pushinteger(L, worldOf(L).bodyCount());
+  return 1;
+}
+/// @function world.energy  @return total kinetic + gravitational potential energy of dynamic bodies, J
+int worldEnergy(lua_State* L) {
+  lua_pushnumber(L, worldOf(L).totalEnergy());
+  return 1;
+}
+
+const luaL_Reg kWorld[] = {
+    {"box", guarded<worldBox>},
+    {"sphere", guarded<worldSphere>},
+    {"capsule", guarded<worldCapsule>},
+    {"plane", guarded<worldPlane>},
+    {"set_gravity", guarded<worldSetGravity>},
+    {"gravity", guarded<worldGravity>},
+    {"raycast", guarded<worldRaycast>},
+    {"bodies", guarded<worldBodies>},
+    {"body_count", guarded<worldBodyCount>},
+    {"energy", guarded<worldEnergy>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void openWorldBindings(lua_State* L, int envIndex) {
+  luaL_newlib(L, kWorld);
+  lua_setfield(L, envIndex, "world");
+}
+
+}  // namespace tumble::script

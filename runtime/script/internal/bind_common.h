@@ -1,0 +1,13 @@
+#pragma once
+#include "physics/world.h"
+#include "script/internal/lua_util.h"
+#include "script/scenario_host.h"
+
+namespace tumble::script {
+
+constexpr const char* kBodyMeta = "tumble.Body";
+
+/// The body at idx; throws a clear Lua error for a non-body or a removed one.
+physics::BodyId checkBody(lua_State* L, int idx);
+
+}  // namespace tumble::script
