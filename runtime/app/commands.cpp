@@ -1,0 +1,143 @@
+#include "app/commands.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "app/paths.h"
+#include "app/simulation_loop.h"
+#include "core/log.h"
+#include "script/mods.h"
+
+#ifdef TUMBLE_HAVE_TERRAIN_COMMAND
+#include "app/cmd_terrain.h"
+#endif
+#ifdef TUMBLE_HAVE_REPORT_COMMAND
+#include "app/cmd_report.h"
+#endif
+
+namespace tumble::app {
+
+namespace {
+
+// State shared by the subcommands' callbacks; lives for the program.
+struct CommandState {
+  std::vector<std::string> modDirs;
+  RunOptions run;
+  PlayOptions play;
+  std::string playScenarioRef = "base:drop";
+  std::string runScenarioRef;
+  std::vector<std::string> runSets, playSets;
+  std::string checkDir;
+  Stopwatch clock;
+};
+
+Status parseSets(const std::vector<std::string>& sets, std::map<std::string, std::string>& out) {
+  for (const std::string& s : sets) {
+    auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      return makeError("--set " + s + ": expected KEY=VALUE (for example --set n=5 or --set physics.substeps=4)");
+    out[s.substr(0, eq)] = s.substr(eq + 1);
+  }
+  return Ok{};
+}
+
+void addSceneOptions(CLI::App* cmd, SceneOptions& scene, std::vector<std::string>& sets) {
+  cmd->add_option("--dt", scene.dt_s, "fixed time step, s (default 1/60)")->check(CLI::PositiveNumber);
+  cmd->add_option("--substeps", scene.substeps, "physics substeps per step (default: the world's, 8)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--integrator", scene.integrator, "rigid-body integrator (symplectic_euler)");
+  cmd->add_option("--set", sets, "KEY=VALUE: a scenario parameter (param() in Lua) or physics.* setting");
+  cmd->add_option("--seed", scene.seed, "seed for the scenario's random numbers (default 1)");
+}
+
+int listMods(const std::vector<std::string>& modDirs) {
+  script::ModRegistry reg = script::ModRegistry::discover(modSearchDirs(modDirs));
+  for (const script::ModInfo& m : reg.mods()) {
+    std::printf("%s %s  %s\n  folder: %s\n", m.name.c_str(), m.version.c_str(), m.title.c_str(), m.dir.c_str());
+    for (const char* folder : {"scenarios", "vehicles", "emitters"}) {
+      auto names = script::ModRegistry::listLua(m, folder);
+      std::string line;
+      for (const auto& n : names) line += (line.empty() ? "" : ", ") + (std::string(folder) == "scenarios" ? m.name + ":" + n : n);
+      std::printf("  %-10s %s\n", folder, line.empty() ? "-" : line.c_str());
+    }
+  }
+  for (const auto& p : reg.problems()) std::printf("problem: %s\n", p.text().c_str());
+  return reg.problems().empty() ? 0 : 1;
+}
+
+int checkModDir(const std::string& dir) {
+  auto problems = script::checkMod(dir);
+  if (problems.empty()) {
+    std::printf("%s: no problems found\n", dir.c_str());
+    return 0;
+  }
+  for (const auto& p : problems) std::printf("%s\n", p.text().c_str());
+  std::printf("%zu problem%s in %s\n", problems.size(), problems.size() == 1 ? "" : "s", dir.c_str());
+  return 1;
+}
+
+}  // namespace
+
+void addCommands(CLI::App& cli, int* exitCode) {
+  auto st = std::make_shared<CommandState>();
+  cli.add_option("--mods", st->modDirs, "another folder to find mods in (repeatable)");
+  cli.fallthrough();
+
+  CLI::App* play = cli.add_subcommand("play", "play a scenario in a window (offscreen when there is no display)");
+  play->add_option("scenario", st->playScenarioRef, "MOD:SCENARIO (default base:drop)");
+  play->add_option("--width", st->play.width, "window width, px")->check(CLI::Range(64, 16384));
+  play->add_option("--height", st->play.height, "window height, px")->check(CLI::Range(64, 16384));
+  play->add_option("--screenshot", st->play.screenshotPath, "where play without a display writes its picture");
+  addSceneOptions(play, st->play.scene, st->playSets);
+  play->callback([st, exitCode] {
+    st->play.scene.scenarioRef = st->playScenarioRef;
+    st->play.scene.modDirs = st->modDirs;
+    if (auto s = parseSets(st->playSets, st->play.scene.sets); !s) {
+      log::error(s.error());
+      *exitCode = 1;
+      return;
+    }
+    *exitCode = playScenario(st->play, st->clock);
+  });
+
+  CLI::App* run = cli.add_subcommand("run", "run a scenario headless and check its expectations");
+  run->add_option("scenario", st->runScenarioRef, "MOD:SCENARIO")->required();
+  run->add_option("--seconds", st->run.seconds, "simulated seconds (default: the scenario's duration)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--steps", st->run.steps, "number of fixed steps (instead of --seconds)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--report", st->run.reportPath, "write the run report (JSON) here");
+  run->add_option("--screenshot", st->run.screenshotPath, "render offscreen and save a PNG here");
+  run->add_option("--at", st->run.screenshotAt_s, "simulated time of the screenshot, s (default: the end)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--width", st->run.width, "screenshot width, px")->check(CLI::Range(64, 16384));
+  run->add_option("--height", st->run.height, "screenshot height, px")->check(CLI::Range(64, 16384));
+  addSceneOptions(run, st->run.scene, st->runSets);
+  run->callback([st, exitCode] {
+    st->run.scene.scenarioRef = st->runScenarioRef;
+    st->run.scene.modDirs = st->modDirs;
+    if (auto s = parseSets(st->runSets, st->run.scene.sets); !s) {
+      log::error(s.error());
+      *exitCode = 1;
+      return;
+    }
+    *exitCode = runScenario(st->run, st->clock);
+  });
+
+  CLI::App* check = cli.add_subcommand("check", "validate a mod folder and list all its problems");
+  check->add_option("moddir", st->checkDir, "the mod's folder")->required();
+  check->callback([st, exitCode] { *exitCode = checkModDir(st->checkDir); });
+
+  CLI::App* list = cli.add_subcommand("list", "list mods, scenarios, vehicles and emitters");
+  list->callback([st, exitCode] { *exitCode = listMods(st->modDirs); });
+
+#ifdef TUMBLE_HAVE_TERRAIN_COMMAND
+  addTerrainCommand(cli, *exitCode);
+#endif
+#ifdef TUMBLE_HAVE_REPORT_COMMAND
+  addReportCommand(cli, *exitCode);
+#endif
+  cli.require_subcommand(1);
+}
+
+}  // namespace tumble::app

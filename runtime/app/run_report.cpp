@@ -1,0 +1,92 @@
+#include "app/run_report.h"
+
+#include <algorithm>
+
+#include "app/scene.h"
+#include "core/file_util.h"
+#include "core/hash.h"
+#include "core/process_stats.h"
+
+namespace tumble::app {
+
+StepMsSummary summarizeSteps(std::vector<double> ms) {
+  StepMsSummary s;
+  if (ms.empty()) return s;
+  std::sort(ms.begin(), ms.end());
+  s.median = ms[ms.size() / 2];
+  s.p99 = ms[std::min(ms.size() - 1, std::size_t(double(ms.size()) * 0.99))];
+  s.max = ms.back();
+  return s;
+}
+
+nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSeconds, const RunTimings& t,
+                           const RunCounts& counts) {
+  using nlohmann::json;
+  const physics::World& world = scene.world();
+  const physics::ErrorStats& err = world.errorStats();
+  StepMsSummary sm = summarizeSteps(t.stepMs);
+  json expectations = json::array();
+  for (const auto& e : scene.host().expectations()) {
+    json limit = nullptr;
+    if (e.min || e.max) {
+      limit = json::object();
+      limit["min"] = e.min ? json(*e.min) : json(nullptr);
+      limit["max"] = e.max ? json(*e.max) : json(nullptr);
+    }
+    json value = e.isBool ? json(e.value == 1) : (std::isfinite(e.value) ? json(e.value) : json(nullptr));
+    expectations.push_back({{"name", e.name}, {"ok", e.ok}, {"value", value}, {"limit", limit}});
+  }
+  json errors = json::array();
+  for (const auto& e : scene.host().errors())
+    errors.push_back({{"mod", e.mod}, {"file", e.file}, {"line", e.line}, {"message", e.message},
+                      {"traceback", e.traceback}});
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(world.stateHash()));
+  return json{
+      {"scenario", scene.name()},
+      {"seed", scene.options().seed},
+      {"dt", scene.options().dt_s},
+      {"substeps", world.settings().substeps},
+      {"integrator", scene.options().integrator},
+      {"steps", steps},
+      {"simulated_seconds", simulatedSeconds},
+      {"wall_seconds",
+       {{"total", t.total_s},
+        {"startup", t.startup_s},
+        {"physics", t.physics_s},
+        {"script", t.script_s},
+        {"particles", t.particles_s},
+        {"render", t.render_s}}},
+      {"step_ms", {{"median", sm.median}, {"p99", sm.p99}, {"max", sm.max}}},
+      {"subsystems", scene.subsystems()},
+      {"peak_rss_mb", peakRssMb()},
+      {"counts",
+       {{"bodies", counts.bodiesMax},
+        {"joints", counts.jointsMax},
+        {"contacts_max", err.contactsMax},
+        {"particles_max", counts.particlesMax}}},
+      {"error",
+       {{"energy_rel_drift_max", err.energyRelDriftMax},
+        {"penetration_max_m", err.penetrationMax_m},
+        {"joint_error_max_m", 0.0},
+        {"momentum_rel_drift_max", err.momentumRelDriftMax},
+        {"nan_events", err.nanEvents}}},
+      {"expectations", expectations},
+      {"script_errors", errors},
+      {"state_hash", std::string(hash)},
+  };
+}
+
+int exitStatusFor(const Scene& scene) {
+  const auto& host = scene.host();
+  if (!host.errors().empty()) return 3;
+  for (const auto& e : host.expectations())
+    if (!e.ok) return 2;
+  return 0;
+}
+
+Status writeReport(const std::string& path, const nlohmann::json& report) {
+  return writeFileAtomic(path, report.dump(2) + "\n");
+}
+
+}  // namespace tumble::app

@@ -1,0 +1,59 @@
+#pragma once
+// A scene: what one scenario run creates. Subsystems are created only when
+// used (ARCHITECTURE.md "Leave out what a scene does not need"): the world
+// always, the script host when the scenario has a file, the renderer only
+// for play or --screenshot. `subsystems()` lists what exists, for the report.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "physics/world.h"
+#include "render/renderer.h"
+#include "script/scenario_host.h"
+
+namespace tumble::app {
+
+struct SceneOptions {
+  std::string scenarioRef = "base:drop";  ///< MOD:SCENARIO
+  std::vector<std::string> modDirs;       ///< extra --mods folders
+  std::map<std::string, std::string> sets;  ///< --set KEY=VALUE (physics.* go to the world)
+  double dt_s = 1.0 / 60.0;
+  int substeps = 0;  ///< 0: the world's default
+  std::string integrator = "symplectic_euler";
+  std::uint64_t seed = 1;
+};
+
+/// Integrators the rigid-body world offers (more come with the numerics lab).
+const std::vector<std::string>& rigidBodyIntegrators();
+
+class Scene {
+ public:
+  static Result<std::unique_ptr<Scene>> create(const SceneOptions& options);
+
+  physics::World& world() { return *m_world; }
+  script::ScenarioHost& host() { return *m_host; }
+  const script::ScenarioHost& host() const { return *m_host; }
+  const SceneOptions& options() const { return m_options; }
+  std::string name() const { return m_modName + ":" + m_scenarioName; }
+  std::vector<std::string> subsystems() const;
+  void noteSubsystem(const std::string& name) { m_extraSubsystems.push_back(name); }
+
+  /// Builds what the renderer reads: every body as a shape with its colour.
+  /// alpha in [0, 1] interpolates between the previous and current step.
+  void snapshot(render::FrameSnapshot& out, double alpha) const;
+  /// Remembers the current state as "previous" (call before each step).
+  void savePreviousState();
+
+ private:
+  SceneOptions m_options;
+  std::string m_modName, m_scenarioName;
+  std::unique_ptr<physics::World> m_world;
+  std::unique_ptr<script::ScenarioHost> m_host;
+  std::vector<Vec3> m_prevPosition;
+  std::vector<Quat> m_prevOrientation;
+  std::vector<std::string> m_extraSubsystems;
+};
+
+}  // namespace tumble::app

@@ -1,0 +1,277 @@
+#include "app/simulation_loop.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/run_report.h"
+#include "core/log.h"
+
+namespace tumble::app {
+
+namespace {
+
+// One fixed step: the scenario's on_update, then physics.
+void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
+  Stopwatch sw;
+  scene.host().update(time_s, scene.options().dt_s, step);
+  double script = sw.seconds();
+  scene.world().step(Real(scene.options().dt_s));
+  double total = sw.seconds();
+  t.script_s += script;
+  t.physics_s += total - script;
+  t.stepMs.push_back(total * 1000.0);
+}
+
+// Orbit around the dynamic bodies, far enough to see them all.
+void frameCamera(Scene& scene, render::Camera& cam) {
+  Eigen::Vector3f lo(1e30f, 1e30f, 1e30f), hi = -lo;
+  int n = 0;
+  scene.world().forEachBody([&](physics::BodyId, const physics::Body& b) {
+    if (b.type == physics::BodyType::Static) return;
+    Eigen::Vector3f p = b.position_m.cast<float>();
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    ++n;
+  });
+  if (n == 0) return;
+  cam.target = (lo + hi) / 2;
+  cam.target.y() = std::max(cam.target.y() * 0.5f, 0.5f);
+  cam.distance_m = std::clamp((hi - lo).norm() * 1.4f + 6.0f, 6.0f, 400.0f);
+}
+
+Eigen::Vector3f dynamicCentroid(Scene& scene) {
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  int n = 0;
+  scene.world().forEachBody([&](physics::BodyId, const physics::Body& b) {
+    if (b.type != physics::BodyType::Dynamic) return;
+    sum += b.position_m.cast<float>();
+    ++n;
+  });
+  return n ? Eigen::Vector3f(sum / float(n)) : Eigen::Vector3f(0, 1, 0);
+}
+
+render::HudStats hudStats(Scene& scene, double fps, const RunTimings& perFrame, double time_s) {
+  render::HudStats h;
+  h.scenario = scene.host().title();
+  h.fps = fps;
+  h.physics_ms = perFrame.physics_s * 1000;
+  h.script_ms = perFrame.script_s * 1000;
+  h.render_ms = perFrame.render_s * 1000;
+  h.simTime_s = time_s;
+  h.bodies = scene.world().bodyCount();
+  h.contacts = scene.world().contactPointCount();
+  for (const auto& e : scene.host().errors()) h.messages.push_back(e.summary());
+  if (h.messages.size() > 5) h.messages.erase(h.messages.begin(), h.messages.end() - 5);
+  for (const auto& line : scene.host().hudText()) h.messages.insert(h.messages.begin(), line);
+  return h;
+}
+
+Result<std::unique_ptr<render::Renderer>> makeRenderer(Scene& scene, int w, int h, bool offscreen, bool hud) {
+  render::WindowConfig cfg;
+  cfg.width = w;
+  cfg.height = h;
+  cfg.title = "Tumble - " + scene.name();
+  cfg.forceOffscreen = offscreen;
+  cfg.hud = hud;
+  auto r = render::Renderer::create(cfg);
+  if (!r) return makeError("cannot open a window or an offscreen GL context: " + r.error());
+  scene.noteSubsystem("render");
+  frameCamera(scene, r.value()->camera());
+  return r;
+}
+
+}  // namespace
+
+int runScenario(const RunOptions& o, const Stopwatch& processClock) {
+  auto created = Scene::create(o.scene);
+  if (!created) {
+    log::error(created.error());
+    return 1;
+  }
+  Scene& scene = **created;
+  RunTimings t;
+  RunCounts counts;
+  const double dt = o.scene.dt_s;
+  long long steps = o.steps >= 0 ? o.steps
+                                 : std::llround((o.seconds >= 0 ? o.seconds : scene.host().duration_s()) / dt);
+  std::unique_ptr<render::Renderer> renderer;
+  if (!o.screenshotPath.empty()) {
+    auto r = makeRenderer(scene, o.width, o.height, true, false);
+    if (!r) {
+      log::error(r.error());
+      return 1;
+    }
+    renderer = std::move(r.value());
+  }
+  {
+    Stopwatch sw;
+    scene.host().start();
+    t.script_s += sw.seconds();
+  }
+  t.startup_s = processClock.seconds();
+  const double shotAt = o.screenshotAt_s >= 0 ? o.screenshotAt_s : double(steps) * dt;
+  bool shotTaken = false;
+  Status shotStatus = Ok{};
+  auto takeShot = [&](double time_s) {
+    Stopwatch sw;
+    render::FrameSnapshot frame;
+    scene.snapshot(frame, 1.0);
+    frame.simTime_s = time_s;
+    render::Controls controls;
+    shotStatus = renderer->drawFrame(frame, hudStats(scene, 0, RunTimings{}, time_s), controls,
+                                     o.screenshotPath.c_str());
+    shotTaken = true;
+    t.render_s += sw.seconds();
+  };
+  double time_s = 0;
+  for (long long i = 0; i < steps; ++i) {
+    if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
+    fixedStep(scene, time_s, i, t);
+    time_s = double(i + 1) * dt;
+    counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
+  }
+  if (renderer && !shotTaken) takeShot(time_s);
+  {
+    Stopwatch sw;
+    scene.host().finish(time_s, steps);
+    t.script_s += sw.seconds();
+  }
+  counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
+  t.total_s = processClock.seconds();
+  int status = exitStatusFor(scene);
+  if (!shotStatus) {
+    log::error("screenshot: " + shotStatus.error());
+    status = 1;
+  }
+  auto report = buildReport(scene, steps, time_s, t, counts);
+  if (!o.reportPath.empty()) {
+    if (auto st = writeReport(o.reportPath, report); !st) {
+      log::error("report: " + st.error());
+      return 1;
+    }
+  }
+  // A short summary on stdout; the report has everything.
+  int failed = 0;
+  for (const auto& e : scene.host().expectations()) failed += !e.ok;
+  std::printf("%s: %lld steps (%.2f s simulated) in %.2f s; %zu expectations, %d failed; %zu script errors; "
+              "state %s\n",
+              scene.name().c_str(), steps, time_s, t.total_s, scene.host().expectations().size(), failed,
+              scene.host().errors().size(), report["state_hash"].get<std::string>().c_str());
+  for (const auto& e : scene.host().expectations())
+    if (!e.ok) std::printf("  expectation failed: %s (value %g)\n", e.name.c_str(), e.value);
+  return status;
+}
+
+int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
+  auto created = Scene::create(o.scene);
+  if (!created) {
+    log::error(created.error());
+    return 1;
+  }
+  Scene& scene = **created;
+  auto r = makeRenderer(scene, o.width, o.height, false, true);
+  if (!r) {
+    log::error(r.error());
+    return 1;
+  }
+  render::Renderer& renderer = *r.value();
+  const double dt = o.scene.dt_s;
+  RunTimings total, frame;
+  render::Controls controls;
+  render::FrameSnapshot snap;
+  scene.host().start();
+  scene.savePreviousState();
+  double time_s = 0, accumulator = 0;
+  long long step = 0;
+
+  if (renderer.offscreen()) {
+    // No display: play a few seconds as fast as possible, then show the
+    // last frame as a screenshot. No frame in between has a viewer, so none
+    // is drawn.
+    double seconds = std::min(o.offscreenSeconds, scene.host().duration_s());
+    long long steps = std::llround(seconds / dt);
+    Stopwatch wall;
+    for (; step < steps; ++step) {
+      scene.savePreviousState();
+      fixedStep(scene, time_s, step, total);
+      time_s = double(step + 1) * dt;
+    }
+    double simWall = wall.seconds();
+    frameCamera(scene, renderer.camera());
+    scene.snapshot(snap, 1.0);
+    snap.simTime_s = time_s;
+    RunTimings perStep = total;
+    perStep.physics_s /= double(std::max(1LL, steps));
+    perStep.script_s /= double(std::max(1LL, steps));
+    Status st = renderer.drawFrame(snap, hudStats(scene, 0, perStep, time_s), controls, o.screenshotPath.c_str());
+    scene.host().finish(time_s, step);
+    if (!st) {
+      log::error("screenshot: " + st.error());
+      return 1;
+    }
+    StepMsSummary sm = summarizeSteps(total.stepMs);
+    std::printf("No display: played %s offscreen for %.2f s of simulated time (%lld steps) in %.2f s.\n",
+                scene.name().c_str(), time_s, steps, simWall);
+    std::printf("  bodies %d, contacts %d, step %.3f ms median (%.3f ms max), script errors %zu\n",
+                scene.world().bodyCount(), scene.world().contactPointCount(), sm.median, sm.max,
+                scene.host().errors().size());
+    std::printf("  screenshot: %s\n", std::filesystem::absolute(o.screenshotPath).c_str());
+    std::printf("  (start-up %.2f s; with a display, `tools/tumble play` opens a window)\n",
+                processClock.seconds() - simWall);
+    return 0;
+  }
+
+  Stopwatch clock;
+  double last = clock.seconds(), fpsTime = 0;
+  int fpsFrames = 0;
+  double fps = 0;
+  int shots = 0;
+  double lastRender_s = 0;
+  while (!controls.quitRequested) {
+    renderer.processEvents(controls);
+    double now = clock.seconds();
+    double elapsed = std::min(now - last, 0.25);  // avoid the spiral of death after a stall
+    last = now;
+    if (!controls.paused) accumulator += elapsed * controls.timeScale;
+    if (controls.stepOnce) {
+      accumulator += dt;
+      controls.stepOnce = false;
+    }
+    frame = RunTimings{};
+    while (accumulator >= dt) {
+      scene.savePreviousState();
+      fixedStep(scene, time_s, step, frame);
+      ++step;
+      time_s = double(step) * dt;
+      accumulator -= dt;
+    }
+    if (renderer.camera().mode == render::CameraMode::Follow) renderer.camera().target = dynamicCentroid(scene);
+    scene.snapshot(snap, accumulator / dt);
+    snap.simTime_s = time_s;
+    std::string shot;
+    if (controls.screenshotRequested) {
+      shot = "tumble-screenshot-" + std::to_string(++shots) + ".png";
+      controls.screenshotRequested = false;
+    }
+    Stopwatch rs;
+    frame.render_s = lastRender_s;
+    Status st = renderer.drawFrame(snap, hudStats(scene, fps, frame, time_s), controls,
+                                   shot.empty() ? nullptr : shot.c_str());
+    lastRender_s = rs.seconds();
+    if (!shot.empty()) {
+      if (st) log::info("screenshot saved: " + shot);
+      else log::error("screenshot: " + st.error());
+    }
+    ++fpsFrames;
+    if (now - fpsTime >= 0.5) {
+      fps = fpsFrames / (now - fpsTime);
+      fpsFrames = 0;
+      fpsTime = now;
+    }
+  }
+  scene.host().finish(time_s, step);
+  return 0;
+}
+
+}  // namespace tumble::app

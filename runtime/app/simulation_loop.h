@@ -1,0 +1,41 @@
+#pragma once
+// The per-frame path, in one place (STYLE.md): fixed-step simulation with
+// an accumulator, Lua at the fixed rate, rendering interpolated between the
+// last two steps.
+//
+//   SDL events -> Lua on_update (fixed dt) -> physics step (K substeps)
+//     -> render snapshot (interpolated) -> renderer -> HUD
+#include <string>
+
+#include "app/scene.h"
+#include "core/process_stats.h"
+
+namespace tumble::app {
+
+struct RunOptions {
+  SceneOptions scene;
+  long long steps = -1;   ///< --steps; -1: from seconds
+  double seconds = -1;    ///< --seconds; -1: the scenario's duration
+  std::string reportPath;
+  std::string screenshotPath;
+  double screenshotAt_s = -1;  ///< -1: at the end
+  int width = 1280, height = 720;
+};
+
+struct PlayOptions {
+  SceneOptions scene;
+  int width = 1280, height = 720;
+  /// Without a display, play runs this long (or the scenario's duration if
+  /// shorter), writes the screenshot and prints a summary.
+  double offscreenSeconds = 5;
+  std::string screenshotPath = "tumble-play.png";
+};
+
+/// `tumble run`: headless unless a screenshot is asked for. Returns the exit
+/// status (0 ok, 2 expectation failed, 3 script error, 1 could not start).
+int runScenario(const RunOptions& options, const Stopwatch& processClock);
+
+/// `tumble play`: a window, or offscreen when there is no display.
+int playScenario(const PlayOptions& options, const Stopwatch& processClock);
+
+}  // namespace tumble::app
