@@ -1,0 +1,53 @@
+# ctest script: runs both quick reports into OUT and checks the files.
+# cmake -DDRIVER=... -DOUT=... -P check_report.cmake
+file(REMOVE_RECURSE ${OUT})
+
+foreach(report precision stability)
+  string(TIMESTAMP t0 "%s")
+  execute_process(COMMAND ${DRIVER} report ${report} --out ${OUT} --quick
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(TIMESTAMP t1 "%s")
+  math(EXPR seconds "${t1} - ${t0}")
+  message(STATUS "report ${report} --quick: exit ${rc}, ${seconds} s\n${out}${err}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "report ${report} --quick failed with exit code ${rc}")
+  endif()
+endforeach()
+
+function(expect_csv file header)
+  if(NOT EXISTS ${OUT}/${file})
+    message(FATAL_ERROR "${file} was not written")
+  endif()
+  file(STRINGS ${OUT}/${file} lines)
+  list(LENGTH lines count)
+  list(GET lines 0 first)
+  if(NOT first STREQUAL header)
+    message(FATAL_ERROR "${file}: header is '${first}', expected '${header}'")
+  endif()
+  if(count LESS 2)
+    message(FATAL_ERROR "${file}: no data rows")
+  endif()
+  message(STATUS "${file}: header ok, ${count} lines")
+endfunction()
+
+expect_csv(precision.csv "problem,method,dt,error,cpu_seconds")
+expect_csv(stability.csv
+  "case,method,dt,outcome,time_to_failure_s,energy_growth,penetration_max_m,joint_error_max_m,nan_events")
+expect_csv(stability_regions.csv
+  "problem,method,scale,max_stable_scaled,max_stable_dt_s,theory_scaled,note")
+foreach(md precision.md stability.md)
+  if(NOT EXISTS ${OUT}/${md})
+    message(FATAL_ERROR "${md} was not written")
+  endif()
+endforeach()
+
+find_program(GNUPLOT gnuplot)
+if(GNUPLOT)
+  foreach(problem harmonic_oscillator pendulum stiff_decay stiff_spring_chain)
+    if(NOT EXISTS ${OUT}/precision_${problem}.png)
+      message(FATAL_ERROR "gnuplot is installed but precision_${problem}.png is missing")
+    endif()
+  endforeach()
+else()
+  message(STATUS "gnuplot not installed: PNG plots not checked")
+endif()
