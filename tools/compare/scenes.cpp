@@ -1,0 +1,208 @@
+// The comparison scenes. Sizes, masses and materials are chosen once here and
+// read by both engines.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "scenes.h"
+
+namespace tumble::compare {
+
+namespace {
+
+/// Bullet's own "3000 boxes" benchmark (bullet3 examples/Benchmarks,
+/// BenchmarkDemo::createTest1), rebuilt from its description: 47 layers of
+/// 8 x 8 cubes of half-extent 1 m and mass 2 kg, 3 m apart (1 m gaps) in x
+/// and z; layer k at y = 2 + 3k; every layer shifted by -0.35 m in x and z
+/// from the one below, so the columns lean and the pile collapses as it
+/// lands: it stresses box-box collision, the broad phase and the solver.
+/// The ground is a static box 500 x 100 x 500 m with its top at y = 0.
+/// Differences from Bullet's demo: gravity 9.81 (not 10) and friction 0.5 as a
+/// pair value (Bullet's default body friction 0.5 gives a pair 0.25).
+void boxes3000(SceneSpec& s) {
+  s.description = "8x8x47 falling cubes (half 1 m, 2 kg) on a ground box, Bullet's 3000-boxes benchmark layout";
+  s.friction = 0.5;
+  s.restitution = 0;
+  s.defaultSteps = 300;
+  BodySpec ground;
+  ground.shape = BodyShape::Box;
+  ground.halfExtents_m = V3(250, 50, 250);
+  ground.position_m = V3(0, -50, 0);
+  ground.mass_kg = 0;
+  s.bodies.push_back(ground);
+  const int size = 8, layers = 47;
+  const double half = 1, spacing = 1, pitch = 2 * half + spacing;
+  double offset = -size * pitch * 0.5;
+  double y = 2 * half;
+  for (int k = 0; k < layers; ++k) {
+    for (int j = 0; j < size; ++j)
+      for (int i = 0; i < size; ++i) {
+        BodySpec b;
+        b.shape = BodyShape::Box;
+        b.halfExtents_m = V3::Constant(half);
+        b.position_m = V3(offset + i * pitch, y, offset + j * pitch);
+        b.mass_kg = 2;
+        s.bodies.push_back(b);
+      }
+    offset -= 0.05 * spacing * (size - 1);
+    y += pitch;
+  }
+}
+
+/// The same 3008 cubes and ground as boxes_3000, but as 8 x 8 upright columns
+/// of 47 (no lean, 1 m between columns, 1 cm vertical gaps): every box rests
+/// on another from the first second on, so this times and tests tall-stack
+/// solving at scale, and stack_drift_m is meaningful (a column that stands
+/// drifts by millimetres, one that falls by metres).
+void boxes3000Stacked(SceneSpec& s) {
+  s.description = "8x8 upright columns of 47 cubes (half 1 m, 2 kg), 1 cm gaps: tall stacks at scale";
+  s.friction = 0.5;
+  s.restitution = 0;
+  s.defaultSteps = 300;
+  BodySpec ground;
+  ground.shape = BodyShape::Box;
+  ground.halfExtents_m = V3(250, 50, 250);
+  ground.position_m = V3(0, -50, 0);
+  ground.mass_kg = 0;
+  s.bodies.push_back(ground);
+  const int size = 8, layers = 47;
+  const double half = 1, pitch = 3, gap = 0.01;
+  const double offset = -(size - 1) * pitch * 0.5;
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < size; ++j)
+      for (int i = 0; i < size; ++i) {
+        BodySpec b;
+        b.shape = BodyShape::Box;
+        b.halfExtents_m = V3::Constant(half);
+        b.position_m = V3(offset + i * pitch, half + gap + k * (2 * half + gap), offset + j * pitch);
+        b.mass_kg = 2;
+        s.bodies.push_back(b);
+      }
+}
+
+/// A 2-D pyramid in the x-y plane: rows of 20, 19, ..., 1 cubes of half-extent
+/// 0.5 m, 1 kg, touching (no gaps), on a static ground box with its top at
+/// y = 0. A well-solved pyramid stands still; drift measures how much it
+/// creeps or slumps.
+void pyramid20(SceneSpec& s) {
+  s.description = "2-D pyramid, base 20 (210 cubes, half 0.5 m, 1 kg) on a ground box";
+  s.friction = 0.6;
+  s.restitution = 0;
+  s.defaultSteps = 600;
+  BodySpec ground;
+  ground.shape = BodyShape::Box;
+  ground.halfExtents_m = V3(40, 0.5, 40);
+  ground.position_m = V3(0, -0.5, 0);
+  ground.mass_kg = 0;
+  s.bodies.push_back(ground);
+  const int base = 20;
+  const double half = 0.5;
+  for (int row = 0; row < base; ++row) {
+    const int n = base - row;
+    for (int i = 0; i < n; ++i) {
+      BodySpec b;
+      b.shape = BodyShape::Box;
+      b.halfExtents_m = V3::Constant(half);
+      b.position_m = V3((i - (n - 1) * 0.5) * 2 * half, half + row * 2 * half, 0);
+      b.mass_kg = 1;
+      s.bodies.push_back(b);
+    }
+  }
+}
+
+/// 1000 spheres (radius 0.1 m, 1 kg) at 250 m/s in random directions inside
+/// a closed box: 6 static walls 1 m thick around a 20 m cube cavity centred
+/// on the origin. Restitution 1, friction 0, no gravity. At 1/60 s a sphere
+/// moves 4.2 m per step, 42 diameters and 4 wall thicknesses: without
+/// continuous collision everything escapes. Spheres start on a jittered
+/// 10 x 10 x 10 grid (pitch 1.8 m), so none overlap at the start. Fixed seed.
+void highspeed1000(SceneSpec& s) {
+  s.description = "1000 spheres (r 0.1 m) at 250 m/s in a closed 20 m box, e = 1, no friction, no gravity";
+  s.gravity_mps2 = V3::Zero();
+  s.friction = 0;
+  s.restitution = 1;
+  s.fastBodies = true;
+  s.defaultSteps = 600;
+  const double inner = 10, wallHalf = 0.5;
+  s.containHalf_m = inner;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1}) {
+      BodySpec w;
+      w.shape = BodyShape::Box;
+      w.halfExtents_m = V3::Constant(inner + 2 * wallHalf);
+      w.halfExtents_m[axis] = wallHalf;
+      w.position_m = V3::Zero();
+      w.position_m[axis] = side * (inner + wallHalf);
+      w.mass_kg = 0;
+      s.bodies.push_back(w);
+    }
+  std::mt19937 rng(20240613u);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const int n = 10;
+  const double pitch = 1.8;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        BodySpec b;
+        b.shape = BodyShape::Sphere;
+        b.radius_m = 0.1;
+        b.position_m = V3((i - (n - 1) * 0.5) * pitch + jitter(rng), (j - (n - 1) * 0.5) * pitch + jitter(rng),
+                          (k - (n - 1) * 0.5) * pitch + jitter(rng));
+        V3 d;
+        do d = V3(unit(rng), unit(rng), unit(rng));  // rejection: uniform on the sphere
+        while (d.squaredNorm() > 1 || d.squaredNorm() < 1e-6);
+        b.velocity_mps = 250 * d.normalized();
+        b.mass_kg = 1;
+        s.bodies.push_back(b);
+      }
+}
+
+struct Entry {
+  const char* name;
+  void (*build)(SceneSpec&);
+};
+constexpr Entry kScenes[] = {
+    {"boxes_3000", boxes3000},
+    {"boxes_3000_stacked", boxes3000Stacked},
+    {"pyramid_20", pyramid20},
+    {"highspeed_1000", highspeed1000},
+};
+
+}  // namespace
+
+std::vector<std::string> sceneNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : kScenes) names.emplace_back(e.name);
+  return names;
+}
+
+bool buildScene(const std::string& name, SceneSpec* out) {
+  for (const Entry& e : kScenes)
+    if (name == e.name) {
+      *out = SceneSpec{};
+      out->name = name;
+      e.build(*out);
+      return true;
+    }
+  return false;
+}
+
+std::string sceneDescription(const std::string& name) {
+  SceneSpec s;
+  return buildScene(name, &s) ? s.description : std::string();
+}
+
+void measureEnd(const SceneSpec& scene, const std::vector<V3>& end, RunResult* r) {
+  r->escaped = 0;
+  r->stackDrift_m = 0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    if (b.isStatic()) continue;
+    const V3 d = end[i] - b.position_m;
+    r->stackDrift_m = std::max(r->stackDrift_m, std::hypot(d.x(), d.z()));
+    if (scene.containHalf_m > 0 && !(end[i].cwiseAbs().maxCoeff() <= scene.containHalf_m)) ++r->escaped;
+  }
+}
+
+}  // namespace tumble::compare

@@ -1,0 +1,88 @@
+#pragma once
+// Engine-neutral scene descriptions for tumble_compare.
+//
+// A scene is plain data (bodies with shape, pose, velocity, mass and pair
+// material), built once and handed to both engines, so Tumble and Bullet
+// start from bit-identical inputs. Each runner turns it into its own world
+// (run_tumble.cpp, run_bullet.cpp) and measures the same figures
+// (RunResult).
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace tumble::compare {
+
+using V3 = Eigen::Vector3d;
+
+enum class BodyShape { Box, Sphere };
+
+struct BodySpec {
+  BodyShape shape = BodyShape::Box;
+  V3 halfExtents_m = V3::Constant(0.5);  ///< Box
+  double radius_m = 0.5;                 ///< Sphere
+  V3 position_m = V3::Zero();
+  V3 velocity_mps = V3::Zero();
+  double mass_kg = 1;  ///< 0 = static
+  bool isStatic() const { return mass_kg == 0; }
+};
+
+struct SceneSpec {
+  std::string name;
+  std::string description;
+  V3 gravity_mps2 = V3(0, -9.81, 0);
+  /// Coefficients of a contact PAIR. Every body of a scene has the same
+  /// material, and each runner sets per-body values so that its own combine
+  /// rule yields exactly these (Tumble: sqrt(fa fb) and max(ea, eb); Bullet:
+  /// fa fb and ea eb, so Bullet bodies get sqrt of the pair value).
+  double friction = 0.5;
+  double restitution = 0;
+  /// Fast bodies: Bullet gets CCD (motion threshold + swept sphere), as a
+  /// fair peer would configure it; Tumble's speculative contacts are always on.
+  bool fastBodies = false;
+  /// Closed container (highspeed_1000): a dynamic body whose centre leaves
+  /// |x|,|y|,|z| <= containHalf_m counts as escaped. 0 = no container.
+  double containHalf_m = 0;
+  int defaultSteps = 600;
+  std::vector<BodySpec> bodies;
+};
+
+/// Names of every scene, in the order `list` prints them.
+std::vector<std::string> sceneNames();
+/// One-line description for `list`.
+std::string sceneDescription(const std::string& name);
+/// Builds a scene; false when the name is unknown.
+bool buildScene(const std::string& name, SceneSpec* out);
+
+/// What one engine measured on one scene.
+struct RunResult {
+  std::vector<double> stepMs;     ///< wall time of each step() call
+  double penetrationMax_m = 0;    ///< deepest overlap reported by the engine's narrow phase
+  int escaped = 0;                ///< dynamic bodies outside the container at the end
+  double stackDrift_m = 0;        ///< largest horizontal (x, z) displacement from the start, at the end
+  double kineticEnergyStart_J = 0;
+  double kineticEnergyEnd_J = 0;
+  int sleepingAtEnd = 0;          ///< dynamic bodies asleep / deactivated at the end
+  int nanEvents = 0;              ///< Tumble only: bodies frozen for non-finite state
+};
+
+/// Bullet solver configuration for one run.
+struct BulletConfig {
+  int iterations = 40;
+  bool splitImpulse = true;
+  bool sleep = false;  ///< Bullet's default deactivation (else DISABLE_DEACTIVATION on every body)
+};
+
+/// Sleeping is off by default in both engines: with it, the median step of a
+/// settled scene times an idle world and the two engines' sleep policies
+/// (Tumble 0.5 s, Bullet 2 s) instead of their solvers. --sleep turns each
+/// engine's default sleeping on.
+RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep);
+RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletConfig& config);
+/// "float" or "double": how the linked Bullet stores btScalar.
+const char* bulletPrecision();
+
+/// Shared end-of-run measurements (start and end positions of dynamic bodies).
+void measureEnd(const SceneSpec& scene, const std::vector<V3>& endPositions, RunResult* r);
+
+}  // namespace tumble::compare
