@@ -1,0 +1,5 @@
+return {
+  on_update = function(ctx, dt)
+    if ctx.time > 1 then
+  end,
+}
