@@ -41,6 +41,14 @@ Status parseSets(const std::vector<std::string>& sets, std::map<std::string, std
   return Ok{};
 }
 
+// Completes the scene options from what the command line gave.
+Status finishSceneOptions(SceneOptions& scene, const std::string& ref, const CommandState& st,
+                          const std::vector<std::string>& sets) {
+  scene.scenarioRef = ref;
+  scene.modDirs = st.modDirs;
+  return parseSets(sets, scene.sets);
+}
+
 void addSceneOptions(CLI::App* cmd, SceneOptions& scene, std::vector<std::string>& sets) {
   cmd->add_option("--dt", scene.dt_s, "fixed time step, s (default 1/60)")->check(CLI::PositiveNumber);
   cmd->add_option("--substeps", scene.substeps, "physics substeps per step (default: the world's, 8)")
@@ -90,9 +98,7 @@ void addCommands(CLI::App& cli, int* exitCode) {
   play->add_option("--screenshot", st->play.screenshotPath, "where play without a display writes its picture");
   addSceneOptions(play, st->play.scene, st->playSets);
   play->callback([st, exitCode] {
-    st->play.scene.scenarioRef = st->playScenarioRef;
-    st->play.scene.modDirs = st->modDirs;
-    if (auto s = parseSets(st->playSets, st->play.scene.sets); !s) {
+    if (auto s = finishSceneOptions(st->play.scene, st->playScenarioRef, *st, st->playSets); !s) {
       log::error(s.error());
       *exitCode = 1;
       return;
@@ -114,9 +120,7 @@ void addCommands(CLI::App& cli, int* exitCode) {
   run->add_option("--height", st->run.height, "screenshot height, px")->check(CLI::Range(64, 16384));
   addSceneOptions(run, st->run.scene, st->runSets);
   run->callback([st, exitCode] {
-    st->run.scene.scenarioRef = st->runScenarioRef;
-    st->run.scene.modDirs = st->modDirs;
-    if (auto s = parseSets(st->runSets, st->run.scene.sets); !s) {
+    if (auto s = finishSceneOptions(st->run.scene, st->runScenarioRef, *st, st->runSets); !s) {
       log::error(s.error());
       *exitCode = 1;
       return;

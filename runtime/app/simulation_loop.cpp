@@ -77,7 +77,6 @@ Result<std::unique_ptr<render::Renderer>> makeRenderer(Scene& scene, int w, int 
   auto r = render::Renderer::create(cfg);
   if (!r) return makeError("cannot open a window or an offscreen GL context: " + r.error());
   scene.noteSubsystem("render");
-  frameCamera(scene, r.value()->camera());
   return r;
 }
 
@@ -109,6 +108,7 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     scene.host().start();
     t.script_s += sw.seconds();
   }
+  if (renderer) frameCamera(scene, renderer->camera());  // after on_start made the bodies
   t.startup_s = processClock.seconds();
   const double shotAt = o.screenshotAt_s >= 0 ? o.screenshotAt_s : double(steps) * dt;
   bool shotTaken = false;
@@ -181,6 +181,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   render::Controls controls;
   render::FrameSnapshot snap;
   scene.host().start();
+  frameCamera(scene, renderer.camera());  // after on_start made the bodies
   scene.savePreviousState();
   double time_s = 0, accumulator = 0;
   long long step = 0;
