@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "app/rigid_body_cases.h"
 #include "core/file_util.h"
 #include "numerics/integrator.h"
 #include "numerics/reference_problems.h"
@@ -37,9 +38,17 @@ double secondsSince(Clock::time_point start) {
 //   auto more = physics::rigidBodyPrecisionProblems();
 //   problems.insert(problems.end(), more.begin(), more.end());
 std::vector<numerics::PrecisionProblem> precisionProblems() {
-  return numerics::builtinPrecisionProblems();
+  auto problems = numerics::builtinPrecisionProblems();
+  auto rigid = app::rigidBodyPrecisionProblems();
+  problems.insert(problems.end(), rigid.begin(), rigid.end());
+  return problems;
 }
-std::vector<numerics::StabilityCase> stabilityCases() { return numerics::builtinStabilityCases(); }
+std::vector<numerics::StabilityCase> stabilityCases() {
+  auto cases = numerics::builtinStabilityCases();
+  auto rigid = app::rigidBodyStabilityCases();
+  cases.insert(cases.end(), rigid.begin(), rigid.end());
+  return cases;
+}
 
 bool prepareOutDir(const std::string& dir) {
   std::error_code ec;
