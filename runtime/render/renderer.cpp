@@ -36,6 +36,25 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
   return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
 }
 
+namespace {
+
+void drawTerrain(Renderer::Impl& r, const FrameSnapshot& frame, const FrameView& view) {
+  if (frame.terrain == nullptr) {
+    r.terrainStats = TerrainStats{};
+    return;
+  }
+  // Pixels per radian near the screen centre: what the LOD rule needs.
+  const float pixelsPerRadian = static_cast<float>(r.targets.height()) / (2.0f * view.tanHalfFovY);
+  const Status status = r.terrain.draw(*frame.terrain, view, r.environment, pixelsPerRadian,
+                                       r.config.terrainLodPixels, r.terrainStats);
+  if (!status && !r.reportedTerrainError) {
+    log::warn("render: terrain not drawn: " + status.error() + " (reported once)");
+    r.reportedTerrainError = true;
+  }
+}
+
+}  // namespace
+
 Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
 Renderer::~Renderer() = default;
 
@@ -66,6 +85,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   r.targets.bindScene();
   glClear(GL_DEPTH_BUFFER_BIT);  // the sky covers every pixel, so no colour clear
   r.sky.draw(view, r.environment);
+  drawTerrain(r, frame, view);
   r.shapes.draw(frame.shapes, view, r.environment);
   r.lines.draw(frame.lines, view);
   r.targets.resolve();
@@ -86,6 +106,8 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   }
   return result;
 }
+
+const TerrainStats& Renderer::terrainStats() const { return m_impl->terrainStats; }
 
 Status Renderer::saveScreenshot(const std::string& path) {
   const Impl& r = *m_impl;

@@ -5,6 +5,7 @@
 //
 // Index
 //   DrawShape, DebugLine, FrameSnapshot   what the renderer reads (plain data)
+//   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
 //   WindowConfig, Renderer                window, events, drawing, screenshots
@@ -12,6 +13,8 @@
 // render is a leaf: it depends on core only. The app copies simulation state
 // into a FrameSnapshot; nothing here reads physics, script or particles, and
 // the simulation never reads render (ARCHITECTURE.md).
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,12 +45,61 @@ struct DebugLine {
   Eigen::Vector3f color{1, 1, 0};           // linear RGB 0..1
 };
 
+/// A plain view of a height field (render never includes terrain; the app
+/// fills this from terrain::Terrain). No ownership: the arrays must stay
+/// valid during each drawFrame that is handed this surface.
+///
+/// Sample (i, j) is at x = originX_m + i * spacing_m, z = originZ_m + j *
+/// spacing_m, y = baseHeight_m + heights[j * samplesX + i] * heightScale_m.
+/// Block (bi, bj) is the cell between samples (bi, bj) and (bi + 1, bj + 1),
+/// cut along its p00-p11 diagonal like the collision triangles.
+struct TerrainSurface {
+  int samplesX = 0, samplesZ = 0;  // grid size; fewer than 2 x 2 draws nothing
+  float spacing_m = 1, heightScale_m = 0.01f, baseHeight_m = 0, originX_m = 0, originZ_m = 0;
+  const std::uint16_t* heights = nullptr;      // samplesX * samplesZ, row-major (j * samplesX + i)
+  // Per block ((samplesX - 1) * (samplesZ - 1), row-major bj * (samplesX - 1) + bi), optional.
+  // Texture: 0 grass, 1 rock, 2 sand, 3 mud, 4 snow, 5 gravel, 6 dirt, 7 moss
+  // (kTerrainTextureCount; larger values wrap). Missing: grass everywhere.
+  const std::uint8_t* textureIndex = nullptr;
+  // Fine shading detail, 0 = smooth .. 255 = strongest. Missing: 0.
+  const std::uint8_t* bump = nullptr;
+  // Bump it whenever heights or materials change: the renderer then rebuilds
+  // its chunk meshes (lazily, only those it draws) and re-uploads materials.
+  // A change of size, spacing, scale, origin or pointers also counts.
+  std::uint64_t revision = 0;
+};
+
+/// Number of built-in procedural terrain textures (see TerrainSurface).
+inline constexpr int kTerrainTextureCount = 8;
+
 /// Everything the renderer reads of the simulation.
 struct FrameSnapshot {
   std::vector<DrawShape> shapes;
   std::vector<DebugLine> lines;
   double simTime_s = 0;
+  const TerrainSurface* terrain = nullptr;  // optional; null: no terrain, no terrain GPU memory
 };
+
+/// What the terrain pass did in the last drawFrame (Renderer::terrainStats).
+/// The map is cut into chunks of kTerrainChunkBlocks x kTerrainChunkBlocks
+/// blocks; each drawn chunk uses one geomipmap level (lod: every 2^lod-th
+/// sample) chosen by its distance to the eye.
+struct TerrainChunkDraw {
+  int chunkX = 0, chunkZ = 0;  // chunk column / row (blocks chunkX * 64 ...)
+  int lod = 0;
+  int triangles = 0;           // surface + skirt triangles
+};
+struct TerrainStats {
+  int chunksTotal = 0;         // chunks in the map
+  int chunksDrawn = 0;
+  int chunksCulled = 0;        // outside the view frustum or entirely in full fog
+  std::int64_t trianglesDrawn = 0;
+  int chunksUploaded = 0;      // chunk meshes built and uploaded during this frame
+  bool materialsUploaded = false;  // the per-block material texture was (re)uploaded this frame
+  std::size_t residentBytes = 0;   // chunk vertex data held on the GPU
+  std::vector<TerrainChunkDraw> drawn;  // one entry per drawn chunk
+};
+inline constexpr int kTerrainChunkBlocks = 64;
 
 enum class CameraMode { Orbit, Follow };
 
@@ -97,6 +149,10 @@ struct WindowConfig {
   // Multisample anti-aliasing of the scene (1 = off). Clamped to what the
   // driver supports; Mesa llvmpipe supports 4.
   int msaaSamples = 4;
+  // Terrain level of detail: a chunk takes the coarsest geomipmap level whose
+  // (coarse) blocks are at most this many pixels wide on screen at the
+  // chunk's nearest point. Smaller: more triangles, less popping.
+  float terrainLodPixels = 16.0f;
 };
 
 class Renderer {
@@ -121,8 +177,9 @@ class Renderer {
   // HUD is using (typing in a field, dragging a slider) do not reach the game.
   void processEvents(Controls& controls);
 
-  // Draws sky gradient, lit shapes (directional light + ambient, checkered
-  // plane), debug lines and the HUD, then presents. If screenshotPath is
+  // Draws sky gradient, the terrain if any (chunked geomipmaps, per-block
+  // textures, bump detail, fog), lit shapes (directional light + ambient,
+  // checkered plane), debug lines and the HUD, then presents. If screenshotPath is
   // non-null the finished frame is written as an RGB PNG (see saveScreenshot);
   // the frame is still presented if that fails, and the Status says why.
   Status drawFrame(const FrameSnapshot& frame, const HudStats& hud, Controls& controls,
@@ -132,6 +189,10 @@ class Renderer {
   // rows top-down, atomically (core/file_util writeFileAtomic). Reads the
   // renderer's own framebuffer, so it works without a visible window.
   Status saveScreenshot(const std::string& path);
+
+  // Chunks and triangles of the terrain in the last drawFrame (all zero
+  // without a terrain).
+  const TerrainStats& terrainStats() const;
 
   struct Impl;  // SDL, GL and ImGui state; kept out of this header
 

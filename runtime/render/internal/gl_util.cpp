@@ -9,6 +9,7 @@ void deleteVertexArray(GLuint name) { glDeleteVertexArrays(1, &name); }
 void deleteProgram(GLuint name) { glDeleteProgram(name); }
 void deleteFramebuffer(GLuint name) { glDeleteFramebuffers(1, &name); }
 void deleteRenderbuffer(GLuint name) { glDeleteRenderbuffers(1, &name); }
+void deleteTexture(GLuint name) { glDeleteTextures(1, &name); }
 
 GlBuffer makeBuffer() {
   GLuint name = 0;
@@ -26,6 +27,12 @@ GlFramebuffer makeFramebuffer() {
   GLuint name = 0;
   glGenFramebuffers(1, &name);
   return GlFramebuffer(name);
+}
+
+GlTexture makeTexture() {
+  GLuint name = 0;
+  glGenTextures(1, &name);
+  return GlTexture(name);
 }
 
 GlRenderbuffer makeRenderbuffer() {

@@ -46,17 +46,20 @@ void deleteVertexArray(GLuint name);
 void deleteProgram(GLuint name);
 void deleteFramebuffer(GLuint name);
 void deleteRenderbuffer(GLuint name);
+void deleteTexture(GLuint name);
 
 using GlBuffer = GlName<deleteBuffer>;
 using GlVertexArray = GlName<deleteVertexArray>;
 using GlProgram = GlName<deleteProgram>;
 using GlFramebuffer = GlName<deleteFramebuffer>;
 using GlRenderbuffer = GlName<deleteRenderbuffer>;
+using GlTexture = GlName<deleteTexture>;
 
 GlBuffer makeBuffer();
 GlVertexArray makeVertexArray();
 GlFramebuffer makeFramebuffer();
 GlRenderbuffer makeRenderbuffer();
+GlTexture makeTexture();
 
 /// Compiles and links a vertex + fragment program. `name` only labels errors
 /// ("shape shader: fragment: 0:12(3): error: ...").

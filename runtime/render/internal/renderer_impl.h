@@ -12,6 +12,7 @@
 #include "render/internal/render_targets.h"
 #include "render/internal/shape_pass.h"
 #include "render/internal/sky_pass.h"
+#include "render/internal/terrain_pass.h"
 #include "render/renderer.h"
 
 namespace tumble::render {
@@ -23,11 +24,14 @@ struct Renderer::Impl {
   SkyPass sky;
   ShapePass shapes;
   LinePass lines;
+  TerrainPass terrain;       // creates nothing until the first frame with a terrain
+  TerrainStats terrainStats;
   std::unique_ptr<Hud> hud;  // null when config.hud is false
   Environment environment;
   Camera camera;
   bool hasFrame = false;         // a finished frame exists for saveScreenshot
   bool reportedGlError = false;  // GL errors are logged once, not every frame
+  bool reportedTerrainError = false;
   bool dragging = false;         // mouse button held down on the scene
 };
 

@@ -12,6 +12,8 @@ extern const char* const kSkyVertex;
 extern const char* const kSkyFragment;
 extern const char* const kLineVertex;
 extern const char* const kLineFragment;
+extern const char* const kTerrainVertex;
+extern const char* const kTerrainFragment;
 
 // Vertex attribute locations shared by the shape shader and its VAOs.
 inline constexpr unsigned kAttribPosition = 0;
@@ -22,6 +24,10 @@ inline constexpr unsigned kAttribInstanceRotation = 4;
 inline constexpr unsigned kAttribInstanceScale = 5;
 inline constexpr unsigned kAttribInstanceHalfHeight = 6;
 inline constexpr unsigned kAttribInstanceColor = 7;
+
+// Terrain shader locations.
+inline constexpr unsigned kAttribTerrainPosition = 0;
+inline constexpr unsigned kAttribTerrainNormal = 1;
 
 // Line shader locations.
 inline constexpr unsigned kAttribLinePosition = 0;

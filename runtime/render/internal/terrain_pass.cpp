@@ -1,0 +1,261 @@
+#include "render/internal/terrain_pass.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+
+#include "core/log.h"
+#include "render/internal/shaders.h"
+#include "render/internal/terrain_textures.h"
+
+namespace tumble::render {
+
+namespace {
+
+// Fog reaches 1 - exp(-(d rho)^2); beyond d rho = 2.5 it is within half a
+// step of 8-bit colour of the fog colour, so such chunks are not drawn.
+constexpr float kFogCutoff = 2.5f;
+// Strength of the bump detail at bump = 255: the noise gradient is scaled so
+// the shading normal tilts by up to about 40 degrees on the roughest rock.
+constexpr float kDetailSlope = 0.4f;
+
+int verticesAlong(int blocks, int lod) {
+  const int step = 1 << lod;
+  return (blocks + step - 1) / step + 1;
+}
+
+}  // namespace
+
+Status TerrainPass::init() {
+  const auto start = std::chrono::steady_clock::now();
+  auto program = buildProgram("terrain shader", shaders::kTerrainVertex, shaders::kTerrainFragment);
+  if (!program) return makeError(program.error());
+  m_program = std::move(*program);
+  m_viewProjection = uniformLocation(m_program, "uViewProjection");
+  m_eye = uniformLocation(m_program, "uEye");
+  m_lightDirection = uniformLocation(m_program, "uLightDirection");
+  m_lightColor = uniformLocation(m_program, "uLightColor");
+  m_skyAmbient = uniformLocation(m_program, "uSkyAmbient");
+  m_groundAmbient = uniformLocation(m_program, "uGroundAmbient");
+  m_fogColor = uniformLocation(m_program, "uFogColor");
+  m_fogDensity = uniformLocation(m_program, "uFogDensity");
+  m_origin = uniformLocation(m_program, "uOrigin");
+  m_spacing = uniformLocation(m_program, "uSpacing");
+  m_blocks = uniformLocation(m_program, "uBlocks");
+  m_texturePerMetre = uniformLocation(m_program, "uTexturePerMetre");
+  m_layerCount = uniformLocation(m_program, "uLayerCount");
+  m_detailSlope = uniformLocation(m_program, "uDetailSlope");
+  glUseProgram(m_program.get());
+  glUniform1i(uniformLocation(m_program, "uMaterial"), 0);
+  glUniform1i(uniformLocation(m_program, "uTextures"), 1);
+
+  // Material textures, generated here (first terrain frame), not at start-up:
+  // a scene without terrain never pays for them.
+  m_textures = makeTexture();
+  glBindTexture(GL_TEXTURE_2D_ARRAY, m_textures.get());
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, kTerrainTextureSize, kTerrainTextureSize,
+               kTerrainTextureCount, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  for (int layer = 0; layer < kTerrainTextureCount; ++layer) {
+    const std::vector<std::uint8_t> rgba = generateTerrainTexture(layer);
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, kTerrainTextureSize, kTerrainTextureSize, 1,
+                    GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  }
+  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+
+  m_materials = makeTexture();
+  if (std::string errors = drainGlErrors(); !errors.empty()) {
+    return makeError("terrain pass set-up: " + errors);
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  log::info("render: terrain textures generated (" + std::to_string(kTerrainTextureCount) + " x " +
+            std::to_string(kTerrainTextureSize) + "^2) in " + std::to_string(static_cast<int>(ms)) + " ms");
+  m_initialised = true;
+  return Ok{};
+}
+
+void TerrainPass::reset(const TerrainSurface& surface) {
+  m_chunks.clear();  // frees every chunk's vertex buffers
+  m_residentBytes = 0;
+  m_grid = chunkGrid(surface);
+  m_chunks.resize(static_cast<std::size_t>(m_grid.chunksX) * static_cast<std::size_t>(m_grid.chunksZ));
+  for (int cz = 0; cz < m_grid.chunksZ; ++cz) {
+    for (int cx = 0; cx < m_grid.chunksX; ++cx) {
+      m_chunks[static_cast<std::size_t>(cz * m_grid.chunksX + cx)].bounds = chunkBounds(surface, cx, cz);
+    }
+  }
+  uploadMaterials(surface);
+}
+
+void TerrainPass::uploadMaterials(const TerrainSurface& surface) {
+  // Interleave texture index and bump into RG; a missing layer reads 0.
+  const std::size_t blocks = static_cast<std::size_t>(m_grid.blocksX) * static_cast<std::size_t>(m_grid.blocksZ);
+  m_materialScratch.assign(blocks * 2, 0);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (surface.textureIndex != nullptr) m_materialScratch[2 * b] = surface.textureIndex[b];
+    if (surface.bump != nullptr) m_materialScratch[2 * b + 1] = surface.bump[b];
+  }
+  glBindTexture(GL_TEXTURE_2D, m_materials.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of 2 * blocksX bytes
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RG8UI, m_grid.blocksX, m_grid.blocksZ, 0, GL_RG_INTEGER,
+               GL_UNSIGNED_BYTE, m_materialScratch.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  m_materialScratch.clear();
+  m_materialScratch.shrink_to_fit();  // 32 MiB on a 4097^2 map: do not keep it
+}
+
+const TerrainPass::IndexSet& TerrainPass::indexSet(int nx, int nz) {
+  for (const IndexSet& set : m_indexSets) {
+    if (set.nx == nx && set.nz == nz) return set;
+  }
+  const std::vector<std::uint16_t> indices = buildChunkIndices(nx, nz);
+  IndexSet set;
+  set.nx = nx;
+  set.nz = nz;
+  set.count = static_cast<int>(indices.size());
+  set.buffer = makeBuffer();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, set.buffer.get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint16_t)),
+               indices.data(), GL_STATIC_DRAW);
+  m_indexSets.push_back(std::move(set));
+  return m_indexSets.back();
+}
+
+TerrainPass::ChunkLevel& TerrainPass::ensureLevel(const TerrainSurface& surface, int chunk, int lod,
+                                                  TerrainStats& stats) {
+  ChunkLevel& level = m_chunks[static_cast<std::size_t>(chunk)].levels[static_cast<std::size_t>(lod)];
+  level.lastUsedFrame = m_frame;
+  if (level.vao.get() != 0) return level;
+
+  const int cx = chunk % m_grid.chunksX, cz = chunk / m_grid.chunksX;
+  const int nx = verticesAlong(std::min(kTerrainChunkBlocks, m_grid.blocksX - cx * kTerrainChunkBlocks), lod);
+  const int nz = verticesAlong(std::min(kTerrainChunkBlocks, m_grid.blocksZ - cz * kTerrainChunkBlocks), lod);
+  buildChunkVertices(surface, cx, cz, lod, m_scratch);
+
+  level.vao = makeVertexArray();
+  level.vertices = makeBuffer();
+  glBindVertexArray(level.vao.get());
+  glBindBuffer(GL_ARRAY_BUFFER, level.vertices.get());
+  level.bytes = m_scratch.size() * sizeof(TerrainVertex);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(level.bytes), m_scratch.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(shaders::kAttribTerrainPosition);
+  glVertexAttribPointer(shaders::kAttribTerrainPosition, 3, GL_FLOAT, GL_FALSE, sizeof(TerrainVertex),
+                        reinterpret_cast<const void*>(offsetof(TerrainVertex, position)));
+  glEnableVertexAttribArray(shaders::kAttribTerrainNormal);
+  glVertexAttribPointer(shaders::kAttribTerrainNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE,
+                        sizeof(TerrainVertex), reinterpret_cast<const void*>(offsetof(TerrainVertex, normal)));
+  const IndexSet& indices = indexSet(nx, nz);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.buffer.get());  // recorded in the VAO
+  glBindVertexArray(0);
+  level.triangles = indices.count / 3;
+  m_residentBytes += level.bytes;
+  ++stats.chunksUploaded;
+  return level;
+}
+
+void TerrainPass::evictUnused() {
+  if (m_residentBytes <= kTerrainResidentBudget) return;
+  for (Chunk& chunk : m_chunks) {
+    for (ChunkLevel& level : chunk.levels) {
+      if (level.vao.get() != 0 && level.lastUsedFrame != m_frame) {
+        m_residentBytes -= level.bytes;
+        level = ChunkLevel{};
+      }
+    }
+  }
+}
+
+Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
+                         const Environment& environment, float pixelsPerRadian, float lodPixels,
+                         TerrainStats& stats) {
+  std::vector<TerrainChunkDraw> drawn = std::move(stats.drawn);  // keep its capacity
+  drawn.clear();
+  stats = TerrainStats{};
+  stats.drawn = std::move(drawn);
+  if (chunkGrid(surface).chunksX == 0) return Ok{};
+  if (!m_initialised) {
+    if (Status s = init(); !s) return s;
+  }
+  const SurfaceKey key{surface.samplesX,   surface.samplesZ,  surface.spacing_m, surface.heightScale_m,
+                       surface.baseHeight_m, surface.originX_m, surface.originZ_m, surface.heights,
+                       surface.textureIndex, surface.bump,     surface.revision};
+  if (!m_hasSurface || !(key == m_key)) {
+    reset(surface);
+    m_key = key;
+    m_hasSurface = true;
+    stats.materialsUploaded = true;
+  }
+  ++m_frame;
+
+  // Cull and choose levels.
+  const FrustumPlanes planes = frustumPlanes(view.viewProjection);
+  const float fogLimit_m = environment.fogDensity_per_m > 0 ? kFogCutoff / environment.fogDensity_per_m
+                                                            : std::numeric_limits<float>::max();
+  m_visible.clear();
+  for (int c = 0; c < static_cast<int>(m_chunks.size()); ++c) {
+    const ChunkBounds& bounds = m_chunks[static_cast<std::size_t>(c)].bounds;
+    const float distance = distanceToBox(view.eye, bounds);
+    if (distance > fogLimit_m || !boxInFrustum(planes, bounds)) continue;
+    m_visible.push_back({c, chooseLod(distance, surface.spacing_m, pixelsPerRadian, lodPixels), distance});
+  }
+  // Front to back, so the depth test rejects hidden fragments before shading.
+  std::sort(m_visible.begin(), m_visible.end(),
+            [](const Visible& a, const Visible& b) { return a.distance_m < b.distance_m; });
+  stats.chunksTotal = static_cast<int>(m_chunks.size());
+  stats.chunksCulled = stats.chunksTotal - static_cast<int>(m_visible.size());
+
+  glUseProgram(m_program.get());
+  glUniformMatrix4fv(m_viewProjection, 1, GL_FALSE, view.viewProjection.data());
+  glUniform3fv(m_eye, 1, view.eye.data());
+  glUniform3fv(m_lightDirection, 1, environment.lightDirection.data());
+  glUniform3fv(m_lightColor, 1, environment.lightColor.data());
+  glUniform3fv(m_skyAmbient, 1, environment.skyAmbient.data());
+  glUniform3fv(m_groundAmbient, 1, environment.groundAmbient.data());
+  glUniform3fv(m_fogColor, 1, environment.horizonColor.data());
+  glUniform1f(m_fogDensity, environment.fogDensity_per_m);
+  glUniform2f(m_origin, surface.originX_m, surface.originZ_m);
+  glUniform1f(m_spacing, surface.spacing_m);
+  glUniform2i(m_blocks, m_grid.blocksX, m_grid.blocksZ);
+  glUniform1f(m_texturePerMetre, 1.0f / kTerrainTextureSize_m);
+  glUniform1i(m_layerCount, kTerrainTextureCount);
+  glUniform1f(m_detailSlope, kDetailSlope);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, m_materials.get());
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, m_textures.get());
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  for (const Visible& v : m_visible) {
+    const ChunkLevel& level = ensureLevel(surface, v.chunk, v.lod, stats);
+    glBindVertexArray(level.vao.get());
+    glDrawElements(GL_TRIANGLES, level.triangles * 3, GL_UNSIGNED_SHORT, nullptr);
+    stats.trianglesDrawn += level.triangles;
+    stats.drawn.push_back({v.chunk % m_grid.chunksX, v.chunk / m_grid.chunksX, v.lod, level.triangles});
+  }
+  stats.chunksDrawn = static_cast<int>(m_visible.size());
+  glBindVertexArray(0);
+  glDisable(GL_CULL_FACE);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+
+  evictUnused();
+  stats.residentBytes = m_residentBytes;
+  return Ok{};
+}
+
+}  // namespace tumble::render
