@@ -1,4 +1,14 @@
 #pragma once
+// Contact solver data: a compact copy of what the inner loop touches.
+//
+// prepare() turns the narrow phase's manifolds into constraints once per
+// step: body indices, inverse masses, the normal and tangent Jacobian rows
+// (r x n and I^-1 (r x n) for each side) and effective masses. The substeps
+// then only read these rows and the bodies' velocities, which live in a
+// separate array of 24-byte entries (gathered before the substeps, scattered
+// after), never the large Body struct. Inverse world inertia is taken at the
+// start of the step, as rA, rB and the effective masses already were.
+#include <cstdint>
 #include <vector>
 
 #include "physics/body.h"
@@ -11,24 +21,116 @@ struct SolverSettings {
   Real contactHertz = 30, contactDampingRatio = 10, maxPushout_mps = 3;
   Real restitutionThreshold_mps = 1;
   Real linearSlop_m = Real(0.005);
-  bool softContacts = false;  ///< soft (spring-damper) push-out instead of Baumgarte
-  Real baumgarte = Real(0.2);  ///< fraction of the overlap removed per substep (rigid model)
+  bool softContacts = false;   ///< soft (spring-damper) push-out instead of split impulses
+  Real baumgarte = Real(0.2);  ///< fraction of the overlap removed per substep (split impulses)
+  int restitutionIterations = 1;
 };
 
-/// Positions at the start of the step (for updating separations) and the
-/// split-impulse pseudo-velocities, which move positions but are never part
-/// of the bodies' real velocities.
-struct StepStart {
-  const std::vector<Vec3>* position;
-  const std::vector<Quat>* orientation;
-  std::vector<Vec3>* pseudoLinear;
-  std::vector<Vec3>* pseudoAngular;
+/// Solver vectors are 4-wide (w = 0) so that a Jacobian row times a velocity
+/// is one packed multiply-add and one horizontal sum (SSE for float),
+/// instead of three scalar dot products.
+using Vec4r = Eigen::Matrix<Real, 4, 1>;
+inline Vec4r wide(const Vec3& v) { return Vec4r(v.x(), v.y(), v.z(), 0); }
+inline Vec3 narrow(const Vec4r& v) { return v.head<3>(); }
+
+/// Linear and angular velocity of one body (solver copy), indexed like World's bodies.
+struct SolverVelocity {
+  Vec4r linear = Vec4r::Zero();
+  Vec4r angular = Vec4r::Zero();
 };
 
-void prepareContacts(std::vector<Manifold>& manifolds, const std::vector<Body>& bodies, const SolverSettings& s);
-void warmStartContacts(std::vector<Manifold>& manifolds, std::vector<Body>& bodies);
-void solveContacts(std::vector<Manifold>& manifolds, std::vector<Body>& bodies, const StepStart& start,
-                   const SolverSettings& s, bool useBias);
-void applyRestitution(std::vector<Manifold>& manifolds, std::vector<Body>& bodies, const SolverSettings& s);
+/// Where each body is relative to the start of the step (for separations).
+struct SolverPose {
+  Vec3 dp = Vec3::Zero();         ///< position minus step-start position, m
+  Quat dq = Quat::Identity();     ///< orientation times conjugate of step-start orientation
+};
+
+struct ConstraintPoint {
+  // Jacobian rows, fixed during the step.
+  Vec4r rnA, rnB;        ///< rA x n, rB x n
+  Vec4r inA, inB;        ///< IA^-1 (rA x n), IB^-1 (rB x n)
+  Vec4r rtA[2], rtB[2];  ///< rA x t_k, rB x t_k
+  Vec4r itA[2], itB[2];  ///< I^-1 of those
+  Real normalMass = 0, tangentMass[2] = {0, 0};
+  Real normalImpulse = 0, tangentImpulse[2] = {0, 0};  ///< accumulated (N s), warm started
+  Real separation_m = 0;      ///< current separation (updated once per solve phase)
+  Real pseudoImpulse = 0;     ///< split-impulse accumulator, per substep
+  Real maxNormalImpulse = 0;  ///< largest single push this step (did it touch?)
+  Real relativeVelocity_mps = 0;  ///< approach speed when it first pushed (restitution)
+  Real restitutionImpulse = 0;    ///< change of normalImpulse made by the restitution passes
+  Real separation0_m = 0;         ///< separation at the start of the step
+  // For separation updates.
+  Vec3 rA, rB;
+};
+
+struct Constraint {
+  Vec4r normal = Vec4r::UnitY();
+  Vec4r tangent[2] = {Vec4r::UnitX(), Vec4r::UnitZ()};
+  std::uint32_t a = 0, b = 0;  ///< body indices (velocity array)
+  std::uint32_t manifold = 0;  ///< index in World's manifolds
+  std::uint32_t firstPoint = 0;
+  std::uint8_t count = 0;
+  bool movesA = false, movesB = false;  ///< side takes impulses (awake dynamic)
+  bool roundA = false, roundB = false;
+  Real invMassA = 0, invMassB = 0;
+  Real friction = 0, restitution = 0;
+  Real rollingArm_m = 0;
+  std::int32_t rolling = -1;  ///< index into the rolling rows, -1 without rolling resistance
+};
+
+/// Angular rows of rolling / spinning resistance about t0, t1, n.
+struct RollingRows {
+  Vec4r iA[3], iB[3];  ///< IA^-1 axis_k, IB^-1 axis_k
+  Real mass[3] = {0, 0, 0};
+  Real impulse[3] = {0, 0, 0};  ///< per substep
+};
+
+class ContactSolver {
+ public:
+  /// Builds the constraints (warm-start impulses come from the manifolds).
+  /// Manifolds against the height field (b = kHeightFieldBody) use velocity
+  /// slot bodies.size(), which the caller keeps at zero.
+  void prepare(const std::vector<Manifold>& manifolds, const std::vector<Body>& bodies);
+  void warmStart(std::vector<SolverVelocity>& vel) const;
+  /// Recomputes every point's separation from the bodies' displacements.
+  void updateSeparations(const std::vector<SolverPose>& pose);
+  /// One Gauss-Seidel sweep. useBias: the solve phase (speculative bias,
+  /// split-impulse pseudo-velocities); otherwise the bias-free relax phase.
+  /// Returns the sum of squared impulse changes: 0 means the sweep changed
+  /// nothing, so every further sweep of this phase would change nothing
+  /// either (same inputs, same outputs) and can be skipped without changing
+  /// a single bit of the result.
+  Real solve(std::vector<SolverVelocity>& vel, std::vector<SolverVelocity>& pseudo, const SolverSettings& s,
+             bool useBias);
+  /// Newton's law needs each point's approach speed at impact: before each
+  /// substep's solve, points that have not pushed yet this step record their
+  /// normal velocity. Taken before any impulse of the substep, so a point
+  /// does not see what its neighbours did in the same sweep (that inflated
+  /// the bounce and gained energy in clumps of fast spheres).
+  void captureApproachSpeeds(const std::vector<SolverVelocity>& vel);
+  /// Per substep: rolling and split impulses start from zero.
+  void resetSubstepImpulses();
+  /// Newton's law after the substeps, iterated restitutionIterations times.
+  void applyRestitution(std::vector<SolverVelocity>& vel, const SolverSettings& s);
+  /// Impulse (N s) that non-moving bodies gave the moving ones in this
+  /// substep: the accumulated impulses, summed once per substep (exact,
+  /// since every impulse of a substep ends up in its accumulated value).
+  Eigen::Vector3d externalImpulse() const;
+  /// Likewise for what the restitution passes added.
+  Eigen::Vector3d externalRestitutionImpulse() const;
+  /// Accumulated impulses back to the manifolds (warm start, events).
+  void store(std::vector<Manifold>& manifolds) const;
+
+  std::size_t size() const { return m_constraints.size(); }
+  /// Sum of squared accumulated normal impulses after the last sweep.
+  Real lastMagnitude() const { return m_lastMagnitude; }
+
+ private:
+  std::vector<Constraint> m_constraints;
+  std::vector<ConstraintPoint> m_points;
+  std::vector<RollingRows> m_rolling;
+  std::vector<std::uint32_t> m_external;  ///< constraints with one non-moving side
+  Real m_lastMagnitude = 0;
+};
 
 }  // namespace tumble::physics

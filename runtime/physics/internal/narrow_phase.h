@@ -9,6 +9,12 @@ namespace tumble::physics {
 /// most margin_m (speculative contacts). Returns the number of points.
 int collideBodies(const Body& a, const Body& b, Real margin_m, Manifold& m);
 
+/// Two spheres whose relative motion this step (b relative to a, m) is
+/// large: one speculative point along the normal at their time of impact,
+/// or none if they stay more than spec_m apart during the step. Pairs
+/// already within spec_m get the ordinary contact.
+int collideSpheresSwept(const Body& a, const Body& b, const Vec3& relativeMotion_m, Real spec_m, Manifold& m);
+
 /// Closest points of segments p0-p1 and q0-q1: parameters s, t in [0, 1].
 void closestSegmentPoints(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Real& s, Real& t);
 

@@ -1,0 +1,257 @@
+// Body against height field.
+//
+// Round shapes (spheres, the end caps of capsules): for every triangle near
+// the body, the closest point q on the triangle to the centre c (Ericson,
+// Real-Time Collision Detection 5.1.5) and the feature it lies on (face,
+// edge, vertex). Face: normal = the face normal, separation = signed distance
+// of c from the plane minus r. Edge / vertex: normal = (c - q) / |c - q|.
+//
+// Seams (internal edges). A triangle whose closest point lies on its edge
+// or vertex gives a tilted normal even when the surface there is flat: a
+// sphere resting on triangle T1 is 1 cm from T1's neighbour T2, whose
+// closest point is on the shared edge, and that speculative contact (normal
+// tilted towards the sphere's motion) pushes back when the sphere rolls
+// over the seam - the "internal edge" bump. The cure used here needs no
+// adjacency: an edge or vertex contact is a real contact only if its point q
+// is a local minimum of the distance over the whole surface, not only over
+// its own triangle. So it is dropped when another triangle contains q (q
+// within 1 mm of it) and comes closer to the centre. On a flat or concave
+// seam the neighbour is closer, so only face contacts survive; on a convex
+// ridge both triangles touch q at the same distance and the edge contact
+// stays, with its true normal. Rejected: Bullet's btAdjustInternalEdgeContacts
+// (needs a triangle-info map built for the whole mesh: terrain memory in
+// physics) and Jolt's vertex voiding (keeps edge contacts of triangles that
+// share only a vertex with the face contact; measured as bumps).
+//
+// Boxes: each of the 8 vertices against the triangle under it (vertical
+// look-up; normal = that face normal, separation = vertical gap times n.y,
+// exact for a plane), so a box on flat ground gets its 4 bottom corners with
+// one normal however many triangles lie under it, and keeps its feature ids
+// (0..7) while sliding: no seam ever appears in its contacts. A bump of the
+// terrain under the middle of a face is caught by the terrain's vertices
+// against the box's lowest face, used only where they reach deeper (by
+// kPeakTolerance_m) than every corner.
+// Capsules: the two end caps as spheres, plus terrain vertices against the
+// core segment where they reach deeper than the caps.
+//
+// Contacts are then grouped by normal (within kSameNormalCos) into at most
+// kMaxHeightFieldManifolds manifolds of at most 4 points each, deepest first.
+#include "physics/internal/height_field_collision.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+namespace tumble::physics {
+namespace {
+
+constexpr Real kOnTriangle_m = Real(1e-3);       ///< q counts as on a triangle within this distance
+constexpr Real kCloser_m = Real(1e-5);           ///< "comes closer" means by at least this much
+constexpr Real kPeakTolerance_m = Real(0.01);    ///< terrain vertices must reach this much deeper than corners
+constexpr Real kSameNormalCos = Real(0.999);     ///< normals within ~2.6 degrees share a manifold
+
+enum class Feature { Face, Edge, Vertex };
+
+/// Closest point of triangle abc to p and the feature it lies on (Ericson 5.1.5).
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Feature& f) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return f = Feature::Vertex, a;
+  const Vec3 bp = p - b;
+  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return f = Feature::Vertex, b;
+  const Real vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return f = Feature::Edge, Vec3(a + ab * (d1 / (d1 - d3)));
+  const Vec3 cp = p - c;
+  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return f = Feature::Vertex, c;
+  const Real vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return f = Feature::Edge, Vec3(a + ac * (d2 / (d2 - d6)));
+  const Real va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return f = Feature::Edge, Vec3(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+  const Real denom = 1 / (va + vb + vc);
+  f = Feature::Face;
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+/// Contacts of a sphere (centre c, radius r) with the gathered triangles;
+/// appends to s.contacts with the given id.
+void roundContacts(const Vec3& c, Real r, Real margin, std::uint32_t id, HeightFieldScratch& s) {
+  auto& cands = s.candidates;
+  cands.clear();
+  for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
+    const HeightFieldTriangle& t = s.triangles[i];
+    Feature f;
+    const Vec3 q = closestOnTriangle(c, t.v[0], t.v[1], t.v[2], f);
+    const Vec3 d = c - q;
+    const Real along = d.dot(t.normal);
+    HeightFieldScratch::Candidate k;
+    k.closest = q;
+    k.triangle = i;
+    k.face = f == Feature::Face;
+    if (k.face || along <= 0) {
+      // Face region, or the centre is below the plane (deep): push out along
+      // the face normal, never down through the surface.
+      k.normal = t.normal;
+      k.separation = along - r;
+    } else {
+      const Real dist = d.norm();
+      k.normal = d / dist;
+      k.separation = dist - r;
+    }
+    cands.push_back(k);
+  }
+  for (const auto& k : cands) {
+    if (k.separation > margin) continue;
+    if (!k.face) {
+      // Keep an edge / vertex contact only at a local minimum of the distance
+      // over the surface: no other triangle through q comes closer.
+      bool shadowed = false;
+      for (const auto& o : cands) {
+        if (!(o.separation < k.separation - kCloser_m)) continue;
+        const HeightFieldTriangle& t = s.triangles[o.triangle];
+        Feature g;
+        if ((closestOnTriangle(k.closest, t.v[0], t.v[1], t.v[2], g) - k.closest).squaredNorm() <=
+            kOnTriangle_m * kOnTriangle_m) {
+          shadowed = true;
+          break;
+        }
+      }
+      if (shadowed) continue;
+    }
+    s.contacts.push_back({k.normal, k.closest + k.normal * (k.separation / 2), k.separation, id});
+  }
+}
+
+Real minSeparation(const std::vector<SurfaceContact>& contacts) {
+  Real m = std::numeric_limits<Real>::max();
+  for (const SurfaceContact& c : contacts) m = std::min(m, c.separation_m);
+  return m;
+}
+
+/// Stable id of a terrain vertex from its position bits (ids of corners and caps are < 16).
+std::uint32_t vertexId(const Vec3& v) {
+  std::uint32_t h = 2166136261u;
+  for (int k = 0; k < 3; k += 2) {
+    float f = float(v[k]);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    h = (h ^ bits) * 16777619u;
+  }
+  return 0x100u | (h << 8);
+}
+
+void boxContacts(const Body& b, const HeightField& field, Real margin, HeightFieldScratch& s) {
+  const Mat3 R = b.orientation.toRotationMatrix();
+  const Vec3& he = b.shape.halfExtents_m;
+  for (std::uint32_t i = 0; i < 8; ++i) {
+    const Vec3 local((i & 1) ? he.x() : -he.x(), (i & 2) ? he.y() : -he.y(), (i & 4) ? he.z() : -he.z());
+    const Vec3 v = b.position_m + R * local;
+    Real h;
+    Vec3 n;
+    if (!field.surfaceAt(v.x(), v.z(), &h, &n)) continue;
+    const Real sep = (v.y() - h) * n.y();
+    if (sep > margin) continue;
+    s.contacts.push_back({n, v - n * (sep / 2), sep, i});
+  }
+  // Terrain vertices against the lowest face, where they reach deeper than the corners.
+  int k = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(R(1, a)) > std::abs(R(1, k))) k = a;
+  const Vec3 down = R.col(k) * (R(1, k) > 0 ? Real(-1) : Real(1));  // outward normal of the lowest face
+  const int u = (k + 1) % 3, w = (k + 2) % 3;
+  const Real deepest = minSeparation(s.contacts) - kPeakTolerance_m;
+  const std::size_t corners = s.contacts.size();
+  for (const HeightFieldTriangle& t : s.triangles)
+    for (const Vec3& v : t.v) {
+      const Vec3 d = v - b.position_m;
+      const Real sep = down.dot(d) - he[k];
+      // Only vertices under or inside the box: one above its top is no contact.
+      if (sep > margin || sep >= deepest || sep < -2 * he[k]) continue;
+      const Real lu = R.col(u).dot(d), lw = R.col(w).dot(d);
+      if (std::abs(lu) > he[u] || std::abs(lw) > he[w]) continue;
+      const std::uint32_t id = vertexId(v);
+      bool seen = false;
+      for (std::size_t j = corners; j < s.contacts.size(); ++j) seen |= s.contacts[j].id == id;
+      if (seen) continue;
+      const Vec3 n = -down;  // from the surface to the box
+      s.contacts.push_back({n, v + n * (sep / 2), sep, id});
+    }
+}
+
+void capsuleContacts(const Body& b, Real margin, HeightFieldScratch& s) {
+  const Vec3 axis = b.orientation * Vec3::UnitY();
+  const Real r = b.shape.radius_m;
+  const Vec3 p0 = b.position_m - axis * b.shape.halfHeight_m, p1 = b.position_m + axis * b.shape.halfHeight_m;
+  roundContacts(p0, r, margin, 0, s);
+  roundContacts(p1, r, margin, 1, s);
+  const Real deepest = minSeparation(s.contacts) - kPeakTolerance_m;
+  const std::size_t caps = s.contacts.size();
+  const Vec3 seg = p1 - p0;
+  const Real len2 = seg.squaredNorm();
+  for (const HeightFieldTriangle& t : s.triangles)
+    for (const Vec3& v : t.v) {
+      const Real tt = len2 > 0 ? std::clamp<Real>(seg.dot(v - p0) / len2, 0, 1) : 0;
+      if (tt <= 0 || tt >= 1) continue;  // the caps cover the ends
+      const Vec3 d = p0 + seg * tt - v;
+      if (d.dot(t.normal) <= 0) continue;
+      const Real dist = d.norm();
+      const Real sep = dist - r;
+      if (sep > margin || sep >= deepest) continue;
+      const std::uint32_t id = vertexId(v);
+      bool seen = false;
+      for (std::size_t j = caps; j < s.contacts.size(); ++j) seen |= s.contacts[j].id == id;
+      if (seen) continue;
+      const Vec3 n = d / dist;
+      s.contacts.push_back({n, v + n * (sep / 2), sep, id});
+    }
+}
+
+}  // namespace
+
+int collideHeightField(const Body& body, const HeightField& field, const Vec3& lo, const Vec3& hi, Real margin,
+                       HeightFieldScratch& s, Manifold* out) {
+  s.triangles.clear();
+  s.contacts.clear();
+  const Shape& shape = body.shape;
+  if (shape.type == ShapeType::Plane) return 0;
+  field.forEachTriangle(lo, hi, [&](const HeightFieldTriangle& t) { s.triangles.push_back(t); });
+  switch (shape.type) {
+    case ShapeType::Sphere: roundContacts(body.position_m, shape.radius_m, margin, 0, s); break;
+    case ShapeType::Box: boxContacts(body, field, margin, s); break;
+    case ShapeType::Capsule: capsuleContacts(body, margin, s); break;
+    case ShapeType::Plane: break;
+  }
+  if (s.contacts.empty()) return 0;
+  // Deepest first; ties by id so the order never depends on the triangle order.
+  std::sort(s.contacts.begin(), s.contacts.end(), [](const SurfaceContact& a, const SurfaceContact& b) {
+    return a.separation_m != b.separation_m ? a.separation_m < b.separation_m : a.id < b.id;
+  });
+  const bool onePointPerNormal = shape.type == ShapeType::Sphere;
+  int count = 0;
+  for (const SurfaceContact& c : s.contacts) {
+    int k = 0;
+    while (k < count && -out[k].normal.dot(c.normal) < kSameNormalCos) ++k;
+    if (k == count) {
+      if (count == kMaxHeightFieldManifolds) continue;
+      Manifold& m = out[count++];
+      m = Manifold{};
+      m.normal = -c.normal;  // from the body (a) to the surface (b)
+    } else if (onePointPerNormal) {
+      continue;
+    }
+    Manifold& m = out[k];
+    // Capsules: one point per cap and normal (a cap in a valley has two normals).
+    bool dup = false;
+    for (int i = 0; i < m.count; ++i) dup |= m.points[i].id == c.id;
+    if (dup || m.count >= kMaxManifoldPoints) continue;
+    ContactPoint& p = m.points[m.count++];
+    p.point_m = c.point_m;
+    p.separation_m = c.separation_m;
+    p.id = c.id;
+  }
+  return count;
+}
+
+}  // namespace tumble::physics

@@ -1,0 +1,302 @@
+// Bodies on a height field, compared with analytic answers. The field here
+// is a synthetic grid of triangles built in the test (same split as the
+// terrain module: each cell cut along its (i, j)-(i+1, j+1) diagonal), so
+// physics is tested without the terrain module.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "physics/height_field.h"
+#include "physics/world.h"
+#include "physics_fixture.h"
+
+namespace tumble::physics::test {
+namespace {
+
+class GridField final : public HeightField {
+ public:
+  using Fn = std::function<Real(Real, Real)>;
+  GridField(int nx, int nz, Real spacing, Real x0, Real z0, const Fn& height, Fn friction = nullptr)
+      : m_nx(nx), m_nz(nz), m_s(spacing), m_x0(x0), m_z0(z0), m_friction(std::move(friction)) {
+    m_h.resize(std::size_t(nx) * nz);
+    for (int j = 0; j < nz; ++j)
+      for (int i = 0; i < nx; ++i) m_h[std::size_t(j) * nx + i] = height(x0 + i * spacing, z0 + j * spacing);
+  }
+
+  Vec3 sample(int i, int j) const { return Vec3(m_x0 + i * m_s, m_h[std::size_t(j) * m_nx + i], m_z0 + j * m_s); }
+
+  HeightFieldTriangle triangle(int bi, int bj, int half) const {
+    const Vec3 p00 = sample(bi, bj), p10 = sample(bi + 1, bj), p01 = sample(bi, bj + 1), p11 = sample(bi + 1, bj + 1);
+    HeightFieldTriangle t;
+    if (half == 0) t.v[0] = p00, t.v[1] = p11, t.v[2] = p10;
+    else t.v[0] = p00, t.v[1] = p01, t.v[2] = p11;
+    t.normal = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).normalized();
+    t.id = std::uint32_t(2 * (bj * (m_nx - 1) + bi) + half);
+    return t;
+  }
+
+  void visitTriangles(const Vec3& lo, const Vec3& hi, TriangleVisitor visit, void* ctx) const override {
+    const int i0 = std::max(0, int(std::floor((lo.x() - m_x0) / m_s)));
+    const int i1 = std::min(m_nx - 2, int(std::floor((hi.x() - m_x0) / m_s)));
+    const int j0 = std::max(0, int(std::floor((lo.z() - m_z0) / m_s)));
+    const int j1 = std::min(m_nz - 2, int(std::floor((hi.z() - m_z0) / m_s)));
+    for (int bj = j0; bj <= j1; ++bj)
+      for (int bi = i0; bi <= i1; ++bi)
+        for (int half = 0; half < 2; ++half) {
+          const HeightFieldTriangle t = triangle(bi, bj, half);
+          const Real ylo = std::min({t.v[0].y(), t.v[1].y(), t.v[2].y()});
+          const Real yhi = std::max({t.v[0].y(), t.v[1].y(), t.v[2].y()});
+          if (ylo <= hi.y() && yhi >= lo.y()) visit(ctx, t);
+        }
+  }
+
+  bool surfaceAt(Real x, Real z, Real* height, Vec3* normal) const override {
+    const Real fx = (x - m_x0) / m_s, fz = (z - m_z0) / m_s;
+    if (fx < 0 || fz < 0 || fx > m_nx - 1 || fz > m_nz - 1) return false;
+    const int bi = std::min(int(fx), m_nx - 2), bj = std::min(int(fz), m_nz - 2);
+    const Real u = fx - bi, v = fz - bj;
+    const HeightFieldTriangle t = triangle(bi, bj, u >= v ? 0 : 1);
+    // Plane through v[0] with normal n: y = y0 - (nx (x - x0) + nz (z - z0)) / ny.
+    *height = t.v[0].y() - (t.normal.x() * (x - t.v[0].x()) + t.normal.z() * (z - t.v[0].z())) / t.normal.y();
+    *normal = t.normal;
+    return true;
+  }
+
+  Real frictionAt(Real x, Real z) const override { return m_friction ? m_friction(x, z) : Real(0.6); }
+
+  bool rayCast(const Vec3& o, const Vec3& d, Real maxT, HeightFieldHit* hit) const override {
+    // Brute force (a test): every triangle, Moller-Trumbore, both sides.
+    Real best = maxT;
+    bool any = false;
+    for (int bj = 0; bj < m_nz - 1; ++bj)
+      for (int bi = 0; bi < m_nx - 1; ++bi)
+        for (int half = 0; half < 2; ++half) {
+          const HeightFieldTriangle t = triangle(bi, bj, half);
+          const Vec3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0], pv = d.cross(e2);
+          const Real det = e1.dot(pv);
+          if (std::abs(det) < Real(1e-12)) continue;
+          const Vec3 tv = o - t.v[0];
+          const Real u = tv.dot(pv) / det;
+          if (u < 0 || u > 1) continue;
+          const Vec3 qv = tv.cross(e1);
+          const Real v = d.dot(qv) / det;
+          if (v < 0 || u + v > 1) continue;
+          const Real tt = e2.dot(qv) / det;
+          if (tt < 0 || tt > best) continue;
+          best = tt;
+          any = true;
+          hit->distance_m = tt;
+          hit->point_m = o + d * tt;
+          hit->normal = t.normal;
+        }
+    return any;
+  }
+
+  void bounds(Vec3* lo, Vec3* hi) const override {
+    auto [mn, mx] = std::minmax_element(m_h.begin(), m_h.end());
+    *lo = Vec3(m_x0, *mn, m_z0);
+    *hi = Vec3(m_x0 + (m_nx - 1) * m_s, *mx, m_z0 + (m_nz - 1) * m_s);
+  }
+
+ private:
+  int m_nx, m_nz;
+  Real m_s, m_x0, m_z0;
+  std::vector<Real> m_h;
+  Fn m_friction;
+};
+
+BodyDef dynamicDef(const Shape& s, const Vec3& p, Real friction = Real(0.6)) {
+  BodyDef d;
+  d.shape = s;
+  d.position_m = p;
+  d.mass_kg = 1;
+  d.friction = friction;
+  return d;
+}
+
+// A sphere rolling without slipping down a slope of angle theta accelerates
+// at a = g sin(theta) / (1 + I / (m r^2)) = 5/7 g sin(theta). The slope is
+// 0.5 m triangles, so a 0.5 m ball crosses a seam every few centimetres.
+TEST(HeightField, SphereRollsDownSlopeAtFiveSeventhsGSinTheta) {
+  const Real theta = Real(20 * kPi / 180), r = Real(0.5);
+  GridField field(161, 21, Real(0.5), -10, -5, [&](Real x, Real) { return -std::tan(theta) * x; });
+  World w;
+  w.setHeightField(&field);
+  const Vec3 n(std::sin(theta), std::cos(theta), 0);
+  BodyId ball = w.createBody(dynamicDef(Shape::sphere(r), n * r + Vec3(0, 0, Real(0.13)))).value();
+  const Real T = 2;
+  Real maxNormalSpeed = 0;
+  for (int i = 0; i < int(T * 60); ++i) {
+    w.step(Real(1.0 / 60));
+    maxNormalSpeed = std::max(maxNormalSpeed, std::abs(w.body(ball).linearVelocity_mps.dot(n)));
+  }
+  const Vec3 down(std::cos(theta), -std::sin(theta), 0);
+  const Real a = w.body(ball).linearVelocity_mps.dot(down) / T;
+  const Real expected = Real(5.0 / 7.0) * kStandardGravity * std::sin(theta);
+  std::printf("slope: a = %.4f m/s^2, expected %.4f (%.2f%%), max |v.n| = %.2e m/s\n", a, expected,
+              100 * (a / expected - 1), maxNormalSpeed);
+  EXPECT_NEAR(a, expected, Real(0.02) * expected);
+  EXPECT_LT(maxNormalSpeed, Real(0.01));  // never bumps at a seam
+}
+
+// A box sliding on flat ground made of many triangles: no seam ever lifts
+// it (max |v_y| tiny) and it stops after v0^2 / (2 mu g), mu = sqrt(0.5 * 0.5).
+TEST(HeightField, BoxSlidesOverSeamsWithoutBumpingAndStopsAsFrictionPredicts) {
+  GridField field(81, 81, Real(0.5), -20, -20, [](Real, Real) { return Real(0); },
+                  [](Real, Real) { return Real(0.5); });
+  World w;
+  w.setHeightField(&field);
+  const Vec3 dir = Vec3(1, 0, Real(0.37)).normalized();  // crosses the diagonals too
+  const Real v0 = 5, mu = Real(0.5);
+  BodyDef d = dynamicDef(Shape::box(Vec3(Real(0.4), Real(0.25), Real(0.4))), Vec3(-5, Real(0.25), -3), mu);
+  d.linearVelocity_mps = dir * v0;
+  BodyId box = w.createBody(d).value();
+  const Vec3 start = w.body(box).position_m;
+  Real maxVy = 0;
+  for (int i = 0; i < 240; ++i) {
+    w.step(Real(1.0 / 60));
+    maxVy = std::max(maxVy, std::abs(w.body(box).linearVelocity_mps.y()));
+  }
+  const Real dist = (w.body(box).position_m - start).dot(dir);
+  const Real expected = v0 * v0 / (2 * mu * kStandardGravity);
+  std::printf("box slide: %.4f m, expected %.4f (%.2f%%), max |v_y| = %.2e m/s, final y = %.5f\n", dist,
+              expected, 100 * (dist / expected - 1), maxVy, w.body(box).position_m.y());
+  EXPECT_NEAR(dist, expected, Real(0.03) * expected);
+  EXPECT_LT(maxVy, Real(1e-2));
+  EXPECT_NEAR(w.body(box).position_m.y(), Real(0.25), Real(0.01));
+}
+
+// A ball rolling across seams on flat ground with rolling resistance C_rr
+// decelerates at (5/7) C_rr g, smoothly: the speed never rises and |v_y| stays ~0.
+TEST(HeightField, SphereRollsAcrossSeamsWithoutBumping) {
+  GridField field(121, 61, Real(0.5), -10, -15, [](Real, Real) { return Real(0); });
+  World w;
+  w.setHeightField(&field);
+  const Real crr = Real(0.05), r = Real(0.3), v0 = 3;
+  const Vec3 dir = Vec3(1, 0, Real(0.61)).normalized();
+  BodyDef d = dynamicDef(Shape::sphere(r), Vec3(-5, r, -10));
+  d.rollingResistance = crr;
+  d.linearVelocity_mps = dir * v0;
+  d.angularVelocity_radps = Vec3::UnitY().cross(dir) * (v0 / r);  // rolling: v = w x (r up)
+  BodyId ball = w.createBody(d).value();
+  Real maxVy = 0, prevSpeed = v0, maxRise = 0;
+  const Real T = 3;
+  for (int i = 0; i < int(T * 60); ++i) {
+    w.step(Real(1.0 / 60));
+    const Vec3 v = w.body(ball).linearVelocity_mps;
+    maxVy = std::max(maxVy, std::abs(v.y()));
+    const Real speed = v.norm();
+    maxRise = std::max(maxRise, speed - prevSpeed);
+    prevSpeed = speed;
+  }
+  const Real decel = (v0 - prevSpeed) / T, expected = Real(5.0 / 7.0) * crr * kStandardGravity;
+  std::printf("rolling: decel %.4f m/s^2, expected %.4f (%.2f%%), max |v_y| %.2e, max speed rise %.2e\n", decel,
+              expected, 100 * (decel / expected - 1), maxVy, maxRise);
+  EXPECT_NEAR(decel, expected, Real(0.05) * expected);
+  EXPECT_LT(maxVy, Real(1e-2));
+  EXPECT_LT(maxRise, Real(1e-4));
+}
+
+// Friction from the field's friction function ("drag map"): mud (0.9) in one
+// lane, ice-like (0.1) in the other; each block stops after v0^2 / (2 mu g)
+// with mu = sqrt(body 1.0 * field).
+TEST(HeightField, FrictionFunctionSetsStoppingDistance) {
+  GridField field(81, 41, Real(0.5), -10, -10, [](Real, Real) { return Real(0); },
+                  [](Real, Real z) { return z > 0 ? Real(0.9) : Real(0.1); });
+  World w;
+  w.setHeightField(&field);
+  const Real v0 = 4;
+  BodyId blocks[2];
+  const Real lanes[2] = {5, -5}, fieldMu[2] = {Real(0.9), Real(0.1)};
+  for (int k = 0; k < 2; ++k) {
+    BodyDef d = dynamicDef(Shape::box(Vec3(Real(0.3), Real(0.2), Real(0.3))), Vec3(-8, Real(0.2), lanes[k]), 1);
+    d.linearVelocity_mps = Vec3(v0, 0, 0);
+    blocks[k] = w.createBody(d).value();
+  }
+  simulate(w, 5);
+  for (int k = 0; k < 2; ++k) {
+    const Real mu = std::sqrt(fieldMu[k]);
+    const Real expected = v0 * v0 / (2 * mu * kStandardGravity);
+    const Real dist = w.body(blocks[k]).position_m.x() + 8;
+    std::printf("field mu %.1f: slid %.4f m, expected %.4f (%.2f%%)\n", fieldMu[k], dist, expected,
+                100 * (dist / expected - 1));
+    EXPECT_NEAR(dist, expected, Real(0.03) * expected);
+  }
+}
+
+// A sphere and a box fired down at 300 m/s neither pass through the field
+// nor end up under it (speculative contacts plus the swept check).
+TEST(HeightField, FastBodiesDoNotTunnel) {
+  GridField field(81, 81, 1, -40, -40, [](Real x, Real z) { return Real(0.05) * std::sin(x) * std::cos(z); });
+  World w;
+  w.setHeightField(&field);
+  BodyDef s = dynamicDef(Shape::sphere(Real(0.25)), Vec3(Real(0.3), 40, Real(0.7)));
+  s.linearVelocity_mps = Vec3(0, -300, 0);
+  BodyDef b = dynamicDef(Shape::box(Vec3::Constant(Real(0.2))), Vec3(Real(-3.3), 40, Real(2.1)));
+  b.linearVelocity_mps = Vec3(4, -300, -2);
+  BodyId ids[2] = {w.createBody(s).value(), w.createBody(b).value()};
+  Real lowest[2] = {1e9, 1e9};
+  for (int i = 0; i < 60; ++i) {
+    w.step(Real(1.0 / 60));
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 p = w.body(ids[k]).position_m;
+      Real h;
+      Vec3 n;
+      ASSERT_TRUE(field.surfaceAt(p.x(), p.z(), &h, &n)) << "body " << k << " left the field at step " << i << ": "
+                                                         << p.transpose();
+      lowest[k] = std::min(lowest[k], p.y() - h);
+    }
+  }
+  std::printf("fast: lowest centre above the surface: sphere %.4f m, box %.4f m\n", lowest[0], lowest[1]);
+  EXPECT_GT(lowest[0], 0);
+  EXPECT_GT(lowest[1], 0);
+}
+
+// World::rayCast sees the height field (null body), and bodies in front of it.
+TEST(HeightField, RayCastHitsTheFieldAndBodies) {
+  GridField field(21, 21, 1, -10, -10, [](Real x, Real) { return Real(0.25) * x + 2; });
+  World w;
+  w.setHeightField(&field);
+  RayHit hit;
+  ASSERT_TRUE(w.rayCast(Vec3(3, 100, 1), Vec3(0, -1, 0), 1000, &hit));
+  EXPECT_TRUE(hit.body.isNull());
+  EXPECT_NEAR(hit.point_m.y(), Real(2.75), Real(1e-4));
+  BodyId ball = addBody(w, Shape::sphere(Real(0.5)), Vec3(3, 10, 1));
+  ASSERT_TRUE(w.rayCast(Vec3(3, 100, 1), Vec3(0, -1, 0), 1000, &hit));
+  EXPECT_EQ(hit.body, ball);
+  EXPECT_EQ(w.rayCastAll(Vec3(3, 100, 1), Vec3(0, -1, 0), 1000).size(), 2u);
+}
+
+// Shapes come to rest on a bumpy field, on its surface, and sleep.
+TEST(HeightField, ShapesComeToRestOnBumpyGround) {
+  GridField field(41, 41, 1, -20, -20, [](Real x, Real z) { return Real(0.4) * std::sin(Real(0.7) * x) + Real(0.3) * std::cos(Real(0.5) * z); });
+  World w;
+  w.setHeightField(&field);
+  BodyDef sphere = dynamicDef(Shape::sphere(Real(0.4)), Vec3(1, 3, 1));
+  sphere.rollingResistance = Real(0.2);
+  BodyDef capsule = dynamicDef(Shape::capsule(Real(0.3), Real(0.5)), Vec3(5, 3, -3));
+  capsule.rollingResistance = Real(0.2);
+  BodyId ids[3] = {w.createBody(sphere).value(),
+                   w.createBody(dynamicDef(Shape::box(Vec3(Real(0.5), Real(0.3), Real(0.4))), Vec3(-4, 3, 2))).value(),
+                   w.createBody(capsule).value()};
+  w.setOrientation(ids[2], Quat(Eigen::AngleAxis<Real>(Real(kPi / 2), Vec3::UnitZ())));
+  simulate(w, 15);
+  for (BodyId id : ids) {
+    const Body& b = w.body(id);
+    Real h = 0;
+    Vec3 n;
+    EXPECT_TRUE(field.surfaceAt(b.position_m.x(), b.position_m.z(), &h, &n));
+    std::printf("%s at (%.2f, %.3f, %.2f), surface %.3f, speed %.2e, awake %d\n", shapeTypeName(b.shape.type),
+                b.position_m.x(), b.position_m.y(), b.position_m.z(), h, b.linearVelocity_mps.norm(), b.awake);
+    EXPECT_GT(b.position_m.y(), h);
+    EXPECT_LT(b.position_m.y(), h + b.shape.boundingRadius() + Real(0.05));
+    EXPECT_LT(b.linearVelocity_mps.norm(), Real(0.05));
+  }
+  EXPECT_LT(w.errorStats().penetrationMax_m, Real(0.05));
+}
+
+}  // namespace
+}  // namespace tumble::physics::test
