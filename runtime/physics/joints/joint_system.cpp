@@ -1,0 +1,1020 @@
+// Joint constraint forces by Lagrange multipliers (issue 4, formulation A).
+//
+// ---- Derivation (Baraff, "Linear-time dynamics using Lagrange multipliers",
+//      SIGGRAPH 1996) --------------------------------------------------------
+// Stack the bodies' velocities q' = (v_1, w_1, ..., v_n, w_n) (centre-of-mass
+// velocity and world angular velocity, 6 per body). Newton-Euler reads
+//   M q'' = Q + J^T lambda,
+// M = diag(m_i 1, I_i) (I_i = R_i I_local R_i^T), W = M^-1, Q the applied
+// generalized forces: gravity m g and other forces F on the centre, torques
+// tau minus the gyroscopic term w x (I w). J^T lambda is the constraint force,
+// one multiplier per constraint row. A joint is a set of rows C(x) = 0 with
+// C' = J q'. Differentiating once more, C'' = J q'' + J' q'. Demanding
+// C'' = 0 lets errors drift; Baumgarte's feedback asks instead for
+//   C'' = -k_s C - k_d C'      (a critically damped spring on the error),
+// and substituting q'' = W (Q + J^T lambda):
+//   J W J^T lambda = -J' q' - J W Q - k_s C - k_d C'.
+// J W J^T is symmetric positive definite when the rows are independent, so
+// it is factorized by Cholesky (LDL^T).
+//
+// Rows (r_a = R_a * localAnchorA, the anchor's offset from A's centre; p_a =
+// x_a + r_a; likewise for B; for a world anchor v_b = w_b = 0):
+//   ball (Baraff's point-to-point rows, 3):  C = p_a - p_b,
+//     J_a = [ 1  -[r_a]x ],  J_b = [ -1  [r_b]x ],
+//     J' q' = w_a x (w_a x r_a) - w_b x (w_b x r_b).
+//   angular "dot" row, u fixed in A, w fixed in B (1): C = u.w - c0,
+//     J_a = [ 0  (u x w)^T ],  J_b = [ 0  -(u x w)^T ],
+//     J' q' = (w_a x (w_a x u)).w + 2 (w_a x u).(w_b x w) + u.(w_b x (w_b x w)).
+//     Hinge: a2.b1 = 0 and a3.b1 = 0 (a_i, b_i the joint frames' axes in A
+//     and B: the +X axes stay aligned). Fixed: a1.b2, a2.b3, a3.b1 = 0.
+//     Cone: a1.b1 - cos(swingLimit) >= 0.
+//   angle limit row (1): hinge angle theta = atan2(b2.a3, b2.a2) about a1
+//     (twist: the twist part of the relative rotation, about n = the bisector
+//     of a1 and b1); C = theta - lower >= 0 or upper - theta >= 0,
+//     theta' = n.(w_b - w_a), J' q' ~ (w_m x n).(w_b - w_a), w_m = w_a for
+//     the hinge, (w_a + w_b)/2 for the twist (approximate: a limit row only
+//     has to push back, Baumgarte absorbs the rest).
+// Inequality rows (limits) use a simple active set: a limit row is added
+// when its C < 0 (violated); after the solve, rows whose lambda < 0 (they
+// would pull the joint into the limit) are dropped and the system solved
+// again (at most JointSettings::maxActiveSetIterations times).
+//
+// Soft joints: the equality rows of a joint with a stiffness are not solved
+// for; their lambda = -k C - c C' is an explicit spring force, added to Q
+// before the hard rows are solved (so hard rows see the springs).
+//
+// ---- Linear time --------------------------------------------------------------
+// (J W J^T)_{rs} = sum over bodies b shared by rows r and s of J_rb W_b J_sb^T.
+// It is non-zero only where two joints share a dynamic body: for a chain it
+// is block tridiagonal, for a tree of bodies it is the "line graph" of the
+// tree, a chordal graph whose perfect elimination order is: joints in a
+// post-order walk of the body tree (a body's child joints before the joint
+// to its parent). Eliminating in that order creates no fill-in, so LDL^T with
+// that (natural) ordering costs O(sum of squared body degrees) = O(links) for
+// bounded degree. We order the joints that way whenever the joint set changes
+// (joints closing a loop go last; loops cause some fill, as they must) and
+// factorize with Eigen::SimplicialLDLT under NaturalOrdering. lastSolve()
+// reports the fill-in measured from the factor (0 for chains and trees).
+// Baraff factorizes the larger but always tree-structured system
+// [M -J^T; -J 0] instead; J W J^T is smaller and for the trees we build (no
+// body with more than 5 joints) equally sparse, so we kept the textbook form.
+// Rejected: a dense LLT (cubic: 1000 links = 3000 rows, ~1 s per step) and
+// Eigen's AMD ordering (finds a zero-fill order too, but costs a symbolic
+// analysis that our post-order gives for free).
+//
+// ---- Time stepping ------------------------------------------------------------
+// With the World (JointSystem::step): lambda is computed from the state at
+// the start of the step and applied as forces; World::step integrates with
+// semi-implicit Euler and its contact solver. The force is held through the
+// World's substeps, so with a 60 Hz step a fast-turning chain drifts by
+// O(h^2) per step, and Baumgarte's k_d C' term then pumps energy in: the
+// constraint directions turn between the step that measures C' and the step
+// that corrects it (measured: a 10-link chain released horizontally blew up
+// within 3 s for every (k_s, k_d) tried, also at 240 Hz). Hence the
+// post-stabilization projection (JointSettings::postStabilize, Cline and Pai
+// 2003) at the start of each step: with it the same chain stays together
+// (anchors apart by at most 4.2 cm right after a World step, before the next
+// projection) and loses 10% of its energy in 10 s instead of exploding.
+// Rejected: estimating the contact forces from the last step's velocity
+// change and adding them to Q (so resting limbs would not stretch their
+// joints by g / k_s): with a one-step delay it oscillated (parts at 0.1-1
+// m/s) and it sees the projection's own velocity changes as forces.
+//
+// Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
+// semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
+// constraint forces re-solved at every stage, no projection: the paper's
+// scheme, for its stability claim. Largest stable dt (5-link chain released
+// at 45 degrees, 5 s; stable = finite, anchor error < 5 cm, |E - E0| < m g L;
+// printed by tests/physics_joints):
+//      k_s    k_d   explicit Euler  trapezoid  semi-implicit  RK4
+//        0      0       0.002         0.015       0.001       0.06
+//       25     10       0.002         0.0225      0.0275      0.08
+//      100     20       0.002         0.0225      0.03        0.08
+//      400     40       0.002         0.0175      0.03        0.08   (defaults)
+//      900     60       0.002         0.0175      0.0225      0.06
+//     2500    100       0.002         0.0275      0.015       0.04
+// Explicit Euler is limited by the chain's own undamped pendulum modes (its
+// amplification |1 + i w h| > 1 gains energy at any dt), not by the gains;
+// the trapezoid rule reaches the paper's ~0.02-0.03 s and, like the
+// semi-implicit scheme, depends on (k_s, k_d): large k_d h or k_s h^2 costs
+// stability. The defaults k_s = 400 /s^2, k_d = 40 /s (critically damped,
+// 20 rad/s) are stable up to dt = 0.03 s with the semi-implicit scheme the
+// World uses (60 Hz has a margin of 1.8).
+#include "physics/joints/joint_system.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace tumble::physics {
+
+using V3 = Eigen::Vector3d;
+using M3 = Eigen::Matrix3d;
+using Qd = Eigen::Quaterniond;
+using V6 = Eigen::Matrix<double, 6, 1>;
+
+const char* jointIntegratorName(JointIntegrator m) {
+  switch (m) {
+    case JointIntegrator::ExplicitEuler: return "explicit_euler";
+    case JointIntegrator::Trapezoid: return "trapezoid";
+    case JointIntegrator::SemiImplicitEuler: return "semi_implicit_euler";
+    case JointIntegrator::Rk4: return "rk4";
+  }
+  return "?";
+}
+
+namespace {
+
+/// A body the joints touch, in double.
+struct BodyState {
+  BodyId id;
+  bool dynamic = false;  ///< has mass and moves this step (awake)
+  double mass = 0, invMass = 0;
+  V3 inertiaLocal = V3::Zero();
+  V3 x = V3::Zero(), v = V3::Zero(), w = V3::Zero();
+  Qd q = Qd::Identity();
+  V3 extForce = V3::Zero(), extTorque = V3::Zero();  ///< forces already applied this step
+  // Derived per evaluation.
+  M3 R = M3::Identity(), invI = M3::Zero();
+  V3 Qf = V3::Zero(), Qt = V3::Zero();  ///< applied force / torque incl. gravity, gyroscopic, springs
+  V3 Fc = V3::Zero(), Tc = V3::Zero();  ///< constraint force / torque (result)
+};
+
+struct Row {
+  std::uint32_t joint = 0;  ///< slot index
+  int a = -1, b = -1;       ///< body states; -1 = world
+  V6 ja = V6::Zero(), jb = V6::Zero();
+  double c = 0, cdot = 0, jdq = 0;
+  double k = 0, d = 0;   ///< spring gains when soft
+  bool limit = false;    ///< inequality row, lambda >= 0
+  bool soft = false;     ///< explicit spring, not solved
+  bool angular = false;  ///< counts as torque for breaking
+  bool active = true;
+  int index = -1;  ///< position in the solved system
+  double lambda = 0;
+};
+
+V3 wide3(const Vec3& v) { return v.cast<double>(); }
+
+/// One joint's frame and anchor in world coordinates.
+struct JointPose {
+  V3 r = V3::Zero(), p = V3::Zero();  ///< anchor offset from the centre, anchor point
+  M3 F = M3::Identity();              ///< joint frame axes (columns) in the world
+  V3 w = V3::Zero(), v = V3::Zero();  ///< body velocities (zero for the world)
+};
+
+}  // namespace
+
+/// Everything one evaluation of the constraint forces needs.
+struct Evaluation {
+  std::vector<JointDef*> defs;
+  std::vector<std::uint32_t> slots;         ///< joint slot per evaluation joint
+  std::vector<std::pair<int, int>> bodies;  ///< state index of A and B per joint (-1 = world)
+};
+
+struct JointSystem::Impl {
+  std::vector<std::uint32_t> order;  ///< joint slots in elimination order
+  Evaluation ev;
+  std::vector<V3> jointForce, jointTorque;  ///< per evaluation joint: on body A (last solve)
+  std::vector<int> slotOf;           ///< World body index -> state index
+  std::vector<BodyState> states;
+  std::vector<Row> rows;
+  std::vector<std::vector<int>> bodyRows;  ///< per state: solved rows touching it
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd rhs, lambda;
+  Eigen::SparseMatrix<double> A;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+};
+
+JointSystem::JointSystem(World& world, const JointSettings& settings)
+    : m_world(world), m_settings(settings), m_impl(std::make_unique<Impl>()) {}
+JointSystem::~JointSystem() = default;
+
+// ---- joint bookkeeping -------------------------------------------------------------
+
+Result<JointId> JointSystem::createJoint(const JointDef& def) {
+  if (auto s = validateJointDef(m_world, def); !s) return makeError(s.error());
+  std::uint32_t index;
+  if (!m_freeList.empty()) {
+    index = m_freeList.back();
+    m_freeList.pop_back();
+  } else {
+    index = std::uint32_t(m_slots.size());
+    m_slots.emplace_back();
+  }
+  Slot& s = m_slots[index];
+  const std::uint32_t generation = s.generation + 1;  // odd while alive; the zero handle is null
+  s = Slot{};
+  s.def = def;
+  s.def.localFrameA.normalize();
+  s.def.localFrameB.normalize();
+  s.generation = generation;
+  s.alive = true;
+  ++m_jointCount;
+  m_orderDirty = true;
+  return JointId{index, generation};
+}
+
+bool JointSystem::isValid(JointId id) const {
+  return !id.isNull() && id.index < m_slots.size() && m_slots[id.index].alive &&
+         m_slots[id.index].generation == id.generation;
+}
+
+bool JointSystem::destroyJoint(JointId id) {
+  if (!isValid(id)) return false;
+  Slot& s = m_slots[id.index];
+  s.alive = false;
+  ++s.generation;
+  m_freeList.push_back(id.index);
+  --m_jointCount;
+  m_orderDirty = true;
+  return true;
+}
+
+const JointDef& JointSystem::jointDef(JointId id) const {
+  TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
+  return m_slots[id.index].def;
+}
+Vec3 JointSystem::lastForce_N(JointId id) const {
+  TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
+  return m_slots[id.index].force_N;
+}
+Vec3 JointSystem::lastTorque_Nm(JointId id) const {
+  TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
+  return m_slots[id.index].torque_Nm;
+}
+
+std::vector<std::pair<BodyId, BodyId>> JointSystem::connectedPairs() const {
+  std::vector<std::pair<BodyId, BodyId>> pairs;
+  for (const Slot& s : m_slots)
+    if (s.alive && !s.def.bodyB.isNull()) pairs.emplace_back(s.def.bodyA, s.def.bodyB);
+  return pairs;
+}
+
+// ---- geometry of one joint (shared by the rows and the queries) --------------------
+
+static JointPose poseOf(const Vec3& localAnchor, const Quat& localFrame, const BodyState* b) {
+  JointPose p;
+  if (!b) {  // world: the local values are world values
+    p.p = wide3(localAnchor);
+    p.F = localFrame.cast<double>().toRotationMatrix();
+    return p;
+  }
+  p.r = b->R * wide3(localAnchor);
+  p.p = b->x + p.r;
+  p.F = b->R * localFrame.cast<double>().toRotationMatrix();
+  p.w = b->w;
+  p.v = b->v;
+  return p;
+}
+
+/// Hinge angle / twist angle of frame B relative to frame A about A's +X.
+static double hingeAngle(const M3& FA, const M3& FB) {
+  return std::atan2(FB.col(1).dot(FA.col(2)), FB.col(1).dot(FA.col(1)));
+}
+static double twistAngle(const M3& FA, const M3& FB) {
+  const Qd rel(FA.transpose() * FB);  // B's frame in A's frame
+  double t = 2 * std::atan2(rel.x(), rel.w());
+  if (t > M_PI) t -= 2 * M_PI;
+  if (t < -M_PI) t += 2 * M_PI;
+  return t;
+}
+
+static BodyState stateFromWorld(const World& world, BodyId id) {
+  BodyState s;
+  const Body& b = world.body(id);
+  s.id = id;
+  s.dynamic = b.isDynamic() && b.awake;
+  s.mass = b.mass_kg;
+  s.invMass = s.dynamic ? double(b.invMass_per_kg) : 0;
+  s.inertiaLocal = wide3(b.inertiaLocal_kgm2);
+  s.x = wide3(b.position_m);
+  s.q = b.orientation.cast<double>().normalized();
+  s.v = wide3(b.linearVelocity_mps);
+  s.w = wide3(b.angularVelocity_radps);
+  s.extForce = wide3(b.force_N);
+  s.extTorque = wide3(b.torque_Nm);
+  return s;
+}
+
+double JointSystem::jointAngle_rad(JointId id) const {
+  const JointDef& d = jointDef(id);
+  BodyState a = stateFromWorld(m_world, d.bodyA);
+  a.R = a.q.toRotationMatrix();
+  BodyState b;
+  if (!d.bodyB.isNull()) {
+    b = stateFromWorld(m_world, d.bodyB);
+    b.R = b.q.toRotationMatrix();
+  }
+  const JointPose pa = poseOf(d.localAnchorA_m, d.localFrameA, &a);
+  const JointPose pb = poseOf(d.localAnchorB_m, d.localFrameB, d.bodyB.isNull() ? nullptr : &b);
+  if (d.type == JointType::Hinge) return hingeAngle(pa.F, pb.F);
+  if (d.type == JointType::ConeTwist) return twistAngle(pa.F, pb.F);
+  return 0;
+}
+
+double JointSystem::swingAngle_rad(JointId id) const {
+  const JointDef& d = jointDef(id);
+  const Quat qa = m_world.body(d.bodyA).orientation * d.localFrameA;
+  const Quat qb = d.bodyB.isNull() ? d.localFrameB : m_world.body(d.bodyB).orientation * d.localFrameB;
+  const double c = std::clamp<double>((qa * Vec3::UnitX()).cast<double>().dot((qb * Vec3::UnitX()).cast<double>()), -1, 1);
+  return std::acos(c);
+}
+
+double JointSystem::anchorError_m() const {
+  double worst = 0;
+  for (const Slot& s : m_slots) {
+    if (!s.alive || !m_world.isValid(s.def.bodyA)) continue;
+    const Body& a = m_world.body(s.def.bodyA);
+    V3 pa = wide3(a.position_m) + (a.orientation * s.def.localAnchorA_m).cast<double>();
+    V3 pb = wide3(s.def.localAnchorB_m);
+    if (!s.def.bodyB.isNull()) {
+      if (!m_world.isValid(s.def.bodyB)) continue;
+      const Body& b = m_world.body(s.def.bodyB);
+      pb = wide3(b.position_m) + (b.orientation * s.def.localAnchorB_m).cast<double>();
+    }
+    worst = std::max(worst, (pa - pb).norm());
+  }
+  return worst;
+}
+
+void JointSystem::measureError() { m_maxAnchorError_m = std::max(m_maxAnchorError_m, anchorError_m()); }
+
+// ---- elimination order ---------------------------------------------------------------
+
+// Post-order walk of the body tree (see the top of the file): on finishing a
+// body, emit its world/static joints, then the joint to its parent. Joints
+// that close loops go last.
+static std::vector<std::uint32_t> eliminationOrder(const World& world, const std::vector<JointDef>& defs,
+                                                   const std::vector<std::uint32_t>& slotIds) {
+  const std::size_t nj = defs.size();
+  std::uint32_t maxBody = 0;
+  for (const JointDef& d : defs) {
+    maxBody = std::max(maxBody, d.bodyA.index);
+    if (!d.bodyB.isNull()) maxBody = std::max(maxBody, d.bodyB.index);
+  }
+  auto dyn = [&](BodyId id) { return !id.isNull() && world.isValid(id) && world.body(id).isDynamic(); };
+  std::vector<std::vector<int>> incident(maxBody + 1);  // joints at each body (dynamic ends only)
+  std::vector<char> isTwoBody(nj, 0);
+  for (std::size_t j = 0; j < nj; ++j) {
+    const bool da = dyn(defs[j].bodyA), db = dyn(defs[j].bodyB);
+    if (da) incident[defs[j].bodyA.index].push_back(int(j));
+    if (db) incident[defs[j].bodyB.index].push_back(int(j));
+    isTwoBody[j] = da && db;
+  }
+  std::vector<char> visited(maxBody + 1, 0), emitted(nj, 0);
+  std::vector<std::uint32_t> out;
+  out.reserve(nj);
+  auto other = [&](int j, std::uint32_t body) {
+    return defs[j].bodyA.index == body ? defs[j].bodyB.index : defs[j].bodyA.index;
+  };
+  auto emitAnchors = [&](std::uint32_t body) {
+    for (int j : incident[body])
+      if (!isTwoBody[j] && !emitted[j]) emitted[j] = 1, out.push_back(slotIds[j]);
+  };
+  // Roots: bodies with a world/static joint first (a hanging chain is then
+  // rooted at its anchor), then any other.
+  std::vector<std::uint32_t> roots;
+  for (std::uint32_t b = 0; b <= maxBody; ++b)
+    for (int j : incident[b])
+      if (!isTwoBody[j]) {
+        roots.push_back(b);
+        break;
+      }
+  for (std::uint32_t b = 0; b <= maxBody; ++b)
+    if (!incident[b].empty()) roots.push_back(b);
+  struct Frame {
+    std::uint32_t body;
+    int viaJoint;     ///< joint to the parent (-1 at the root)
+    std::size_t next;  ///< next incident joint to look at
+  };
+  std::vector<Frame> stack;
+  std::vector<char> treeJoint(nj, 0);
+  for (std::uint32_t root : roots) {
+    if (visited[root]) continue;
+    visited[root] = 1;
+    stack.push_back({root, -1, 0});
+    while (!stack.empty()) {
+      Frame& f = stack.back();
+      if (f.next < incident[f.body].size()) {
+        const int j = incident[f.body][f.next++];
+        if (!isTwoBody[j] || treeJoint[j]) continue;
+        const std::uint32_t o = other(j, f.body);
+        if (visited[o]) continue;  // closes a loop: emitted at the end
+        visited[o] = 1;
+        treeJoint[j] = 1;
+        stack.push_back({o, j, 0});
+        continue;
+      }
+      emitAnchors(f.body);
+      if (f.viaJoint >= 0) emitted[f.viaJoint] = 1, out.push_back(slotIds[f.viaJoint]);
+      stack.pop_back();
+    }
+  }
+  for (std::size_t j = 0; j < nj; ++j)
+    if (!emitted[j]) out.push_back(slotIds[j]);  // loops (and joints without dynamic bodies)
+  return out;
+}
+
+// ---- rows ------------------------------------------------------------------------------
+
+namespace {
+
+struct RowBuilder {
+  std::vector<Row>& rows;
+  std::uint32_t joint;
+  int a, b;
+  const BodyState* A;
+  const BodyState* B;
+  V3 wa() const { return A ? A->w : V3::Zero(); }
+  V3 wb() const { return B ? B->w : V3::Zero(); }
+
+  Row& add() {
+    Row& r = rows.emplace_back();
+    r.joint = joint;
+    r.a = a;
+    r.b = b;
+    return r;
+  }
+  void ball(const JointPose& pa, const JointPose& pb) {
+    const V3 c = pa.p - pb.p;
+    const V3 jdq = wa().cross(wa().cross(pa.r)) - wb().cross(wb().cross(pb.r));
+    const M3 sa = -skew3(pa.r), sb = skew3(pb.r);
+    for (int i = 0; i < 3; ++i) {
+      Row& r = add();
+      r.ja.head<3>() = V3::Unit(i);
+      r.ja.tail<3>() = sa.row(i).transpose();
+      r.jb.head<3>() = -V3::Unit(i);
+      r.jb.tail<3>() = sb.row(i).transpose();
+      r.c = c[i];
+      r.jdq = jdq[i];
+    }
+  }
+  Row& dot(const V3& u, const V3& w, double c0) {
+    Row& r = add();
+    const V3 n = u.cross(w);
+    r.ja.tail<3>() = n;
+    r.jb.tail<3>() = -n;
+    r.c = u.dot(w) - c0;
+    const V3 wA = wa(), wB = wb();
+    r.jdq = wA.cross(wA.cross(u)).dot(w) + 2 * wA.cross(u).dot(wB.cross(w)) + u.dot(wB.cross(wB.cross(w)));
+    r.angular = true;
+    return r;
+  }
+  /// Limit on an angle theta about n with theta' = n.(w_b - w_a):
+  /// sign +1: C = theta - lower >= 0; sign -1: C = upper - theta >= 0.
+  void angleLimit(const V3& n, double c, double sign, const V3& wm) {
+    Row& r = add();
+    r.ja.tail<3>() = -sign * n;
+    r.jb.tail<3>() = sign * n;
+    r.c = c;
+    r.jdq = sign * wm.cross(n).dot(wb() - wa());
+    r.limit = true;
+    r.angular = true;
+  }
+  static M3 skew3(const V3& v) {
+    M3 m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+  }
+};
+
+}  // namespace
+
+// Builds every row of every joint (in elimination order) for the current
+// states; soft equality rows are marked soft, limits only when violated.
+static void buildRows(const std::vector<JointDef*>& defs, const std::vector<std::uint32_t>& slots,
+                      const std::vector<std::pair<int, int>>& bodies, std::vector<BodyState>& states,
+                      std::vector<Row>& rows) {
+  rows.clear();
+  for (std::size_t k = 0; k < defs.size(); ++k) {
+    const JointDef& d = *defs[k];
+    const auto [ia, ib] = bodies[k];
+    const BodyState* A = ia >= 0 ? &states[ia] : nullptr;
+    const BodyState* B = ib >= 0 ? &states[ib] : nullptr;
+    RowBuilder rb{rows, slots[k], ia, ib, A, B};
+    const JointPose pa = poseOf(d.localAnchorA_m, d.localFrameA, A);
+    const JointPose pb = poseOf(d.localAnchorB_m, d.localFrameB, B);
+    const std::size_t first = rows.size();
+    rb.ball(pa, pb);
+    const V3 a1 = pa.F.col(0), a2 = pa.F.col(1), a3 = pa.F.col(2);
+    const V3 b1 = pb.F.col(0), b2 = pb.F.col(1), b3 = pb.F.col(2);
+    switch (d.type) {
+      case JointType::Ball: break;
+      case JointType::Hinge: rb.dot(a2, b1, 0), rb.dot(a3, b1, 0); break;
+      case JointType::Fixed: rb.dot(a1, b2, 0), rb.dot(a2, b3, 0), rb.dot(a3, b1, 0); break;
+      case JointType::ConeTwist: break;
+    }
+    const bool soft = d.linearStiffness_Npm > 0;
+    for (std::size_t r = first; r < rows.size(); ++r) {
+      rows[r].soft = soft;
+      rows[r].k = rows[r].angular ? d.angularStiffness_Nmprad : d.linearStiffness_Npm;
+      rows[r].d = rows[r].angular ? d.angularDamping_Nmsprad : d.linearDamping_Nspm;
+    }
+    if (d.type == JointType::Hinge && d.enableLimit) {
+      const double theta = hingeAngle(pa.F, pb.F);
+      if (theta < d.lowerAngle_rad) rb.angleLimit(a1, theta - d.lowerAngle_rad, +1, rb.wa());
+      if (theta > d.upperAngle_rad) rb.angleLimit(a1, d.upperAngle_rad - theta, -1, rb.wa());
+    }
+    if (d.type == JointType::ConeTwist) {
+      const double cosLimit = std::cos(double(d.swingLimit_rad));
+      if (a1.dot(b1) < cosLimit) rb.dot(a1, b1, cosLimit).limit = true;
+      const double t = twistAngle(pa.F, pb.F);
+      V3 n = a1 + b1;
+      n = n.squaredNorm() > 1e-12 ? V3(n.normalized()) : a1;
+      const V3 wm = (rb.wa() + rb.wb()) / 2;
+      if (t < d.twistLower_rad) rb.angleLimit(n, t - d.twistLower_rad, +1, wm);
+      if (t > d.twistUpper_rad) rb.angleLimit(n, d.twistUpper_rad - t, -1, wm);
+    }
+  }
+  for (Row& r : rows) {
+    V6 qa = V6::Zero(), qb = V6::Zero();
+    if (r.a >= 0) qa << states[r.a].v, states[r.a].w;
+    if (r.b >= 0) qb << states[r.b].v, states[r.b].w;
+    r.cdot = r.ja.dot(qa) + r.jb.dot(qb);
+  }
+}
+
+// ---- the solve ---------------------------------------------------------------------------
+
+/// Adds J_b^T lambda of a row to its bodies' force/torque arrays.
+template <typename FA>
+static void scatterRow(const Row& r, double lambda, FA&& add) {
+  if (r.a >= 0) add(r.a, r.ja * lambda);
+  if (r.b >= 0) add(r.b, r.jb * lambda);
+}
+
+/// Numbers the rows that pred accepts and that touch a dynamic body (their
+/// position in the system) and lists them per body. Returns their count.
+template <typename Pred>
+static int numberRows(JointSystem::Impl& im, Pred&& pred) {
+  const std::vector<BodyState>& st = im.states;
+  int m = 0;
+  im.bodyRows.assign(st.size(), {});
+  for (std::size_t r = 0; r < im.rows.size(); ++r) {
+    Row& row = im.rows[r];
+    row.index = -1;
+    if (!pred(row)) continue;
+    const bool da = row.a >= 0 && st[row.a].dynamic, db = row.b >= 0 && st[row.b].dynamic;
+    if (!da && !db) continue;
+    row.index = m++;
+    if (da) im.bodyRows[row.a].push_back(int(r));
+    if (db) im.bodyRows[row.b].push_back(int(r));
+  }
+  return m;
+}
+
+/// A = J W J^T over the numbered rows (lower triangle: for every body, every
+/// pair of its rows), then its LDL^T factorization.
+static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats) {
+  const std::vector<BodyState>& st = im.states;
+  const std::vector<Row>& rows = im.rows;
+  im.triplets.clear();
+  for (std::size_t b = 0; b < st.size(); ++b) {
+    const BodyState& s = st[b];
+    const std::vector<int>& list = im.bodyRows[b];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Row& ri = rows[list[i]];
+      const V6& Ji = ri.a == int(b) ? ri.ja : ri.jb;
+      V6 WJi;
+      WJi << s.invMass * Ji.head<3>(), s.invI * Ji.tail<3>();
+      for (std::size_t k = 0; k <= i; ++k) {
+        const Row& rk = rows[list[k]];
+        const V6& Jk = rk.a == int(b) ? rk.ja : rk.jb;
+        im.triplets.emplace_back(std::max(ri.index, rk.index), std::min(ri.index, rk.index), Jk.dot(WJi));
+      }
+    }
+  }
+  im.A.resize(m, m);
+  im.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
+  im.ldlt.compute(im.A);
+  ++stats.factorizations;
+  if (im.ldlt.info() != Eigen::Success) {
+    // Redundant rows (a loop of joints, two joints on one pair): a tiny
+    // compliance on the diagonal makes the system definite again.
+    double trace = 0;
+    for (int i = 0; i < m; ++i) trace += im.A.coeff(i, i);
+    Eigen::SparseMatrix<double> reg(m, m);
+    reg.setIdentity();
+    im.A += reg * (1e-9 * trace / m);
+    im.ldlt.compute(im.A);
+    ++stats.factorizations;
+  }
+  stats.nonZerosA = long(im.A.nonZeros()) - m;
+  stats.nonZerosL = long(im.ldlt.matrixL().nestedExpression().nonZeros());
+  // Fill-in: entries of L beyond those of A's strictly lower triangle.
+  stats.fillIn = std::max(0L, stats.nonZerosL - stats.nonZerosA);
+}
+
+/// Fills the derived quantities of the states (rotation, inverse inertia,
+/// applied forces Q) and clears the constraint forces.
+static void deriveStates(std::vector<BodyState>& states, const JointSettings& js, const V3& gravity,
+                         bool includeExternal) {
+  for (BodyState& s : states) {
+    s.R = s.q.toRotationMatrix();
+    const M3 I = s.R * s.inertiaLocal.asDiagonal() * s.R.transpose();
+    s.invI = s.dynamic ? M3(s.R * s.inertiaLocal.cwiseInverse().asDiagonal() * s.R.transpose()) : M3::Zero();
+    s.Qf = s.mass * gravity;
+    s.Qt = js.gyroscopic ? V3(-s.w.cross(I * s.w)) : V3::Zero();
+    if (includeExternal) s.Qf += s.extForce, s.Qt += s.extTorque;
+    s.Fc.setZero();
+    s.Tc.setZero();
+  }
+}
+
+// Computes the constraint forces (states[i].Fc, Tc) for the given states.
+// Returns the joints (slot indices) that broke, with their force and torque.
+static std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, const JointSettings& js,
+                                                     const V3& gravity, bool includeExternal,
+                                                     JointSolveStats& stats) {
+  const Evaluation& ev = im.ev;
+  std::vector<BodyState>& st = im.states;
+  deriveStates(st, js, gravity, includeExternal);
+  buildRows(ev.defs, ev.slots, ev.bodies, st, im.rows);
+  std::vector<Row>& rows = im.rows;
+  std::vector<char> broken(ev.defs.size(), 0);  // per evaluation joint
+  std::vector<JointBreakEvent> events;
+  std::vector<int> jointOf(rows.size());
+  {
+    // rows are grouped by joint in evaluation order
+    std::size_t k = 0;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      while (ev.slots[k] != rows[r].joint) ++k;
+      jointOf[r] = int(k);
+    }
+  }
+  const std::vector<V3> baseQf = [&] {
+    std::vector<V3> q(st.size());
+    for (std::size_t i = 0; i < st.size(); ++i) q[i] = st[i].Qf;
+    return q;
+  }();
+  const std::vector<V3> baseQt = [&] {
+    std::vector<V3> q(st.size());
+    for (std::size_t i = 0; i < st.size(); ++i) q[i] = st[i].Qt;
+    return q;
+  }();
+  stats.factorizations = 0;
+  for (int iter = 0; iter <= std::max(0, js.maxActiveSetIterations) + int(ev.defs.size()); ++iter) {
+    // Springs (soft rows) go into Q.
+    for (std::size_t i = 0; i < st.size(); ++i) st[i].Qf = baseQf[i], st[i].Qt = baseQt[i];
+    for (Row& r : rows) {
+      if (!r.soft || !r.active) continue;
+      r.lambda = -(r.k * r.c + r.d * r.cdot);
+      scatterRow(r, r.lambda, [&](int b, const V6& f) {
+        st[b].Qf += f.head<3>();
+        st[b].Qt += f.tail<3>();
+      });
+    }
+    const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
+    stats.rows = m;
+    if (m > 0) {
+      // rhs = -J'q' - J W Q - k_s C - k_d C'.
+      im.rhs.resize(m);
+      for (const Row& r : rows)
+        if (r.index >= 0) im.rhs[r.index] = -r.jdq - js.stiffness_per_s2 * r.c - js.damping_per_s * r.cdot;
+      for (std::size_t b = 0; b < st.size(); ++b) {
+        const BodyState& s = st[b];
+        V6 WQ;
+        WQ << s.invMass * s.Qf, s.invI * s.Qt;
+        for (int r : im.bodyRows[b]) {
+          const Row& row = rows[r];
+          im.rhs[row.index] -= (row.a == int(b) ? row.ja : row.jb).dot(WQ);
+        }
+      }
+      assembleAndFactorize(im, m, stats);
+      im.lambda = im.ldlt.solve(im.rhs);
+      for (Row& r : rows)
+        if (r.index >= 0) r.lambda = im.lambda[r.index];
+    }
+    // Active set: drop limit rows that pull.
+    bool changed = false;
+    if (iter < js.maxActiveSetIterations)
+      for (Row& r : rows)
+        if (r.limit && r.index >= 0 && r.lambda < 0) r.active = false, changed = true;
+    if (changed) continue;
+    // Breakable joints.
+    std::vector<V3>& force = im.jointForce;
+    std::vector<V3>& torque = im.jointTorque;
+    force.assign(ev.defs.size(), V3::Zero());
+    torque.assign(ev.defs.size(), V3::Zero());
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const Row& row = rows[r];
+      if (!row.active || (row.index < 0 && !row.soft)) continue;
+      if (row.angular) torque[jointOf[r]] += row.lambda * row.ja.tail<3>();
+      else force[jointOf[r]] += row.lambda * row.ja.head<3>();
+    }
+    bool anyBroken = false;
+    for (std::size_t k = 0; k < ev.defs.size(); ++k) {
+      const JointDef& d = *ev.defs[k];
+      if (broken[k]) continue;
+      const double f = force[k].norm(), t = torque[k].norm();
+      if ((d.breakForce_N > 0 && f > d.breakForce_N) || (d.breakTorque_Nm > 0 && t > d.breakTorque_Nm)) {
+        broken[k] = 1;
+        anyBroken = true;
+        JointBreakEvent e;
+        e.id.index = ev.slots[k];
+        e.a = d.bodyA;
+        e.b = d.bodyB;
+        e.force_N = f;
+        e.torque_Nm = t;
+        e.userData = d.userData;
+        events.push_back(e);
+      }
+    }
+    if (anyBroken) {
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        if (broken[jointOf[r]]) rows[r].active = false;
+      continue;
+    }
+    break;
+  }
+  // Constraint forces: soft and hard rows.
+  for (const Row& r : rows) {
+    if (!r.active || (r.index < 0 && !r.soft)) continue;
+    scatterRow(r, r.lambda, [&](int b, const V6& f) {
+      if (!st[b].dynamic) return;
+      st[b].Fc += f.head<3>();
+      st[b].Tc += f.tail<3>();
+    });
+  }
+  return events;
+}
+
+// ---- the public steps ----------------------------------------------------------------------
+
+void JointSystem::prepare() {
+  Impl& im = *m_impl;
+  if (m_orderDirty) {
+    std::vector<JointDef> defs;
+    std::vector<std::uint32_t> ids;
+    for (std::uint32_t i = 0; i < m_slots.size(); ++i)
+      if (m_slots[i].alive) defs.push_back(m_slots[i].def), ids.push_back(i);
+    im.order = eliminationOrder(m_world, defs, ids);
+    m_orderDirty = false;
+  }
+  Evaluation& ev = im.ev;
+  ev.defs.clear();
+  ev.slots.clear();
+  ev.bodies.clear();
+  for (BodyState& s : im.states)
+    if (s.id.index < im.slotOf.size()) im.slotOf[s.id.index] = -1;
+  im.states.clear();
+  auto stateOf = [&](BodyId id) -> int {
+    if (id.isNull()) return -1;
+    if (id.index >= im.slotOf.size()) im.slotOf.resize(id.index + 1, -1);
+    int& k = im.slotOf[id.index];
+    if (k < 0) {
+      k = int(im.states.size());
+      im.states.push_back(stateFromWorld(m_world, id));
+    }
+    return k;
+  };
+  for (std::uint32_t slot : im.order) {
+    Slot& s = m_slots[slot];
+    ev.defs.push_back(&s.def);
+    ev.slots.push_back(slot);
+    ev.bodies.emplace_back(stateOf(s.def.bodyA), stateOf(s.def.bodyB));
+  }
+}
+
+void JointSystem::recordForces() {
+  const Impl& im = *m_impl;
+  for (std::size_t k = 0; k < im.ev.slots.size() && k < im.jointForce.size(); ++k) {
+    Slot& s = m_slots[im.ev.slots[k]];
+    s.force_N = im.jointForce[k].cast<Real>();
+    s.torque_Nm = im.jointTorque[k].cast<Real>();
+  }
+}
+
+void JointSystem::finishBreaks(std::vector<JointBreakEvent>& events) {
+  for (JointBreakEvent& e : events) {
+    if (e.id.index >= m_slots.size() || !m_slots[e.id.index].alive) continue;  // reported already
+    e.id.generation = m_slots[e.id.index].generation;
+    destroyJoint(e.id);
+    m_broken.push_back(e);
+  }
+}
+
+bool JointSystem::dropJointsOfDeadBodies() {
+  for (std::uint32_t i = 0; i < m_slots.size(); ++i) {
+    Slot& s = m_slots[i];
+    if (!s.alive) continue;
+    if (!m_world.isValid(s.def.bodyA) || (!s.def.bodyB.isNull() && !m_world.isValid(s.def.bodyB))) {
+      JointBreakEvent e{JointId{i, s.generation}, s.def.bodyA, s.def.bodyB, 0, 0, s.def.userData};
+      destroyJoint(e.id);
+      m_broken.push_back(e);
+    }
+  }
+  return m_jointCount > 0;
+}
+
+void JointSystem::applyConstraintForces() {
+  const auto t0 = std::chrono::steady_clock::now();
+  m_broken.clear();
+  if (!dropJointsOfDeadBodies()) {
+    m_stats = JointSolveStats{};
+    return;
+  }
+  // Sleeping bodies: a sleeping body jointed to a body that moves faster
+  // than the sleep thresholds is woken (the World's islands know only
+  // contacts); otherwise it is held as fixed for this step and gets no force.
+  const WorldSettings& ws = m_world.settings();
+  auto fast = [&](const Body& b) {
+    return b.isDynamic() && b.awake &&
+           (b.linearVelocity_mps.norm() > ws.sleepLinearSpeed_mps ||
+            b.angularVelocity_radps.norm() > ws.sleepAngularSpeed_radps);
+  };
+  for (const Slot& s : m_slots) {
+    if (!s.alive || s.def.bodyB.isNull()) continue;
+    const Body& a = m_world.body(s.def.bodyA);
+    const Body& b = m_world.body(s.def.bodyB);
+    if (!a.awake && a.isDynamic() && fast(b)) m_world.wake(s.def.bodyA);
+    if (!b.awake && b.isDynamic() && fast(a)) m_world.wake(s.def.bodyB);
+  }
+  prepare();
+  Impl& im = *m_impl;
+  const V3 g = wide3(m_world.settings().gravity_mps2);
+  std::vector<JointBreakEvent> events = solveConstraints(im, m_settings, g, true, m_stats);
+  recordForces();
+  for (const BodyState& s : im.states) {
+    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0)) continue;
+    m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>());
+    m_world.applyTorque(s.id, s.Tc.cast<Real>());
+  }
+  finishBreaks(events);
+  m_stats.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  measureError();
+}
+
+void JointSystem::step(Real dt_s) {
+  // The projection runs at the start of the step rather than at the end of
+  // the previous one: for free chains that is the same cycle, but with
+  // contacts the World's contact solver then has the last word on the
+  // velocities (projecting after it pushed resting parts back into the
+  // ground: a rag-doll never fell asleep, measured 0.3 m/s forever).
+  if (m_settings.postStabilize) postStabilize();
+  applyConstraintForces();
+  m_world.step(dt_s);
+  measureError();
+}
+
+void JointSystem::postStabilize() {
+  if (m_jointCount == 0 || !dropJointsOfDeadBodies()) return;
+  prepare();
+  Impl& im = *m_impl;
+  deriveStates(im.states, m_settings, V3::Zero(), false);
+  buildRows(im.ev.defs, im.ev.slots, im.ev.bodies, im.states, im.rows);
+  // Equality rows, and the limit rows that are violated (buildRows adds no
+  // others): those act as inelastic stops, J dv = -min(C', 0), dC = -C; a
+  // stop whose multiplier comes out negative (it would pull) is dropped and
+  // the projection solved again. Springs are soft: not projected.
+  JointSolveStats stats;
+  Eigen::VectorXd mu, nu;
+  for (int pass = 0; pass < 3; ++pass) {
+    const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
+    if (m == 0) return;
+    assembleAndFactorize(im, m, stats);
+    Eigen::VectorXd cdot(m), c(m);
+    for (const Row& r : im.rows)
+      if (r.index >= 0) cdot[r.index] = r.limit ? -std::min(r.cdot, 0.0) : -r.cdot, c[r.index] = -r.c;
+    mu = im.ldlt.solve(cdot);
+    nu = im.ldlt.solve(c);
+    if (pass == 2) break;
+    bool changed = false;
+    for (Row& r : im.rows)
+      if (r.limit && r.index >= 0 && (mu[r.index] < 0 || nu[r.index] < 0)) r.active = false, changed = true;
+    if (!changed) break;
+  }
+  // dq = W J^T mu (velocities), W J^T nu (positions): the smallest changes in
+  // the mass metric that make J v = 0 and, to first order, C = 0.
+  std::vector<V6> dv(im.states.size(), V6::Zero()), dx(im.states.size(), V6::Zero());
+  for (const Row& r : im.rows) {
+    if (r.index < 0) continue;
+    if (r.a >= 0) dv[r.a] += r.ja * mu[r.index], dx[r.a] += r.ja * nu[r.index];
+    if (r.b >= 0) dv[r.b] += r.jb * mu[r.index], dx[r.b] += r.jb * nu[r.index];
+  }
+  for (std::size_t i = 0; i < im.states.size(); ++i) {
+    const BodyState& s = im.states[i];
+    if (!s.dynamic) continue;
+    const V3 v = s.v + s.invMass * dv[i].head<3>(), w = s.w + s.invI * dv[i].tail<3>();
+    const V3 x = s.x + s.invMass * dx[i].head<3>(), th = s.invI * dx[i].tail<3>();
+    Qd q = s.q;
+    q.coeffs() += 0.5 * (Qd(0, th.x(), th.y(), th.z()) * s.q).coeffs();
+    if (m_settings.projectPositions) {
+      m_world.setPosition(s.id, x.cast<Real>());
+      m_world.setOrientation(s.id, q.normalized().cast<Real>());
+    }
+    m_world.setLinearVelocity(s.id, v.cast<Real>());
+    m_world.setAngularVelocity(s.id, w.cast<Real>());
+  }
+}
+
+namespace {
+
+struct Deriv {
+  V3 dx = V3::Zero(), dv = V3::Zero(), dw = V3::Zero();
+  Eigen::Vector4d dq = Eigen::Vector4d::Zero();
+};
+
+void advance(const std::vector<BodyState>& y, const std::vector<Deriv>& k, double h, std::vector<BodyState>& out) {
+  out = y;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    if (!y[i].dynamic) continue;
+    out[i].x += h * k[i].dx;
+    out[i].v += h * k[i].dv;
+    out[i].w += h * k[i].dw;
+    out[i].q.coeffs() += h * k[i].dq;
+    out[i].q.normalize();
+  }
+}
+
+}  // namespace
+
+void JointSystem::integrateFree(JointIntegrator method, double h) {
+  m_broken.clear();
+  if (!(h > 0) || !std::isfinite(h) || !dropJointsOfDeadBodies()) return;
+  prepare();
+  Impl& im = *m_impl;
+  const V3 g = wide3(m_world.settings().gravity_mps2);
+  std::vector<JointBreakEvent> events;
+  // f(y): velocities and accelerations with the constraint forces solved at y.
+  auto f = [&](const std::vector<BodyState>& y) {
+    im.states = y;
+    auto ev = solveConstraints(im, m_settings, g, false, m_stats);
+    events.insert(events.end(), ev.begin(), ev.end());
+    std::vector<Deriv> d(y.size());
+    for (std::size_t i = 0; i < y.size(); ++i) {
+      const BodyState& s = im.states[i];
+      if (!s.dynamic) continue;
+      d[i].dx = s.v;
+      d[i].dv = s.invMass * (s.Qf + s.Fc);
+      d[i].dw = s.invI * (s.Qt + s.Tc);
+      const Qd wq(0, s.w.x(), s.w.y(), s.w.z());
+      d[i].dq = 0.5 * (wq * s.q).coeffs();
+    }
+    return d;
+  };
+  const std::vector<BodyState> y0 = im.states;
+  std::vector<BodyState> y1, tmp;
+  switch (method) {
+    case JointIntegrator::ExplicitEuler: advance(y0, f(y0), h, y1); break;
+    case JointIntegrator::Trapezoid: {
+      const std::vector<Deriv> k1 = f(y0);
+      advance(y0, k1, h, tmp);
+      std::vector<Deriv> k2 = f(tmp);
+      for (std::size_t i = 0; i < k2.size(); ++i) {
+        k2[i].dx = (k1[i].dx + k2[i].dx) / 2;
+        k2[i].dv = (k1[i].dv + k2[i].dv) / 2;
+        k2[i].dw = (k1[i].dw + k2[i].dw) / 2;
+        k2[i].dq = (k1[i].dq + k2[i].dq) / 2;
+      }
+      advance(y0, k2, h, y1);
+      break;
+    }
+    case JointIntegrator::SemiImplicitEuler: {
+      std::vector<Deriv> k = f(y0);
+      y1 = y0;
+      for (std::size_t i = 0; i < y0.size(); ++i) {
+        if (!y0[i].dynamic) continue;
+        y1[i].v += h * k[i].dv;
+        y1[i].w += h * k[i].dw;
+        y1[i].x += h * y1[i].v;
+        const Qd wq(0, y1[i].w.x(), y1[i].w.y(), y1[i].w.z());
+        y1[i].q.coeffs() += 0.5 * h * (wq * y0[i].q).coeffs();
+        y1[i].q.normalize();
+      }
+      break;
+    }
+    case JointIntegrator::Rk4: {
+      const std::vector<Deriv> k1 = f(y0);
+      advance(y0, k1, h / 2, tmp);
+      const std::vector<Deriv> k2 = f(tmp);
+      advance(y0, k2, h / 2, tmp);
+      const std::vector<Deriv> k3 = f(tmp);
+      advance(y0, k3, h, tmp);
+      std::vector<Deriv> k4 = f(tmp);
+      for (std::size_t i = 0; i < k4.size(); ++i) {
+        k4[i].dx = (k1[i].dx + 2 * k2[i].dx + 2 * k3[i].dx + k4[i].dx) / 6;
+        k4[i].dv = (k1[i].dv + 2 * k2[i].dv + 2 * k3[i].dv + k4[i].dv) / 6;
+        k4[i].dw = (k1[i].dw + 2 * k2[i].dw + 2 * k3[i].dw + k4[i].dw) / 6;
+        k4[i].dq = (k1[i].dq + 2 * k2[i].dq + 2 * k3[i].dq + k4[i].dq) / 6;
+      }
+      advance(y0, k4, h, y1);
+      break;
+    }
+  }
+  recordForces();  // the last stage's forces
+  for (const BodyState& s : y1) {
+    if (!s.dynamic) continue;
+    m_world.setPosition(s.id, s.x.cast<Real>());
+    m_world.setOrientation(s.id, s.q.cast<Real>());
+    m_world.setLinearVelocity(s.id, s.v.cast<Real>());
+    m_world.setAngularVelocity(s.id, s.w.cast<Real>());
+  }
+  finishBreaks(events);
+  measureError();
+}
+
+}  // namespace tumble::physics

@@ -1,0 +1,100 @@
+// Rag-doll description and builder: the default human's anthropometry, the
+// collision-filter pairs, and a drop on the ground.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "physics/joints/ragdoll.h"
+
+namespace tumble::physics {
+namespace {
+
+TEST(Ragdoll, DefaultHumanHasElevenPartsWithWintersMasses) {
+  const Real H = Real(1.8), M = 80;
+  RagdollDesc d = defaultHuman(H, M);
+  ASSERT_TRUE(validateRagdoll(d).ok());
+  EXPECT_EQ(d.parts.size(), 11u);
+  EXPECT_EQ(d.joints.size(), 10u);
+  double mass = 0, top = 0, bottom = 1e9;
+  for (const RagdollPart& p : d.parts) {
+    mass += p.mass_kg;
+    const double reach = p.shape == RagdollShape::Box ? p.halfExtents_m.y() : p.halfHeight_m + p.radius_m;
+    top = std::max(top, double(p.position_m.y()) + reach);
+    bottom = std::min(bottom, double(p.position_m.y()) - reach);
+  }
+  EXPECT_NEAR(mass, M, 1e-3);
+  EXPECT_NEAR(top, H, 1e-4);  // top of the head at the body height
+  EXPECT_GE(bottom, 0);
+  EXPECT_LT(bottom, 0.01 * H);
+  // Every joint is filtered, nothing else.
+  ASSERT_EQ(d.noCollide.size(), d.joints.size());
+  for (std::size_t k = 0; k < d.joints.size(); ++k) {
+    EXPECT_EQ(d.noCollide[k].first, d.joints[k].partA);
+    EXPECT_EQ(d.noCollide[k].second, d.joints[k].partB);
+  }
+}
+
+TEST(Ragdoll, BadDescriptionsNameTheField) {
+  RagdollDesc d = defaultHuman();
+  d.parts[3].mass_kg = -1;
+  auto s = validateRagdoll(d);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("upper_arm_l"), std::string::npos) << s.error();
+  EXPECT_NE(s.error().find("mass"), std::string::npos) << s.error();
+  d = defaultHuman();
+  d.joints[0].partB = 42;
+  s = validateRagdoll(d);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("waist"), std::string::npos) << s.error();
+}
+
+struct DropResult {
+  double errorMax_m, errorEnd_m, fastest_mps;
+};
+
+/// The default human dropped face-first on the ground, 5 s at 60 Hz.
+DropResult dropRagdoll(const JointSettings& settings, const char* label) {
+  World world;
+  JointSystem joints(world, settings);
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  ground.shape = Shape::plane();
+  (void)world.createBody(ground).value();
+  // Tilted forward a little so it falls over rather than standing.
+  const Quat tilt(Eigen::AngleAxis<Real>(Real(0.3), Vec3::UnitX()));
+  Ragdoll r = buildRagdoll(world, joints, defaultHuman(), Vec3(0, Real(0.3), 0), tilt).value();
+  EXPECT_EQ(r.bodies.size(), 11u);
+  EXPECT_EQ(r.joints.size(), 10u);
+  EXPECT_EQ(r.noCollide.size(), 10u);
+  EXPECT_EQ(joints.connectedPairs().size(), 10u);
+  for (int i = 0; i < 5 * 60; ++i) joints.step(Real(1.0 / 60.0));
+  DropResult out{joints.maxAnchorError_m(), joints.anchorError_m(), 0};
+  for (BodyId b : r.bodies) out.fastest_mps = std::max<double>(out.fastest_mps, world.body(b).linearVelocity_mps.norm());
+  std::printf("[ragdoll drop] %s: anchor error max %.2e m, at 5 s %.2e m, fastest part %.4f m/s, solve %.3f ms "
+              "(%d rows)\n",
+              label, out.errorMax_m, out.errorEnd_m, out.fastest_mps, joints.lastSolve().solveMs,
+              joints.lastSolve().rows);
+  return out;
+}
+
+// Formulation A with the World's separate contact solver: the rag-doll
+// stays in one piece; with the velocity-only projection it comes to rest.
+// Not yet checked (needs World changes, see the report): asleep within 5 s
+// (World::applyForce wakes the body every step) and joints within 1 cm on
+// the ground (contact forces are not in Q: joints stretch by ~g / k_s).
+TEST(Ragdoll, DroppedOnTheGroundStaysInOnePiece) {
+  const DropResult d = dropRagdoll(JointSettings{}, "defaults (velocity + position projection)");
+  EXPECT_LT(d.errorMax_m, 0.1);
+  EXPECT_LT(d.errorEnd_m, 0.05);
+}
+
+TEST(Ragdoll, DroppedOnTheGroundComesToRestWithVelocityProjection) {
+  JointSettings s;
+  s.projectPositions = false;
+  const DropResult d = dropRagdoll(s, "velocity projection only");
+  EXPECT_LT(d.errorEnd_m, 0.05);
+  EXPECT_LT(d.fastest_mps, 0.01);
+}
+
+}  // namespace
+}  // namespace tumble::physics
