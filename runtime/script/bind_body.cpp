@@ -14,23 +14,33 @@ struct BodyRef {
 
 physics::World& worldOf(lua_State* L) { return ScenarioHost::from(L)->world(); }
 
+/// @class Body
+/// A handle to a rigid body (slot index plus generation). Methods refuse a
+/// removed body with a clear error; check body:is_valid() when unsure. Bodies
+/// compare equal with == when they are the same body. Its metatable is
+/// protected: scripts cannot change or replace its methods.
+
 /// @function Body:position
-/// @return {x,y,z} centre of mass, m
+/// @return Vec3 centre of mass, m
+/// @example local p = ball:position()  print(p.x, p.y, p.z)
 int bodyPosition(lua_State* L) {
   pushVec3(L, worldOf(L).body(checkBody(L, 1)).position_m);
   return 1;
 }
-/// @function Body:velocity  @return {x,y,z} m/s
+/// @function Body:velocity
+/// @return Vec3 velocity of the centre of mass, m/s
 int bodyVelocity(lua_State* L) {
   pushVec3(L, worldOf(L).body(checkBody(L, 1)).linearVelocity_mps);
   return 1;
 }
-/// @function Body:angular_velocity  @return {x,y,z} rad/s, world frame
+/// @function Body:angular_velocity
+/// @return Vec3 angular velocity, rad/s, world frame
 int bodyAngularVelocity(lua_State* L) {
   pushVec3(L, worldOf(L).body(checkBody(L, 1)).angularVelocity_radps);
   return 1;
 }
-/// @function Body:orientation  @return {w,x,y,z} unit quaternion
+/// @function Body:orientation
+/// @return Quat unit quaternion {w=, x=, y=, z=}, body to world
 int bodyOrientation(lua_State* L) {
   const Quat& q = worldOf(L).body(checkBody(L, 1)).orientation;
   lua_createtable(L, 0, 4);
@@ -44,22 +54,27 @@ int bodyOrientation(lua_State* L) {
   lua_setfield(L, -2, "z");
   return 1;
 }
-/// @function Body:up  @return {x,y,z} the body's local +Y axis in world space (unit)
+/// @function Body:up
+/// @return Vec3 the body's local +Y axis in world space (unit)
+/// @example if crate:up().y < 0.5 then game.lose("the crate tipped over") end
 int bodyUp(lua_State* L) {
   pushVec3(L, worldOf(L).body(checkBody(L, 1)).orientation * Vec3::UnitY());
   return 1;
 }
-/// @function Body:mass  @return kg (0 for static and kinematic bodies)
+/// @function Body:mass
+/// @return number kg (0 for static and kinematic bodies)
 int bodyMass(lua_State* L) {
   lua_pushnumber(L, worldOf(L).body(checkBody(L, 1)).mass_kg);
   return 1;
 }
-/// @function Body:speed  @return |v| in m/s
+/// @function Body:speed
+/// @return number |v|, m/s
 int bodySpeed(lua_State* L) {
   lua_pushnumber(L, worldOf(L).body(checkBody(L, 1)).linearVelocity_mps.norm());
   return 1;
 }
-/// @function Body:kinetic_energy  @return J, translation + rotation
+/// @function Body:kinetic_energy
+/// @return number translational plus rotational kinetic energy, J
 int bodyKineticEnergy(lua_State* L) {
   const physics::Body& b = worldOf(L).body(checkBody(L, 1));
   Vec3 wl = b.orientation.conjugate() * b.angularVelocity_radps;
@@ -67,36 +82,48 @@ int bodyKineticEnergy(lua_State* L) {
                         0.5 * wl.dot(b.inertiaLocal_kgm2.cwiseProduct(wl)));
   return 1;
 }
-/// @function Body:is_awake  @return boolean
+/// @function Body:is_awake
+/// @return boolean false while the body sleeps (at rest, not simulated)
 int bodyIsAwake(lua_State* L) {
   lua_pushboolean(L, worldOf(L).body(checkBody(L, 1)).awake);
   return 1;
 }
-/// @function Body:is_valid  @return false once the body was removed
+/// @function Body:is_valid
+/// The one method that accepts a removed body.
+/// @return boolean false once the body was removed
 int bodyIsValid(lua_State* L) {
   auto* ref = static_cast<BodyRef*>(luaL_testudata(L, 1, kBodyMeta));
   lua_pushboolean(L, ref && worldOf(L).isValid(physics::BodyId{ref->index, ref->generation}));
   return 1;
 }
-/// @function Body:set_position  @param p {x,y,z} m
+/// @function Body:set_position
+/// Teleports the body (wakes it).
+/// @param p Vec3Arg new centre of mass, m
 int bodySetPosition(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   worldOf(L).setPosition(id, checkVec3(L, 2, "Body:set_position"));
   return 0;
 }
-/// @function Body:set_velocity  @param v {x,y,z} m/s
+/// @function Body:set_velocity
+/// @param v Vec3Arg m/s
+/// @example ball:set_velocity{5, 0, 0}
 int bodySetVelocity(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   worldOf(L).setLinearVelocity(id, checkVec3(L, 2, "Body:set_velocity"));
   return 0;
 }
-/// @function Body:set_angular_velocity  @param w {x,y,z} rad/s
+/// @function Body:set_angular_velocity
+/// @param w Vec3Arg rad/s, world frame
 int bodySetAngularVelocity(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   worldOf(L).setAngularVelocity(id, checkVec3(L, 2, "Body:set_angular_velocity"));
   return 0;
 }
-/// @function Body:apply_force  @param f {x,y,z} N  @param at? {x,y,z} world point, m (default: centre of mass)
+/// @function Body:apply_force
+/// Applies a force over the next step (call it every on_update for a steady force).
+/// @param f Vec3Arg force, N
+/// @param at? Vec3Arg world point, m (default: the centre of mass)
+/// @example rocket:apply_force({0, 200, 0})
 int bodyApplyForce(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   Vec3 f = checkVec3(L, 2, "Body:apply_force force");
@@ -104,7 +131,11 @@ int bodyApplyForce(lua_State* L) {
   worldOf(L).applyForce(id, f, at);
   return 0;
 }
-/// @function Body:apply_impulse  @param j {x,y,z} N s  @param at? {x,y,z} world point, m
+/// @function Body:apply_impulse
+/// Changes the momentum at once.
+/// @param j Vec3Arg impulse, N s
+/// @param at? Vec3Arg world point, m (default: the centre of mass)
+/// @example ball:apply_impulse({0, 5, 0})
 int bodyApplyImpulse(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   Vec3 j = checkVec3(L, 2, "Body:apply_impulse impulse");
@@ -112,17 +143,71 @@ int bodyApplyImpulse(lua_State* L) {
   worldOf(L).applyImpulse(id, j, at);
   return 0;
 }
-/// @function Body:apply_torque  @param t {x,y,z} N m
+/// @function Body:apply_torque
+/// Applies a torque over the next step.
+/// @param t Vec3Arg torque, N m, world frame
 int bodyApplyTorque(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   worldOf(L).applyTorque(id, checkVec3(L, 2, "Body:apply_torque"));
   return 0;
 }
-/// @function Body:remove  Removes the body; the handle becomes invalid.
+/// @function Body:remove
+/// Removes the body from the world (as world.remove); the handle becomes invalid.
 int bodyRemove(lua_State* L) {
   worldOf(L).destroyBody(checkBody(L, 1));
   return 0;
 }
+/// @class Material
+/// @field friction? number Coulomb coefficient >= 0; a pair uses sqrt(fa*fb)
+/// @field restitution? number 0..1; a pair uses the larger
+
+/// @function Body:set_material
+/// Changes friction and restitution; a field left out keeps its value.
+/// @param m Material {friction=, restitution=}
+/// @example ice:set_material{friction = 0.02}
+int bodySetMaterial(lua_State* L) {
+  physics::BodyId id = checkBody(L, 1);
+  if (!lua_istable(L, 2))
+    throw LuaArgError(std::string("Body:set_material: expected a table {friction = ..., restitution = ...}, got ") +
+                      luaL_typename(L, 2));
+  lua_pushnil(L);
+  while (lua_next(L, 2) != 0) {
+    lua_pop(L, 1);
+    bool known = lua_type(L, -1) == LUA_TSTRING && (std::string(lua_tostring(L, -1)) == "friction" ||
+                                                   std::string(lua_tostring(L, -1)) == "restitution");
+    if (!known) {
+      std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : luaL_typename(L, -1);
+      lua_pop(L, 1);
+      throw LuaArgError("Body:set_material: unknown field '" + key + "' (valid: friction, restitution)");
+    }
+  }
+  const physics::Body& b = worldOf(L).body(id);
+  double friction = 0, restitution = 0;
+  try {
+    friction = optNumberField(L, 2, "friction", b.friction);
+    restitution = optNumberField(L, 2, "restitution", b.restitution);
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("Body:set_material: ") + e.what());
+  }
+  if (friction < 0) throw LuaArgError("Body:set_material: field 'friction' must be >= 0, got " + std::to_string(friction));
+  if (restitution < 0 || restitution > 1)
+    throw LuaArgError("Body:set_material: field 'restitution' must be in 0..1, got " + std::to_string(restitution));
+  worldOf(L).setMaterial(id, Real(friction), Real(restitution));
+  return 0;
+}
+
+/// @function Body:material
+/// @return Material the body's {friction=, restitution=}
+int bodyMaterial(lua_State* L) {
+  const physics::Body& b = worldOf(L).body(checkBody(L, 1));
+  lua_createtable(L, 0, 2);
+  lua_pushnumber(L, b.friction);
+  lua_setfield(L, -2, "friction");
+  lua_pushnumber(L, b.restitution);
+  lua_setfield(L, -2, "restitution");
+  return 1;
+}
+
 int bodyToString(lua_State* L) {
   auto* ref = static_cast<BodyRef*>(luaL_checkudata(L, 1, kBodyMeta));
   lua_pushfstring(L, "Body(%d#%d)", int(ref->index), int(ref->generation));
@@ -152,6 +237,8 @@ const luaL_Reg kMethods[] = {
     {"apply_force", guarded<bodyApplyForce>},
     {"apply_impulse", guarded<bodyApplyImpulse>},
     {"apply_torque", guarded<bodyApplyTorque>},
+    {"set_material", guarded<bodySetMaterial>},
+    {"material", guarded<bodyMaterial>},
     {"remove", guarded<bodyRemove>},
     {nullptr, nullptr},
 };
@@ -165,6 +252,13 @@ physics::BodyId checkBody(lua_State* L, int idx) {
   if (!ScenarioHost::from(L)->world().isValid(id))
     throw LuaArgError("this Body was removed; check body:is_valid() before using it");
   return id;
+}
+
+bool testBody(lua_State* L, int idx, physics::BodyId* out) {
+  auto* ref = static_cast<BodyRef*>(luaL_testudata(L, idx, kBodyMeta));
+  if (!ref) return false;
+  *out = physics::BodyId{ref->index, ref->generation};
+  return true;
 }
 
 void pushBody(lua_State* L, physics::BodyId id) {

@@ -39,7 +39,9 @@ int messageHandler(lua_State* L) {
 
 std::string ScriptError::summary() const {
   std::string s = "mod " + mod + ": ";
-  if (!file.empty()) s += file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
+  // Budget errors name the callback instead of a line: "mod X: scenarios/y.lua:
+  // on_update exceeded N instructions ..." (the line is in the message).
+  if (!file.empty()) s += file + (line > 0 && !limit ? ":" + std::to_string(line) : std::string()) + ": ";
   return s + message;
 }
 
@@ -49,14 +51,30 @@ LuaVm::LuaVm(const VmLimits& limits) : m_limits(limits) {
   lua_pushlightuserdata(m_L, this);
   lua_rawsetp(m_L, LUA_REGISTRYINDEX, &kVmKey);
   luaL_openlibs(m_L);
-  // Protect the shared string metatable: a mod may not replace it.
+  // The string metatable is shared by every string in the state. Protect it
+  // (getmetatable("") returns false, so it cannot be changed) and point its
+  // __index at a private copy of the string library without string.dump:
+  // ("").dump is then nil, and a mod changing its own `string` table does not
+  // change what s:upper() means.
+  lua_getglobal(m_L, "string");
+  lua_pushnil(m_L);
+  lua_setfield(m_L, -2, "dump");
+  lua_newtable(m_L);
+  lua_pushnil(m_L);
+  while (lua_next(m_L, -3) != 0) {
+    lua_pushvalue(m_L, -2);
+    lua_insert(m_L, -2);
+    lua_rawset(m_L, -4);
+  }
   lua_pushliteral(m_L, "");
   if (lua_getmetatable(m_L, -1)) {
+    lua_pushvalue(m_L, -3);
+    lua_setfield(m_L, -2, "__index");
     lua_pushboolean(m_L, 0);
     lua_setfield(m_L, -2, "__metatable");
     lua_pop(m_L, 1);
   }
-  lua_pop(m_L, 1);
+  lua_pop(m_L, 3);
   lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, kHookEvery);
 }
 
@@ -78,28 +96,72 @@ void* LuaVm::allocate(void* ud, void* ptr, std::size_t osize, std::size_t nsize)
   return p;
 }
 
-void LuaVm::countHook(lua_State* L, lua_Debug*) {
+void LuaVm::countHook(lua_State* L, lua_Debug* ar) {
   lua_rawgetp(L, LUA_REGISTRYINDEX, &kVmKey);
   auto* vm = static_cast<LuaVm*>(lua_touserdata(L, -1));
   lua_pop(L, 1);
   if (!vm) return;
-  vm->m_instructions += kHookEvery;
-  if (vm->m_instructions > vm->m_limits.instructionsPerCall) {
-    vm->m_instructions = 0;  // let the error handler run
-    luaL_error(L, "%s exceeded %d million instructions (runaway loop?); the call was stopped",
-               vm->m_what.c_str(), int(vm->m_limits.instructionsPerCall / 1000000));
+  if (!vm->m_budgetHit && lua_gethookcount(L) != kHookEvery) {
+    // A coroutine left over from an earlier stopped call: back to normal.
+    lua_sethook(L, &LuaVm::countHook, LUA_MASKCOUNT, kHookEvery);
+    return;
   }
+  vm->m_instructions += kHookEvery;
+  if (vm->m_instructions <= vm->m_limits.instructionsPerCall && !vm->m_budgetHit) return;
+  if (!vm->m_budgetHit) {
+    vm->m_budgetHit = true;
+    if (lua_getinfo(L, "Sl", ar)) {
+      vm->m_budgetLine = ar->currentline;
+      vm->m_budgetSource = ar->source ? ar->source : "";
+    }
+    // From now on raise at every instruction of this thread: a pcall in the
+    // script catches the error, and the very next instruction raises again,
+    // so the stop reaches the top however the loop is wrapped.
+    lua_sethook(L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
+  }
+  // No C++ object with a destructor lives in this frame, so lua_error may
+  // longjmp from here. The message has no position: LuaVm::call names the
+  // mod, file and callback.
+  lua_pushfstring(L, "exceeded %I instructions (runaway loop?); the call was stopped",
+                  lua_Integer(vm->m_limits.instructionsPerCall));
+  lua_error(L);
 }
 
-bool LuaVm::call(int nargs, int nresults, const std::string& mod, const std::string& what, ScriptError* error) {
+namespace {
+std::string formatBytes(std::size_t bytes) {
+  if (bytes >= (1u << 20) && bytes % (1u << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+  if (bytes >= 1024 && bytes % 1024 == 0) return std::to_string(bytes >> 10) + " KiB";
+  return std::to_string(bytes) + " bytes";
+}
+
+// "@/abs/mods/base/lib/x.lua" -> "lib/x.lua" (the path inside the mod).
+std::string modRelative(const std::string& mod, std::string path) {
+  if (!path.empty() && (path[0] == '@' || path[0] == '=')) path.erase(0, 1);
+  std::string marker = "/" + mod + "/";
+  auto pos = path.rfind(marker);
+  return pos == std::string::npos ? path : path.substr(pos + marker.size());
+}
+
+bool endsWith(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+}  // namespace
+
+bool LuaVm::call(int nargs, int nresults, const std::string& mod, const std::string& file,
+                 const std::string& callback, ScriptError* error) {
   int base = lua_gettop(m_L) - nargs;  // index of the function
   lua_pushcfunction(m_L, messageHandler);
   lua_insert(m_L, base);
+  ++m_calls;
   m_instructions = 0;
-  m_what = what;
-  m_mod = mod;
+  m_budgetHit = false;
+  m_budgetLine = 0;
+  m_budgetSource.clear();
   int status = lua_pcall(m_L, nargs, nresults, base);
   lua_remove(m_L, base);
+  bool budgetHit = m_budgetHit;
+  m_budgetHit = false;
+  if (budgetHit) lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, kHookEvery);
   if (status == LUA_OK) return true;
   std::string message, traceback;
   if (lua_istable(m_L, -1)) {
@@ -114,10 +176,34 @@ bool LuaVm::call(int nargs, int nresults, const std::string& mod, const std::str
   } else {
     message = "unknown error";
   }
-  if (status == LUA_ERRMEM) message = what + ": mod exceeded its memory budget (" +
-                                      std::to_string(m_limits.memoryBytes >> 20) + " MiB): " + message;
   lua_pop(m_L, 1);
-  if (error) *error = parseError(mod, message, traceback);
+  if (!error) return false;
+  const std::string what = callback.empty() ? std::string("the call") : callback;
+  // A memory error the script caught and raised again arrives as a string.
+  bool memory = status == LUA_ERRMEM || endsWith(message, "not enough memory");
+  if (budgetHit || memory) {
+    ScriptError e;
+    e.mod = mod;
+    e.file = file;
+    e.traceback = traceback;
+    e.limit = true;
+    if (budgetHit) {
+      std::string at = modRelative(mod, m_budgetSource);
+      if (e.file.empty()) e.file = at;
+      e.line = at == e.file ? m_budgetLine : 0;
+      e.message = what + " exceeded " + std::to_string(m_limits.instructionsPerCall) +
+                  " instructions (runaway loop?); stopped at " + at + ":" + std::to_string(m_budgetLine);
+    } else {
+      e.message = what + " exceeded the memory budget of " + formatBytes(m_limits.memoryBytes) +
+                  " (a table or string that grows without end?)";
+    }
+    *error = e;
+    return false;
+  }
+  *error = parseError(mod, message, traceback);
+  if (error->file.empty()) error->file = file;
+  if (endsWith(error->message, "stack overflow"))
+    error->message += " (a function that calls itself without end?)";
   return false;
 }
 

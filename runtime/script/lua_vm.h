@@ -32,12 +32,21 @@ class LuaVm {
   lua_State* state() const { return m_L; }
   const VmLimits& limits() const { return m_limits; }
   std::size_t memoryUsed() const { return m_used; }
+  /// Protected calls made so far (tests use it to prove a frame made none).
+  std::uint64_t callCount() const { return m_calls; }
 
   /// Calls the function below nargs arguments on the stack, protected and
-  /// under the instruction budget. On error fills *error (mod name taken from
-  /// `mod`, `what` names the callback for budget messages) and returns false.
-  /// Leaves nresults values on success, nothing on failure.
-  bool call(int nargs, int nresults, const std::string& mod, const std::string& what, ScriptError* error);
+  /// under the instruction budget. On error fills *error and returns false.
+  /// `file` is the mod-relative file the callback lives in and `callback` its
+  /// name; a budget error reads "mod X: scenarios/y.lua: on_update exceeded N
+  /// instructions" (ScriptError::summary). Leaves nresults values on success,
+  /// nothing on failure.
+  bool call(int nargs, int nresults, const std::string& mod, const std::string& file, const std::string& callback,
+            ScriptError* error);
+  /// Older form: `what` is the callback's name, the file is not known.
+  bool call(int nargs, int nresults, const std::string& mod, const std::string& what, ScriptError* error) {
+    return call(nargs, nresults, mod, std::string(), what, error);
+  }
 
   /// Turns a Lua error message plus traceback into a ScriptError. Chunk
   /// names are "@<mod dir>/<file>"; the mod-relative file is reported.
@@ -51,8 +60,12 @@ class LuaVm {
   VmLimits m_limits;
   std::size_t m_used = 0;
   std::uint64_t m_instructions = 0;
-  std::string m_what;  ///< callback being run, for the budget message
-  std::string m_mod;
+  std::uint64_t m_calls = 0;
+  /// Set once the running call exceeded its instruction budget; from then on
+  /// every hook tick raises again, so a script cannot pcall its way past it.
+  bool m_budgetHit = false;
+  int m_budgetLine = 0;        ///< line the runaway code was stopped at
+  std::string m_budgetSource;  ///< its chunk name ("@path")
 };
 
 }  // namespace tumble::script

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
 #include <regex>
 
 #include "script/lua_vm.h"
@@ -26,19 +30,146 @@ bool isSemver(const std::string& v) {
   return std::regex_match(v, re);
 }
 
-Result<ModDependency> parseDependency(const std::string& text) {
-  static const std::regex re(R"(^\s*([A-Za-z0-9_\-]+)\s*(?:(>=|<=|=|==|>|<)\s*([0-9][0-9A-Za-z.\-+]*))?\s*$)");
+struct Semver {
+  long long part[3] = {0, 0, 0};
+  int parts = 0;                 ///< how many numbers were written (1..3)
+  std::vector<std::string> pre;  ///< pre-release identifiers
+};
+
+bool parseSemver(const std::string& text, Semver* out) {
+  static const std::regex re(R"(^(\d+)(?:\.(\d+))?(?:\.(\d+))?(?:-([0-9A-Za-z.-]+))?(?:\+[0-9A-Za-z.-]+)?$)");
   std::smatch m;
-  if (!std::regex_match(text, m, re))
-    return makeError("dependency \"" + text + "\" is not of the form \"name\" or \"name >= 1.0\"");
-  return ModDependency{m[1], m[2], m[3]};
+  if (!std::regex_match(text, m, re) || m[1].length() > 9 || m[2].length() > 9 || m[3].length() > 9) return false;
+  Semver v;
+  for (int i = 0; i < 3; ++i)
+    if (m[i + 1].matched) v.part[i] = std::stoll(m[i + 1]), v.parts = i + 1;
+  if (m[4].matched) {
+    std::string pre = m[4];
+    std::size_t start = 0;
+    while (start <= pre.size()) {
+      std::size_t dot = pre.find('.', start);
+      v.pre.push_back(pre.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+  }
+  *out = v;
+  return true;
+}
+
+bool isNumber(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// Semver 2.0 precedence: numbers, then a pre-release sorts before the
+// release; pre-release identifiers compare numerically or as text.
+int compare(const Semver& a, const Semver& b) {
+  for (int i = 0; i < 3; ++i)
+    if (a.part[i] != b.part[i]) return a.part[i] < b.part[i] ? -1 : 1;
+  if (a.pre.empty() || b.pre.empty()) return a.pre.empty() == b.pre.empty() ? 0 : (a.pre.empty() ? 1 : -1);
+  for (std::size_t i = 0; i < std::min(a.pre.size(), b.pre.size()); ++i) {
+    const std::string &x = a.pre[i], &y = b.pre[i];
+    if (x == y) continue;
+    bool nx = isNumber(x), ny = isNumber(y);
+    if (nx && ny) return x.size() != y.size() ? (x.size() < y.size() ? -1 : 1) : (x < y ? -1 : 1);
+    if (nx != ny) return nx ? -1 : 1;
+    return x < y ? -1 : 1;
+  }
+  return a.pre.size() == b.pre.size() ? 0 : (a.pre.size() < b.pre.size() ? -1 : 1);
+}
+
+bool satisfiesOne(const Semver& v, const VersionConstraint& c) {
+  Semver want;
+  if (!parseSemver(c.version, &want)) return false;
+  int cmp = compare(v, want);
+  if (c.op == ">=") return cmp >= 0;
+  if (c.op == ">") return cmp > 0;
+  if (c.op == "<=") return cmp <= 0;
+  if (c.op == "<") return cmp < 0;
+  if (c.op == "=" || c.op == "==") return cmp == 0;
+  // ^ and ~: at least `want`, below the next "breaking" version.
+  Semver upper;
+  upper.parts = 3;
+  if (c.op == "~") {
+    if (want.parts == 1) upper.part[0] = want.part[0] + 1;
+    else upper.part[0] = want.part[0], upper.part[1] = want.part[1] + 1;
+  } else {  // ^: the left-most non-zero part written may not change
+    if (want.part[0] > 0 || want.parts == 1) upper.part[0] = want.part[0] + 1;
+    else if (want.part[1] > 0 || want.parts == 2) upper.part[1] = want.part[1] + 1;
+    else upper.part[2] = want.part[2] + 1;
+  }
+  upper.pre = {"0"};  // below every pre-release of the upper bound too
+  return cmp >= 0 && compare(v, upper) < 0;
+}
+
+}  // namespace
+
+int compareVersions(const std::string& a, const std::string& b) {
+  Semver x, y;
+  if (!parseSemver(a, &x) || !parseSemver(b, &y)) return 0;
+  return compare(x, y);
+}
+
+bool satisfies(const std::string& version, const std::vector<VersionConstraint>& constraints) {
+  Semver v;
+  if (!parseSemver(version, &v)) return constraints.empty();
+  for (const VersionConstraint& c : constraints)
+    if (!satisfiesOne(v, c)) return false;
+  return true;
+}
+
+Result<ModDependency> parseDependency(const std::string& text) {
+  static const std::regex whole(R"(^\s*([A-Za-z0-9_\-]+)\s*(\?)?\s*(.*?)\s*(\?)?\s*$)");
+  static const std::regex one(R"(^\s*(>=|<=|==|=|>|<|\^|~)\s*([0-9][0-9A-Za-z.\-+]*)\s*$)");
+  const std::string form = "dependency \"" + text +
+                           "\" is not of the form \"name\", \"name >= 1.0\" or \"name?\" (optional); operators: "
+                           ">=, >, <=, <, =, ^, ~; several constraints are separated by commas";
+  std::smatch m;
+  if (!std::regex_match(text, m, whole)) return makeError(form);
+  ModDependency dep;
+  dep.name = m[1];
+  dep.optional = m[2].matched || m[4].matched;
+  dep.text = text;
+  std::string rest = m[3];
+  std::size_t start = 0;
+  while (!rest.empty() && start <= rest.size()) {
+    std::size_t comma = rest.find(',', start);
+    std::string piece = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    std::smatch c;
+    if (!std::regex_match(piece, c, one)) return makeError(form);
+    Semver v;
+    if (!parseSemver(c[2], &v))
+      return makeError("dependency \"" + text + "\": \"" + std::string(c[2]) + "\" is not a version like 1, 1.2 or 1.2.3");
+    dep.constraints.push_back({c[1] == "==" ? std::string("=") : std::string(c[1]), c[2]});
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return dep;
+}
+
+namespace {
+
+// 1-based line of the first line in `file` that contains `needle` (0: none).
+int lineOf(const std::string& file, const std::string& needle) {
+  std::ifstream in(file);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n)
+    if (line.find(needle) != std::string::npos) return n;
+  return 0;
+}
+
+std::string constraintText(const ModDependency& d) {
+  std::string s;
+  for (const auto& c : d.constraints) s += (s.empty() ? "" : ", ") + c.op + " " + c.version;
+  return s;
 }
 
 // Runs mod.lua in an empty environment under a small budget and reads the
 // returned table. Problems are appended; returns true if a table came back.
 bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>& problems) {
   std::string path = (fs::path(dir) / "mod.lua").string();
-  auto problem = [&](int line, std::string msg) { problems.push_back({path, line, std::move(msg)}); };
+  std::string folder = fs::path(dir).filename().string();
+  auto problem = [&](int line, std::string msg) { problems.push_back({path, line, std::move(msg), folder}); };
   if (!fs::exists(path)) {
     problem(0, "missing: every mod folder needs a mod.lua manifest returning {name, version, title, api}");
     return false;
@@ -56,7 +187,7 @@ bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>
   lua_newtable(L);  // empty _ENV: a manifest is data
   lua_setupvalue(L, -2, 1);
   ScriptError err;
-  if (!vm.call(0, 1, fs::path(dir).filename().string(), "mod.lua", &err)) {
+  if (!vm.call(0, 1, fs::path(dir).filename().string(), "mod.lua", "top level", &err)) {
     problem(err.line, err.message);
     return false;
   }
@@ -83,9 +214,11 @@ bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>
   if (!info.version.empty() && !isSemver(info.version))
     problem(0, "field 'version' must be semver like \"1.2.0\", got \"" + info.version + "\"");
   if (info.api > kApiVersion)
-    problem(0, "field 'api' is " + std::to_string(info.api) + " but this Tumble provides API " +
-                   std::to_string(kApiVersion) + "; update Tumble");
-  std::string folder = fs::path(dir).filename().string();
+    problem(lineOf(path, "api"), "field 'api' is " + std::to_string(info.api) + " but this Tumble provides API " +
+                                     std::to_string(kApiVersion) + "; update Tumble or lower 'api'");
+  else if (info.api < 1)
+    problem(lineOf(path, "api"), "field 'api' is " + std::to_string(info.api) + "; API versions start at 1 (now " +
+                                     std::to_string(kApiVersion) + ")");
   if (!info.name.empty() && info.name != folder)
     problem(0, "field 'name' is \"" + info.name + "\" but the folder is \"" + folder + "\"; they must match");
   lua_getfield(L, -1, "depends");
@@ -94,9 +227,10 @@ bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>
     for (lua_Integer i = 1; i <= n; ++i) {
       lua_rawgeti(L, -1, i);
       if (lua_type(L, -1) == LUA_TSTRING) {
-        auto dep = parseDependency(lua_tostring(L, -1));
+        std::string text = lua_tostring(L, -1);
+        auto dep = parseDependency(text);
         if (dep) info.depends.push_back(*dep);
-        else problem(0, "field 'depends': " + dep.error());
+        else problem(lineOf(path, text), "field 'depends': " + dep.error());
       } else {
         problem(0, "field 'depends' must be a list of strings like \"base >= 1.0\"");
       }
@@ -124,15 +258,188 @@ Result<ModInfo> loadManifest(const std::string& dir) {
   return info;
 }
 
+namespace {
+
+// Every mod with a valid manifest in the search folders; later folders
+// override earlier ones with the same name. Manifest problems are appended.
+std::vector<ModInfo> collect(const std::vector<std::string>& searchDirs, std::vector<ModProblem>& problems) {
+  std::vector<ModInfo> mods;
+  for (const std::string& root : searchDirs) {
+    std::error_code ec;
+    if (!fs::is_directory(root, ec)) continue;
+    std::vector<fs::path> dirs;
+    for (auto& entry : fs::directory_iterator(root, ec))
+      if (entry.is_directory() && fs::exists(entry.path() / "mod.lua")) dirs.push_back(entry.path());
+    std::sort(dirs.begin(), dirs.end());
+    for (const fs::path& d : dirs) {
+      ModInfo info;
+      std::size_t before = problems.size();
+      bool ok = readManifest(d.string(), info, problems);
+      if (!ok || problems.size() != before) continue;
+      auto it = std::find_if(mods.begin(), mods.end(), [&](const ModInfo& m) { return m.name == info.name; });
+      if (it != mods.end()) *it = info;
+      else mods.push_back(info);
+    }
+  }
+  return mods;
+}
+
+struct Edge {
+  std::size_t to;
+  bool optional;
+};
+
+// Depth-first search for cycles; each mod on a cycle is marked and gets a
+// problem that spells the cycle out ("a -> b -> a").
+void findCycles(const std::vector<ModInfo>& mods, const std::vector<std::vector<Edge>>& edges,
+                const std::vector<std::size_t>& byNameOrder, std::vector<bool>& broken,
+                std::vector<ModProblem>& problems) {
+  std::vector<int> color(mods.size(), 0);  // 0 new, 1 on the stack, 2 done
+  std::vector<std::size_t> stack;
+  std::function<void(std::size_t)> visit = [&](std::size_t i) {
+    color[i] = 1;
+    stack.push_back(i);
+    for (const Edge& e : edges[i]) {
+      if (color[e.to] == 0) {
+        visit(e.to);
+      } else if (color[e.to] == 1) {
+        auto from = std::find(stack.begin(), stack.end(), e.to);
+        std::string cycle;
+        for (auto it = from; it != stack.end(); ++it) cycle += mods[*it].name + " -> ";
+        cycle += mods[e.to].name;
+        for (auto it = from; it != stack.end(); ++it) {
+          std::string manifest = (fs::path(mods[*it].dir) / "mod.lua").string();
+          problems.push_back({manifest, lineOf(manifest, "depends"),
+                              "dependency cycle: " + cycle + "; none of these mods can load first, so none is loaded",
+                              mods[*it].name});
+          broken[*it] = true;
+        }
+      }
+    }
+    stack.pop_back();
+    color[i] = 2;
+  };
+  for (std::size_t i : byNameOrder)
+    if (color[i] == 0) visit(i);
+}
+
+// Loadable mods in load order (dependencies first, ties by name); every
+// reason a mod cannot load is appended to problems.
+std::vector<ModInfo> resolve(const std::vector<ModInfo>& mods, std::vector<ModProblem>& problems) {
+  const std::size_t n = mods.size();
+  std::map<std::string, std::size_t> byName;
+  for (std::size_t i = 0; i < n; ++i) byName[mods[i].name] = i;
+  std::vector<std::size_t> byNameOrder;
+  for (const auto& [name, i] : byName) byNameOrder.push_back(i);
+  std::vector<bool> broken(n, false);
+  std::vector<std::vector<Edge>> edges(n);
+  for (std::size_t i : byNameOrder) {
+    const ModInfo& m = mods[i];
+    std::string manifest = (fs::path(m.dir) / "mod.lua").string();
+    auto report = [&](const ModDependency& d, std::string msg) {
+      problems.push_back({manifest, lineOf(manifest, d.text), std::move(msg), m.name});
+    };
+    for (const ModDependency& d : m.depends) {
+      if (d.name == m.name) {
+        report(d, "mod \"" + m.name + "\" depends on itself (\"" + d.text + "\"); remove that entry");
+        broken[i] = true;
+        continue;
+      }
+      auto it = byName.find(d.name);
+      if (it == byName.end()) {
+        if (d.optional) continue;
+        report(d, "missing dependency: mod \"" + m.name + "\" needs \"" + d.text + "\" but no mod named \"" + d.name +
+                      "\" was found; install it, or write \"" + d.name + "?\" if the mod works without it");
+        broken[i] = true;
+        continue;
+      }
+      const ModInfo& dep = mods[it->second];
+      if (!satisfies(dep.version, d.constraints)) {
+        report(d, "version mismatch: mod \"" + m.name + "\" needs " + d.name + " " + constraintText(d) + " but " +
+                      d.name + " is " + dep.version + " (" + dep.dir + ")");
+        broken[i] = true;
+        continue;
+      }
+      edges[i].push_back({it->second, d.optional});
+    }
+  }
+  findCycles(mods, edges, byNameOrder, broken, problems);
+  // A mod whose required dependency cannot load cannot load either; an
+  // optional one that cannot load is treated as absent.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t i : byNameOrder) {
+      if (broken[i]) continue;
+      for (const Edge& e : edges[i]) {
+        if (!broken[e.to] || e.optional) continue;
+        std::string manifest = (fs::path(mods[i].dir) / "mod.lua").string();
+        problems.push_back({manifest, lineOf(manifest, "\"" + mods[e.to].name),
+                            "mod \"" + mods[i].name + "\" needs \"" + mods[e.to].name +
+                                "\", which cannot be loaded (see its problems)",
+                            mods[i].name});
+        broken[i] = changed = true;
+        break;
+      }
+    }
+  }
+  // Kahn's algorithm; the ready set is ordered by name, so the order is
+  // deterministic whatever the folders' listing order.
+  std::vector<int> pending(n, 0);
+  std::vector<std::vector<std::size_t>> dependents(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (broken[i]) continue;
+    for (const Edge& e : edges[i]) {
+      if (broken[e.to]) continue;
+      ++pending[i];
+      dependents[e.to].push_back(i);
+    }
+  }
+  std::set<std::pair<std::string, std::size_t>> ready;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!broken[i] && pending[i] == 0) ready.insert({mods[i].name, i});
+  std::vector<ModInfo> order;
+  while (!ready.empty()) {
+    std::size_t i = ready.begin()->second;
+    ready.erase(ready.begin());
+    order.push_back(mods[i]);
+    for (std::size_t d : dependents[i])
+      if (--pending[d] == 0) ready.insert({mods[d].name, d});
+  }
+  return order;
+}
+
+}  // namespace
+
 std::vector<ModProblem> checkMod(const std::string& dir) {
+  fs::path parent = fs::absolute(fs::path(dir)).lexically_normal();
+  if (!parent.has_filename()) parent = parent.parent_path();  // "mods/x/"
+  return checkMod(dir, {parent.parent_path().string()});
+}
+
+std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::string>& searchDirs) {
   std::vector<ModProblem> problems;
   if (!fs::is_directory(dir)) {
-    problems.push_back({dir, 0, "not a folder"});
+    problems.push_back({dir, 0, "not a folder", ""});
     return problems;
   }
   ModInfo info;
-  readManifest(dir, info, problems);
-  // Every Lua file must compile (syntax), scenarios must return a table.
+  std::size_t before = problems.size();
+  bool manifestOk = readManifest(dir, info, problems) && problems.size() == before;
+  // Dependencies: this mod among the others in the search folders.
+  if (manifestOk) {
+    std::vector<ModProblem> ignored, resolved;
+    std::vector<ModInfo> mods = collect(searchDirs, ignored);
+    auto it = std::find_if(mods.begin(), mods.end(), [&](const ModInfo& m) { return m.name == info.name; });
+    if (it != mods.end()) *it = info;
+    else mods.push_back(info);
+    resolve(mods, resolved);
+    for (ModProblem& p : resolved) {
+      if (p.mod != info.name) continue;
+      p.file = (fs::path(dir) / "mod.lua").string();
+      problems.push_back(std::move(p));
+    }
+  }
+  // Every Lua file must compile (syntax).
   std::vector<fs::path> files;
   for (auto& entry : fs::recursive_directory_iterator(dir))
     if (entry.is_regular_file() && entry.path().extension() == ".lua") files.push_back(entry.path());
@@ -143,7 +450,7 @@ std::vector<ModProblem> checkMod(const std::string& dir) {
     lua_State* L = vm.state();
     if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) {
       ScriptError e = LuaVm::parseError(info.name, lua_tostring(L, -1), "");
-      problems.push_back({file.string(), e.line, e.message});
+      problems.push_back({file.string(), e.line, e.message, info.name});
     }
   }
   return problems;
@@ -151,23 +458,8 @@ std::vector<ModProblem> checkMod(const std::string& dir) {
 
 ModRegistry ModRegistry::discover(const std::vector<std::string>& searchDirs) {
   ModRegistry reg;
-  for (const std::string& root : searchDirs) {
-    std::error_code ec;
-    if (!fs::is_directory(root, ec)) continue;
-    std::vector<fs::path> dirs;
-    for (auto& entry : fs::directory_iterator(root, ec))
-      if (entry.is_directory() && fs::exists(entry.path() / "mod.lua")) dirs.push_back(entry.path());
-    std::sort(dirs.begin(), dirs.end());
-    for (const fs::path& d : dirs) {
-      ModInfo info;
-      std::size_t before = reg.m_problems.size();
-      bool ok = readManifest(d.string(), info, reg.m_problems);
-      if (!ok || reg.m_problems.size() != before) continue;
-      auto it = std::find_if(reg.m_mods.begin(), reg.m_mods.end(), [&](const ModInfo& m) { return m.name == info.name; });
-      if (it != reg.m_mods.end()) *it = info;
-      else reg.m_mods.push_back(info);
-    }
-  }
+  std::vector<ModInfo> mods = collect(searchDirs, reg.m_problems);
+  reg.m_mods = resolve(mods, reg.m_problems);
   return reg;
 }
 

@@ -1,5 +1,7 @@
 #include "script/scenario_host.h"
 
+#include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <regex>
 
@@ -32,6 +34,10 @@ void copyLibrary(lua_State* L, const char* lib, std::initializer_list<const char
   lua_remove(L, -2);
 }
 
+/// @function print
+/// Writes its arguments, separated by tabs, to the log as "mod NAME: ...".
+/// @param ... any values, converted with tostring
+/// @example print("spawned", world.body_count(), "bodies")
 int sandboxPrint(lua_State* L) {
   ScenarioHost* host = ScenarioHost::from(L);
   std::string line;
@@ -47,12 +53,27 @@ int sandboxPrint(lua_State* L) {
   return 0;
 }
 
-// load(chunk [, name [, mode [, env]]]) restricted to text chunks; the
-// default environment is the mod's sandbox, never the real globals.
+/// @function load
+/// Compiles a chunk of Lua text, as the standard load, but only text: binary
+/// chunks (precompiled bytecode) can crash the VM and are refused. Without
+/// `env` the chunk sees the mod's own environment, never the real globals.
+/// @param chunk string|function source text, or a function returning pieces of it
+/// @param name? string chunk name for error messages
+/// @param mode? string must be "t" (the default); "b" and "bt" raise an error
+/// @param env? table the chunk's _ENV (default: the mod's environment)
+/// @return function|nil the compiled chunk, or nil and a message
+/// @return string? the error message when compiling failed
+/// @example local f = load("return 1 + 2")  -- f() == 3
 int sandboxLoad(lua_State* L) {
   int n = lua_gettop(L);
   const char* mode = luaL_optstring(L, 3, "t");
-  if (std::string(mode) != "t") return luaL_error(L, "load: binary chunks are not allowed in mods (mode must be \"t\")");
+  if (std::strcmp(mode, "t") != 0)
+    return luaL_error(L, "load: binary chunks are not allowed in mods (mode \"%s\"; use \"t\" or leave it out)", mode);
+  if (lua_type(L, 1) == LUA_TSTRING && lua_rawlen(L, 1) > 0 && lua_tostring(L, 1)[0] == LUA_SIGNATURE[0]) {
+    lua_pushnil(L);
+    lua_pushliteral(L, "load: binary chunks are not allowed in mods (the chunk starts with \"\\27Lua\")");
+    return 2;
+  }
   lua_settop(L, 4);
   if (n < 4) {
     lua_pushvalue(L, lua_upvalueindex(1));  // the sandbox env
@@ -67,15 +88,144 @@ int sandboxLoad(lua_State* L) {
   return 2;
 }
 
+/// @function collectgarbage
+/// The collector is the runtime's; mods may look and nudge, not stop it.
+/// @param opt? string "count" (default), "step", "isrunning" or "collect"; others raise an error
+/// @param arg? integer for "step": the step size in KiB
+/// @return number|boolean "count": memory in use, KiB; "step": true if a cycle finished; "isrunning": true
+/// @example hud_text(("Lua memory: %.0f KiB"):format(collectgarbage("count")))
 int sandboxCollectGarbage(lua_State* L) {
   const char* opt = luaL_optstring(L, 1, "count");
-  if (std::string(opt) != "count") return luaL_error(L, "collectgarbage: only \"count\" is available to mods");
-  lua_pushnumber(L, lua_gc(L, LUA_GCCOUNT, 0) + lua_gc(L, LUA_GCCOUNTB, 0) / 1024.0);
+  if (std::strcmp(opt, "count") == 0) {
+    lua_pushnumber(L, lua_gc(L, LUA_GCCOUNT, 0) + lua_gc(L, LUA_GCCOUNTB, 0) / 1024.0);
+  } else if (std::strcmp(opt, "step") == 0) {
+    int kb = int(luaL_optinteger(L, 2, 0));
+    lua_pushboolean(L, lua_gc(L, LUA_GCSTEP, kb < 0 ? 0 : kb));
+  } else if (std::strcmp(opt, "isrunning") == 0) {
+    lua_pushboolean(L, lua_gc(L, LUA_GCISRUNNING, 0));
+  } else if (std::strcmp(opt, "collect") == 0) {
+    lua_gc(L, LUA_GCCOLLECT, 0);
+    lua_pushinteger(L, 0);
+  } else {
+    return luaL_error(L,
+                      "collectgarbage(\"%s\") is not available to mods: the runtime owns the collector "
+                      "(allowed: \"count\", \"step\", \"isrunning\", \"collect\")",
+                      opt);
+  }
   return 1;
 }
 
-// require "tumble.x" -> <scripts>/tumble/x.lua; require "a.b" -> <mod>/a/b.lua.
-// Nothing else: no C modules, no paths outside the mod and scripts/.
+/// @function setmetatable
+/// The standard setmetatable, except that a metatable with a __gc field is
+/// refused: Lua runs finalizers with hooks off, outside the instruction
+/// budget, so an endless one could hang the game.
+/// @param t table
+/// @param mt table|nil
+/// @return table t
+int sandboxSetMetatable(lua_State* L) {
+  if (lua_istable(L, 2)) {
+    lua_pushliteral(L, "__gc");
+    if (lua_rawget(L, 2) != LUA_TNIL)
+      return luaL_error(L, "setmetatable: __gc is not available to mods (finalizers run outside the "
+                           "instruction budget); release things explicitly instead");
+    lua_pop(L, 1);
+  }
+  lua_pushvalue(L, lua_upvalueindex(1));  // the real setmetatable
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 1);
+  return 1;
+}
+
+// xpcall(f, handler, ...) for mods. Lua calls a message handler from inside
+// the count hook when the budget stops a loop, and hooks are off there, so an
+// endless handler could not be stopped. This one calls the handler after the
+// error has unwound (no traceback is available to mods anyway: no debug).
+const char kXpcallSource[] = R"lua(
+local pcall, type, error = ...
+local function handled(ok, ...) return false, ... end
+return function(f, handler, ...)
+  if type(handler) ~= "function" then error("bad argument #2 to 'xpcall' (function expected)", 2) end
+  local function finish(ok, ...)
+    if ok then return true, ... end
+    return handled(pcall(handler, (...)))
+  end
+  return finish(pcall(f, ...))
+end
+)lua";
+
+// Globals a mod might reach for but must not have, each with the reason and
+// what to use instead. Reading one raises the message; other missing globals
+// read as nil, as in plain Lua.
+struct Forbidden {
+  const char* name;
+  const char* message;
+};
+const Forbidden kForbiddenGlobals[] = {
+    {"io", "io is not available to mods: scripts cannot open files (put Lua data in your mod and require it)"},
+    {"debug", "debug is not available to mods: it can break the sandbox (errors already carry a traceback)"},
+    {"package", "package is not available to mods: require \"x.y\" loads <mod>/x/y.lua or scripts/tumble/...; "
+                "C modules and package.loadlib are not allowed"},
+    {"dofile", "dofile is not available to mods: use require \"x.y\" for <mod>/x/y.lua"},
+    {"loadfile", "loadfile is not available to mods: use require \"x.y\" for <mod>/x/y.lua"},
+    {"loadstring", "loadstring is Lua 5.1; use load(text) (text chunks only)"},
+    {"unpack", "unpack is Lua 5.1; use table.unpack"},
+    {"setfenv", "setfenv is Lua 5.1; pass an env table to load(text, name, \"t\", env)"},
+    {"getfenv", "getfenv is Lua 5.1; use _ENV"},
+    {"warn", "warn is not available to mods: use print (the log) or hud_text"},
+};
+const Forbidden kForbiddenOs[] = {
+    {"execute", "os.execute is not available to mods: only os.clock, os.time, os.date and os.difftime are"},
+    {"exit", "os.exit is not available to mods: end a scenario with game.win / game.lose or let it run out"},
+    {"remove", "os.remove is not available to mods: scripts cannot touch files"},
+    {"rename", "os.rename is not available to mods: scripts cannot touch files"},
+    {"tmpname", "os.tmpname is not available to mods: scripts cannot touch files"},
+    {"getenv", "os.getenv is not available to mods: use param(name, default) for settings"},
+    {"setlocale", "os.setlocale is not available to mods: it would change number formatting for everyone"},
+};
+const Forbidden kForbiddenString[] = {
+    {"dump", "string.dump is not available to mods: binary chunks cannot be loaded anyway"},
+};
+
+// __index of the env, os and string tables: upvalue 1 is a table name ->
+// message of the forbidden keys.
+int forbiddenIndex(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return 0;
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TSTRING) return 0;  // plain nil
+  luaL_where(L, 1);
+  lua_insert(L, -2);
+  lua_concat(L, 2);
+  return lua_error(L);  // no C++ objects in this frame
+}
+
+// Sets a protected metatable on the table at idx whose __index raises the
+// message for each forbidden key.
+void guardTable(lua_State* L, int idx, const Forbidden* begin, const Forbidden* end) {
+  idx = lua_absindex(L, idx);
+  lua_createtable(L, 0, 2);
+  lua_createtable(L, 0, int(end - begin));
+  for (const Forbidden* f = begin; f != end; ++f) {
+    lua_pushstring(L, f->message);
+    lua_setfield(L, -2, f->name);
+  }
+  lua_pushcclosure(L, forbiddenIndex, 1);
+  lua_setfield(L, -2, "__index");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, idx);
+}
+
+const char kLoadingKey = 0;  // sentinel in the require cache: module being loaded
+
+/// @function require
+/// Loads a Lua module once and returns what it returned. "tumble.x" is the
+/// runtime's library (scripts/tumble/x.lua); any other name is a file inside
+/// the mod ("lib.util" -> <mod>/lib/util.lua). Nothing else: no C modules,
+/// no paths outside the mod. A module requiring itself (directly or through
+/// others) is an error that names it.
+/// @param name string module name: letters, digits and _, separated by dots
+/// @return any the module's value (true if it returned nothing)
+/// @example local util = require "lib.util"
 int sandboxRequire(lua_State* L) {
   ScenarioHost* host = ScenarioHost::from(L);
   if (lua_type(L, 1) != LUA_TSTRING) throw LuaArgError("require: expected a module name (a string)");
@@ -84,25 +234,34 @@ int sandboxRequire(lua_State* L) {
   if (!std::regex_match(name, valid))
     throw LuaArgError("require: \"" + name + "\" is not a module name like \"tumble.vec\" or \"lib.util\"");
   lua_getfield(L, lua_upvalueindex(1), name.c_str());  // loaded cache
+  if (lua_touserdata(L, -1) == &kLoadingKey)
+    throw LuaArgError("require: \"" + name + "\" requires itself (a circular require); move the shared part "
+                      "into a third module");
   if (!lua_isnil(L, -1)) return 1;
   lua_pop(L, 1);
-  std::string rel = std::regex_replace(name, std::regex(R"(\.)"), "/") + ".lua";
+  std::string rel = name;
+  std::replace(rel.begin(), rel.end(), '.', '/');
+  rel += ".lua";
   fs::path path = name.rfind("tumble.", 0) == 0 ? fs::path(host->options().scriptsDir) / rel
                                                  : fs::path(host->mod().dir) / rel;
   if (!fs::exists(path))
     throw LuaArgError("require: module \"" + name + "\" not found (looked for " + path.string() +
                       "); C modules are not allowed in mods");
   if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
-    std::string msg = lua_tostring(L, -1);
+    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "cannot load module";
     lua_pop(L, 1);
     throw LuaArgError(msg);
   }
   lua_pushvalue(L, lua_upvalueindex(2));  // env
   lua_setupvalue(L, -2, 1);
+  lua_pushlightuserdata(L, const_cast<char*>(&kLoadingKey));
+  lua_setfield(L, lua_upvalueindex(1), name.c_str());
   lua_pushstring(L, name.c_str());
   if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
-    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in module";
+    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in module " + name;
     lua_pop(L, 1);
+    lua_pushnil(L);
+    lua_setfield(L, lua_upvalueindex(1), name.c_str());
     throw LuaArgError(msg);
   }
   if (lua_isnil(L, -1)) {
@@ -114,7 +273,15 @@ int sandboxRequire(lua_State* L) {
   return 1;
 }
 
-// expect(name, value, {min=, max=})
+/// @function expect
+/// Records an expectation that lands in the run report; a failed one makes
+/// `tumble run` exit with status 2. A boolean without limits must be true; a
+/// number needs limits.
+/// @param name string what is checked, shown in the report
+/// @param value number|boolean the measured value
+/// @param limits? table {min = number, max = number}, inclusive
+/// @return boolean whether the expectation held
+/// @example expect("ball bounced back", ball:position().y, {min = 0.8, max = 1.2})
 int luaExpect(lua_State* L) {
   ScenarioHost* host = ScenarioHost::from(L);
   Expectation e;
@@ -151,7 +318,13 @@ int luaExpect(lua_State* L) {
   return 1;
 }
 
-// param(name, default): the --set value converted to default's type.
+/// @function param
+/// A scenario parameter from the command line (`--set name=value`),
+/// converted to the type of the default; the default when not given.
+/// @param name string parameter name
+/// @param default any returned when absent; its type (number, boolean, string) decides the conversion
+/// @return any the value
+/// @example local count = param("count", 10)  -- tumble run mymod:rain --set count=50
 int luaParam(lua_State* L) {
   ScenarioHost* host = ScenarioHost::from(L);
   if (lua_type(L, 1) != LUA_TSTRING) throw LuaArgError("param: argument 1 must be the parameter's name");
@@ -179,7 +352,10 @@ int luaParam(lua_State* L) {
   }
 }
 
-// hud_text(line, ...): lines shown on the HUD until replaced.
+/// @function hud_text
+/// Replaces the scenario's lines on the HUD; they stay until the next call.
+/// @param ... any one value per line, converted with tostring
+/// @example hud_text(("height: %.2f m"):format(ball:position().y))
 int luaHudText(lua_State* L) {
   std::vector<std::string> lines;
   for (int i = 1; i <= lua_gettop(L); ++i) {
@@ -213,7 +389,7 @@ ScenarioHost::~ScenarioHost() = default;
 
 void ScenarioHost::buildEnvironment() {
   lua_State* L = m_vm.state();
-  // Deterministic random numbers: the run's seed.
+  // Deterministic random numbers: math.random is seeded with the run's seed.
   lua_getglobal(L, "math");
   lua_getfield(L, -1, "randomseed");
   lua_pushinteger(L, lua_Integer(m_options.seed));
@@ -223,8 +399,7 @@ void ScenarioHost::buildEnvironment() {
   lua_newtable(L);  // env
   int env = lua_gettop(L);
   for (const char* name : {"assert", "error", "ipairs", "next", "pairs", "pcall", "rawequal", "rawget", "rawlen",
-                           "rawset", "select", "tonumber", "tostring", "type", "xpcall", "getmetatable",
-                           "setmetatable", "_VERSION"}) {
+                           "rawset", "select", "tonumber", "tostring", "type", "getmetatable", "_VERSION"}) {
     lua_getglobal(L, name);
     lua_setfield(L, env, name);
   }
@@ -234,6 +409,7 @@ void ScenarioHost::buildEnvironment() {
   lua_setfield(L, env, "math");
   copyLibrary(L, "string", {"byte", "char", "find", "format", "gmatch", "gsub", "len", "lower", "match", "pack",
                             "packsize", "rep", "reverse", "sub", "unpack", "upper"});
+  guardTable(L, -1, std::begin(kForbiddenString), std::end(kForbiddenString));
   lua_setfield(L, env, "string");
   copyLibrary(L, "table", {"concat", "insert", "move", "pack", "remove", "sort", "unpack"});
   lua_setfield(L, env, "table");
@@ -242,9 +418,19 @@ void ScenarioHost::buildEnvironment() {
   copyLibrary(L, "coroutine", {"close", "create", "isyieldable", "resume", "running", "status", "wrap", "yield"});
   lua_setfield(L, env, "coroutine");
   copyLibrary(L, "os", {"clock", "time", "date", "difftime"});
+  guardTable(L, -1, std::begin(kForbiddenOs), std::end(kForbiddenOs));
   lua_setfield(L, env, "os");
   lua_pushcfunction(L, sandboxPrint);
   lua_setfield(L, env, "print");
+  lua_getglobal(L, "setmetatable");
+  lua_pushcclosure(L, sandboxSetMetatable, 1);
+  lua_setfield(L, env, "setmetatable");
+  luaL_loadbufferx(L, kXpcallSource, sizeof kXpcallSource - 1, "=[sandbox xpcall]", "t");
+  lua_getglobal(L, "pcall");
+  lua_getglobal(L, "type");
+  lua_getglobal(L, "error");
+  lua_call(L, 3, 1);
+  lua_setfield(L, env, "xpcall");
   lua_pushcfunction(L, sandboxCollectGarbage);
   lua_setfield(L, env, "collectgarbage");
   lua_pushvalue(L, env);
@@ -263,13 +449,37 @@ void ScenarioHost::buildEnvironment() {
   lua_setfield(L, env, "hud_text");
   openBodyType(L);
   openWorldBindings(L, env);
+  openGameBindings(L, env);
+  openTimerBindings(L, env);
+  openRandomBindings(L, env);
+  openTriggerBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
+  guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
   m_envRef = luaL_ref(L, LUA_REGISTRYINDEX);  // pops env
 
   lua_newtable(L);
   m_ctxRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  lua_newtable(L);
+  m_timerFnsRef = luaL_ref(L, LUA_REGISTRYINDEX);
 }
+
+/// @class Scenario
+/// What a scenario file returns. Every field is optional.
+/// @field title string shown in the window title and the HUD
+/// @field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
+/// @field on_start fun(ctx: Ctx) called once before the first step
+/// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
+/// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
+/// @field on_finish fun(ctx: Ctx) called once after the last step: the place for expect()
+/// @field on_reload fun(ctx: Ctx, state: any) called after a hot reload (reserved)
+
+/// @class Ctx
+/// The context passed to every callback (the same table each time).
+/// @field time number simulated time, s (for on_update: the step's start; for on_contact: its end)
+/// @field dt number the fixed step, s (0 in on_start and on_finish)
+/// @field step integer index of the step
+/// @field seed integer the run's seed (--seed)
 
 Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, const std::string& scenario,
                                                           physics::World& world, const ScenarioOptions& options) {
@@ -291,7 +501,8 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
   lua_rawgeti(L, LUA_REGISTRYINDEX, host->m_envRef);
   lua_setupvalue(L, -2, 1);
   ScriptError err;
-  if (!host->m_vm.call(0, 1, mod.name, host->m_file, &err)) return makeError(err.summary() + "\n" + err.traceback);
+  if (!host->m_vm.call(0, 1, mod.name, host->m_file, "top level", &err))
+    return makeError(err.summary() + "\n" + err.traceback);
   if (!lua_istable(L, -1)) {
     lua_pop(L, 1);
     return makeError(where + ": must return a table {on_start = function(ctx) ... end, ...}");
@@ -306,10 +517,11 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
     return makeError(where + ": field 'duration' must be a number of seconds > 0");
   }
   lua_pop(L, 1);
-  for (const char* cb : {"on_start", "on_update", "on_finish", "on_reload"}) {
+  for (const char* cb : {"on_start", "on_update", "on_finish", "on_reload", "on_contact"}) {
     lua_getfield(L, -1, cb);
     bool bad = !lua_isnil(L, -1) && !lua_isfunction(L, -1);
-    if (std::string(cb) == "on_update") host->m_hasUpdate = lua_isfunction(L, -1);
+    if (std::strcmp(cb, "on_update") == 0) host->m_hasUpdate = lua_isfunction(L, -1);
+    if (std::strcmp(cb, "on_contact") == 0) host->m_hasContact = lua_isfunction(L, -1);
     lua_pop(L, 1);
     if (bad) {
       lua_pop(L, 1);
@@ -322,6 +534,7 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
 
 void ScenarioHost::pushCtx(double time_s, double dt_s, std::int64_t step) {
   lua_State* L = m_vm.state();
+  m_now_s = time_s;
   lua_rawgeti(L, LUA_REGISTRYINDEX, m_ctxRef);
   lua_pushnumber(L, time_s);
   lua_setfield(L, -2, "time");
@@ -331,6 +544,14 @@ void ScenarioHost::pushCtx(double time_s, double dt_s, std::int64_t step) {
   lua_setfield(L, -2, "step");
   lua_pushinteger(L, lua_Integer(m_options.seed));
   lua_setfield(L, -2, "seed");
+}
+
+bool ScenarioHost::callRecorded(int nargs, const std::string& what) {
+  ScriptError err;
+  if (m_vm.call(nargs, 0, m_mod.name, m_file, what, &err)) return true;
+  m_errors.push_back(err);
+  log::error(err.summary() + "\n" + err.traceback);
+  return false;
 }
 
 bool ScenarioHost::callLifecycle(const char* name, int nargs, bool* paused, int* consecutive) {
@@ -344,18 +565,16 @@ bool ScenarioHost::callLifecycle(const char* name, int nargs, bool* paused, int*
     return true;
   }
   lua_insert(L, -1 - nargs);
-  ScriptError err;
-  if (m_vm.call(nargs, 0, m_mod.name, m_file + " " + name, &err)) {
+  if (callRecorded(nargs, name)) {
     if (consecutive) *consecutive = 0;
     return true;
   }
-  m_errors.push_back(err);
-  log::error(err.summary() + "\n" + err.traceback);
   if (consecutive && ++*consecutive >= kMaxConsecutiveErrors && paused) {
     *paused = true;
-    ScriptError note = err;
+    ScriptError note = m_errors.back();
+    note.limit = false;
     note.message = std::string(name) + " failed " + std::to_string(kMaxConsecutiveErrors) +
-                   " times in a row and was paused (last error: " + err.message + ")";
+                   " times in a row and was paused (last error: " + note.message + ")";
     m_errors.push_back(note);
     log::warn(note.summary());
   }
@@ -368,15 +587,249 @@ void ScenarioHost::start() {
 }
 
 void ScenarioHost::update(double time_s, double dt_s, std::int64_t step) {
+  m_now_s = time_s;
+  if (!m_timers.empty() && m_timers.front().due_s <= time_s + 1e-9) runTimers(time_s, dt_s, step);
   if (!hasUpdate()) return;
   pushCtx(time_s, dt_s, step);
   lua_pushnumber(m_vm.state(), dt_s);
   callLifecycle("on_update", 2, &m_updatePaused, &m_updateErrors);
 }
 
+void ScenarioHost::afterStep(double time_s, std::int64_t step) {
+  m_now_s = time_s;
+  if (hasContact() && !m_world.contactEvents().empty()) runContacts(time_s, step);
+  if (m_liveTriggers > 0) runTriggers();
+}
+
 void ScenarioHost::finish(double time_s, std::int64_t step) {
   pushCtx(time_s, 0, step);
   callLifecycle("on_finish", 1, nullptr, nullptr);
+}
+
+// ---- contacts -------------------------------------------------------------------
+
+void ScenarioHost::runContacts(double time_s, std::int64_t step) {
+  // Copy first: a callback may remove bodies or create new ones.
+  m_contactScratch.assign(m_world.contactEvents().begin(), m_world.contactEvents().end());
+  lua_State* L = m_vm.state();
+  for (const physics::ContactEvent& e : m_contactScratch) {
+    if (!hasContact()) break;
+    if (!m_world.isValid(e.a) || !m_world.isValid(e.b)) continue;  // removed by an earlier callback
+    pushCtx(time_s, 0, step);
+    pushBody(L, e.a);
+    pushBody(L, e.b);
+    lua_pushnumber(L, e.impulse_Ns);
+    pushVec3(L, e.point_m);
+    pushVec3(L, e.normal);
+    callLifecycle("on_contact", 6, &m_contactPaused, &m_contactErrors);
+  }
+}
+
+// ---- timers -----------------------------------------------------------------------
+
+namespace {
+// Heap order: the earliest due first, ties in creation order.
+bool laterTimer(const auto& a, const auto& b) { return a.due_s != b.due_s ? a.due_s > b.due_s : a.seq > b.seq; }
+}  // namespace
+
+std::uint32_t ScenarioHost::addTimer(double delay_s, double period_s) {
+  lua_State* L = m_vm.state();
+  Timer t;
+  t.id = m_nextTimerId++;
+  t.seq = m_timerSeq++;
+  t.due_s = m_now_s + delay_s;
+  t.period_s = period_s;
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_timerFnsRef);
+  lua_insert(L, -2);
+  lua_rawseti(L, -2, t.id);  // pops the function
+  lua_pop(L, 1);
+  m_timers.push_back(t);
+  std::push_heap(m_timers.begin(), m_timers.end(), [](const Timer& a, const Timer& b) { return laterTimer(a, b); });
+  return t.id;
+}
+
+bool ScenarioHost::timerActive(std::uint32_t id) const {
+  lua_State* L = m_vm.state();
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_timerFnsRef);
+  bool active = lua_rawgeti(L, -1, id) != LUA_TNIL;
+  lua_pop(L, 2);
+  return active;
+}
+
+bool ScenarioHost::cancelTimer(std::uint32_t id) {
+  // The heap entry stays and is skipped when it comes due.
+  bool active = timerActive(id);
+  lua_State* L = m_vm.state();
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_timerFnsRef);
+  lua_pushnil(L);
+  lua_rawseti(L, -2, id);
+  lua_pop(L, 1);
+  return active;
+}
+
+void ScenarioHost::runTimers(double time_s, double dt_s, std::int64_t step) {
+  lua_State* L = m_vm.state();
+  auto later = [](const Timer& a, const Timer& b) { return laterTimer(a, b); };
+  // Timers made while firing wait for the next update, even after(0): so a
+  // timer that re-arms itself cannot keep this loop going.
+  const std::uint64_t seqLimit = m_timerSeq;
+  while (!m_timers.empty() && m_timers.front().due_s <= time_s + 1e-9 && m_timers.front().seq < seqLimit) {
+    std::pop_heap(m_timers.begin(), m_timers.end(), later);
+    Timer t = m_timers.back();
+    m_timers.pop_back();
+    lua_rawgeti(L, LUA_REGISTRYINDEX, m_timerFnsRef);
+    if (lua_rawgeti(L, -1, t.id) != LUA_TFUNCTION) {  // cancelled
+      lua_pop(L, 2);
+      continue;
+    }
+    lua_remove(L, -2);
+    pushCtx(time_s, dt_s, step);
+    ScriptError err;
+    bool ok = m_vm.call(1, 1, m_mod.name, m_file, t.period_s > 0 ? "timer.every" : "timer.after", &err);
+    bool again = t.period_s > 0;
+    if (ok) {
+      again = again && !(lua_isboolean(L, -1) && !lua_toboolean(L, -1));  // returning false stops it
+      lua_pop(L, 1);
+      t.errors = 0;
+    } else {
+      m_errors.push_back(err);
+      log::error(err.summary() + "\n" + err.traceback);
+      if (again && ++t.errors >= kMaxConsecutiveErrors) {
+        again = false;
+        ScriptError note = err;
+        note.limit = false;
+        note.message = "timer.every callback failed " + std::to_string(kMaxConsecutiveErrors) +
+                       " times in a row and was cancelled (last error: " + err.message + ")";
+        m_errors.push_back(note);
+        log::warn(note.summary());
+      }
+    }
+    if (again && timerActive(t.id)) {
+      // Keep the phase (due += period) but fire at most once per update.
+      t.due_s += t.period_s;
+      if (t.due_s <= time_s + 1e-9) t.due_s = time_s + t.period_s;
+      m_timers.push_back(t);
+      std::push_heap(m_timers.begin(), m_timers.end(), later);
+    } else {
+      cancelTimer(t.id);
+    }
+  }
+}
+
+// ---- triggers ---------------------------------------------------------------------
+
+std::uint32_t ScenarioHost::addTrigger(const Vec3& center_m, const Vec3& halfSize_m, int onEnterIdx, int onExitIdx) {
+  lua_State* L = m_vm.state();
+  Trigger fresh;
+  auto slot = std::find_if(m_triggers.begin(), m_triggers.end(), [](const Trigger& t) { return t.id == 0; });
+  Trigger& t = slot != m_triggers.end() ? *slot : m_triggers.emplace_back(std::move(fresh));
+  t.id = m_nextTriggerId++;
+  t.inside.clear();
+  t.center_m = center_m;
+  t.half_m = halfSize_m;
+  if (onEnterIdx) {
+    lua_pushvalue(L, onEnterIdx);
+    t.onEnterRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  }
+  if (onExitIdx) {
+    lua_pushvalue(L, onExitIdx);
+    t.onExitRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  }
+  ++m_liveTriggers;
+  return t.id;
+}
+
+bool ScenarioHost::removeTrigger(std::uint32_t id) {
+  for (Trigger& t : m_triggers) {
+    if (t.id != id) continue;
+    lua_State* L = m_vm.state();
+    if (t.onEnterRef) luaL_unref(L, LUA_REGISTRYINDEX, t.onEnterRef);
+    if (t.onExitRef) luaL_unref(L, LUA_REGISTRYINDEX, t.onExitRef);
+    t.id = 0;  // the slot (and its vectors' capacity) is reused
+    t.onEnterRef = t.onExitRef = 0;
+    t.inside.clear();
+    --m_liveTriggers;
+    return true;
+  }
+  return false;
+}
+
+const std::vector<physics::BodyId>* ScenarioHost::triggerBodies(std::uint32_t id) const {
+  for (const Trigger& t : m_triggers)
+    if (t.id == id && id != 0) return &t.inside;
+  return nullptr;
+}
+
+void ScenarioHost::runTriggers() {
+  // 1. Who is inside now (non-static bodies, by centre of mass), in body
+  //    index order, compared with the last step: enters and exits.
+  m_triggerEvents.clear();
+  for (Trigger& t : m_triggers) {
+    if (t.id == 0) continue;
+    t.scratch.clear();
+    m_world.forEachBody([&](physics::BodyId id, const physics::Body& b) {
+      if (b.type == physics::BodyType::Static) return;
+      if (((b.position_m - t.center_m).cwiseAbs() - t.half_m).maxCoeff() <= 0) t.scratch.push_back(id);
+    });
+    auto before = [](physics::BodyId a, physics::BodyId b) {
+      return a.index != b.index ? a.index < b.index : a.generation < b.generation;
+    };
+    std::size_t i = 0, j = 0;
+    while (i < t.inside.size() || j < t.scratch.size()) {
+      if (j == t.scratch.size() || (i < t.inside.size() && before(t.inside[i], t.scratch[j]))) {
+        if (t.onExitRef) m_triggerEvents.push_back({t.id, t.inside[i], false});
+        ++i;
+      } else if (i == t.inside.size() || before(t.scratch[j], t.inside[i])) {
+        if (t.onEnterRef) m_triggerEvents.push_back({t.id, t.scratch[j], true});
+        ++j;
+      } else {
+        ++i, ++j;
+      }
+    }
+    std::swap(t.inside, t.scratch);
+  }
+  // 2. Call back, after every trigger is updated (callbacks may add or
+  //    remove triggers and bodies).
+  lua_State* L = m_vm.state();
+  for (const TriggerEvent& e : m_triggerEvents) {
+    int ref = 0;
+    for (const Trigger& t : m_triggers)
+      if (t.id == e.trigger) ref = e.enter ? t.onEnterRef : t.onExitRef;
+    if (!ref) continue;  // the trigger was removed by an earlier callback
+    lua_rawgeti(L, LUA_REGISTRYINDEX, ref);
+    pushBody(L, e.body);
+    pushTrigger(L, e.trigger);
+    callRecorded(2, e.enter ? "trigger on_enter" : "trigger on_exit");
+  }
+}
+
+// ---- game state -------------------------------------------------------------------
+
+void ScenarioHost::addMessage(std::string text, double duration_s) {
+  if (m_messages.size() >= kMaxMessages) m_messages.erase(m_messages.begin());
+  m_messages.push_back({std::move(text), m_now_s, duration_s});
+}
+
+std::vector<std::string> ScenarioHost::activeMessages(double time_s) const {
+  std::vector<std::string> lines;
+  for (const GameMessage& m : m_messages)
+    if (time_s >= m.time_s - 1e-9 && time_s < m.time_s + m.duration_s) lines.push_back(m.text);
+  return lines;
+}
+
+void ScenarioHost::decide(Outcome outcome, std::string reason) {
+  if (m_outcome != Outcome::None) return;
+  m_outcome = outcome;
+  m_outcomeReason = std::move(reason);
+  m_outcomeTime_s = m_now_s;
+}
+
+std::uint64_t ScenarioHost::nextRandomSeed() {
+  // splitmix64 of (seed, count): distinct, reproducible streams.
+  std::uint64_t z = m_options.seed + 0x9E3779B97F4A7C15ull * ++m_randomCount;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
 }
 
 void ScenarioHost::setColor(physics::BodyId id, const Eigen::Vector3f& rgb) {

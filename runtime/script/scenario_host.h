@@ -1,10 +1,18 @@
 #pragma once
 // Runs one scenario: loads <mod>/scenarios/<name>.lua into the mod's sandboxed
 // environment and calls its lifecycle (ARCHITECTURE.md):
-//   on_start(ctx), on_update(ctx, dt) at the fixed rate, on_finish(ctx).
+//   on_start(ctx), on_update(ctx, dt) at the fixed rate, on_finish(ctx),
+//   on_contact(ctx, a, b, impulse, point, normal) after a step for each
+//   contact that began in it.
+// Each host owns its Lua state (LuaVm), so every mod has its own tables:
+// nothing one scenario does to `world`, `string` or _G reaches another.
 // Errors never escape: each becomes a ScriptError (mod, file, line,
 // traceback) and the game goes on. A callback that fails kMaxConsecutiveErrors
 // times in a row is paused, so one broken line does not flood the log.
+//
+// Per frame the app calls update() before World::step and afterStep() after
+// it. Neither calls into Lua unless there is something to call: on_update,
+// a due timer, on_contact with a contact event, a trigger enter/exit.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -28,6 +36,16 @@ struct Expectation {
   std::optional<double> min, max;
 };
 
+/// game.message(text, seconds): shown on the HUD from time_s for duration_s.
+struct GameMessage {
+  std::string text;
+  double time_s = 0;
+  double duration_s = 3;
+};
+
+/// game.win / game.lose. The first call decides; later ones are ignored.
+enum class Outcome { None, Won, Lost };
+
 struct ScenarioOptions {
   std::map<std::string, std::string> params;  ///< --set KEY=VALUE for the script (param())
   std::uint64_t seed = 1;
@@ -47,10 +65,16 @@ class ScenarioHost {
   ~ScenarioHost();
 
   void start();
+  /// Before World::step: due timers, then on_update. time_s: the step's start.
   void update(double time_s, double dt_s, std::int64_t step);
+  /// After World::step (time_s: the step's end): on_contact for each contact
+  /// that began, then trigger volumes' on_enter / on_exit. No Lua call, and
+  /// no work beyond two size checks, when the scenario has neither.
+  void afterStep(double time_s, std::int64_t step);
   void finish(double time_s, std::int64_t step);
 
   bool hasUpdate() const { return m_hasUpdate && !m_updatePaused; }
+  bool hasContact() const { return m_hasContact && !m_contactPaused; }
   const std::string& title() const { return m_title; }
   /// Seconds the scenario asks to run for when --seconds/--steps are absent.
   double duration_s() const { return m_duration_s; }
@@ -58,25 +82,81 @@ class ScenarioHost {
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
   const std::vector<std::string>& hudText() const { return m_hudText; }
+  /// game.message lines, oldest first (at most kMaxMessages kept).
+  const std::vector<GameMessage>& messages() const { return m_messages; }
+  /// Messages still to be shown at time_s (for the HUD).
+  std::vector<std::string> activeMessages(double time_s) const;
+  /// game.score; hasScore() is false until a script sets one.
+  double score() const { return m_score; }
+  bool hasScore() const { return m_hasScore; }
+  /// game.win / game.lose: the outcome, its reason and when it was decided.
+  Outcome outcome() const { return m_outcome; }
+  const std::string& outcomeReason() const { return m_outcomeReason; }
+  double outcomeTime_s() const { return m_outcomeTime_s; }
+  /// Simulated time of the callback being run (timers count from it).
+  double now_s() const { return m_now_s; }
   /// Display colour (linear RGB 0..1) of a body made by the script.
   Eigen::Vector3f colorOf(physics::BodyId id) const;
   physics::World& world() { return m_world; }
   const ModInfo& mod() const { return m_mod; }
   const std::string& scenarioFile() const { return m_file; }
   std::size_t luaMemoryBytes() const { return m_vm.memoryUsed(); }
+  /// Lua calls made so far (0 per frame for a scenario without callbacks).
+  std::uint64_t luaCallCount() const { return m_vm.callCount(); }
+
+  static constexpr std::size_t kMaxMessages = 64;
 
   // Used by the bindings (bind_*.cpp).
   void setColor(physics::BodyId id, const Eigen::Vector3f& rgb);
   void addExpectation(Expectation e) { m_expectations.push_back(std::move(e)); }
   const ScenarioOptions& options() const { return m_options; }
   void setHudText(std::vector<std::string> lines) { m_hudText = std::move(lines); }
+  void addMessage(std::string text, double duration_s);
+  void setScore(double score) { m_score = score, m_hasScore = true; }
+  void decide(Outcome outcome, std::string reason);
+  /// Timers (bind_timer.cpp): the function is on top of the stack and is
+  /// popped. Returns the timer's id (> 0).
+  std::uint32_t addTimer(double delay_s, double period_s);
+  bool cancelTimer(std::uint32_t id);
+  bool timerActive(std::uint32_t id) const;
+  /// Trigger boxes (bind_trigger.cpp): on_enter / on_exit functions at the
+  /// given stack indices (0 = none). Returns the trigger's id (> 0).
+  std::uint32_t addTrigger(const Vec3& center_m, const Vec3& halfSize_m, int onEnterIdx, int onExitIdx);
+  bool removeTrigger(std::uint32_t id);
+  /// Bodies inside a trigger after the last step (empty for a removed one).
+  const std::vector<physics::BodyId>* triggerBodies(std::uint32_t id) const;
+  /// Seed for random.new() without a seed: the run's seed mixed with a count.
+  std::uint64_t nextRandomSeed();
   static ScenarioHost* from(lua_State* L);
 
  private:
+  struct Timer {
+    double due_s = 0, period_s = 0;  ///< period 0: fires once
+    std::uint64_t seq = 0;           ///< creation order: ties fire in it
+    std::uint32_t id = 0;
+    int errors = 0;                  ///< consecutive failures
+  };
+  struct Trigger {
+    std::uint32_t id = 0;  ///< 0: removed slot
+    Vec3 center_m = Vec3::Zero(), half_m = Vec3::Zero();
+    int onEnterRef = 0, onExitRef = 0;  ///< registry refs, 0 = none
+    std::vector<physics::BodyId> inside, scratch;  ///< sorted by index
+  };
+  struct TriggerEvent {
+    std::uint32_t trigger;
+    physics::BodyId body;
+    bool enter;
+  };
+
   ScenarioHost(const ModInfo& mod, physics::World& world, const ScenarioOptions& options);
   void buildEnvironment();
   bool callLifecycle(const char* name, int nargs, bool* paused, int* consecutive);
+  /// Calls the function below nargs args; records an error under `what`.
+  bool callRecorded(int nargs, const std::string& what);
   void pushCtx(double time_s, double dt_s, std::int64_t step);
+  void runTimers(double time_s, double dt_s, std::int64_t step);
+  void runContacts(double time_s, std::int64_t step);
+  void runTriggers();
 
   LuaVm m_vm;
   ModInfo m_mod;
@@ -87,16 +167,44 @@ class ScenarioHost {
   double m_duration_s = 10;
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   bool m_hasUpdate = false, m_updatePaused = false;
-  int m_updateErrors = 0;
+  bool m_hasContact = false, m_contactPaused = false;
+  int m_updateErrors = 0, m_contactErrors = 0;
+  double m_now_s = 0;
   std::vector<ScriptError> m_errors;
   std::vector<Expectation> m_expectations;
   std::vector<std::string> m_hudText;
+  std::vector<GameMessage> m_messages;
+  double m_score = 0;
+  bool m_hasScore = false;
+  Outcome m_outcome = Outcome::None;
+  std::string m_outcomeReason;
+  double m_outcomeTime_s = 0;
   std::vector<Eigen::Vector3f> m_colors;  ///< by body slot index
+  // Timers: a min-heap on (due, seq); functions live in a Lua table keyed by
+  // id (m_timerFnsRef), so cancelling removes the function and a popped
+  // timer without one is skipped.
+  std::vector<Timer> m_timers;
+  int m_timerFnsRef = 0;
+  std::uint32_t m_nextTimerId = 1;
+  std::uint64_t m_timerSeq = 0;
+  std::vector<Trigger> m_triggers;
+  std::uint32_t m_nextTriggerId = 1;
+  int m_liveTriggers = 0;
+  std::vector<TriggerEvent> m_triggerEvents;        ///< reused each step
+  std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
+  std::uint64_t m_randomCount = 0;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
 void openWorldBindings(lua_State* L, int envIndex);
 void openBodyType(lua_State* L);
 void pushBody(lua_State* L, physics::BodyId id);
+void pushTrigger(lua_State* L, std::uint32_t id);
+/// game, timer, random and trigger tables (bind_game.cpp, bind_timer.cpp,
+/// bind_random.cpp, bind_trigger.cpp), each set as a field of the env.
+void openGameBindings(lua_State* L, int envIndex);
+void openTimerBindings(lua_State* L, int envIndex);
+void openRandomBindings(lua_State* L, int envIndex);
+void openTriggerBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

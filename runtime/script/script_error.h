@@ -10,6 +10,9 @@ struct ScriptError {
   int line = 0;           ///< 0 when unknown
   std::string message;    ///< the Lua message without the "file:line:" prefix
   std::string traceback;  ///< Lua stack traceback
+  /// Stopped by the instruction or memory budget. summary() then reads
+  /// "mod X: scenarios/y.lua: on_update exceeded N instructions ...".
+  bool limit = false;
   /// "mod base: scenarios/drop.lua:12: attempt to index a nil value"
   std::string summary() const;
 };

@@ -4,6 +4,22 @@
 
 namespace tumble::script {
 
+/// @class Vec3
+/// A vector as the API returns it: {x=, y=, z=}. Arguments also accept the
+/// short form {x, y, z}. Colours use the same shape for {r, g, b}.
+/// @field x number
+/// @field y number up
+/// @field z number
+
+/// @alias Vec3Arg Vec3|number[] a vector argument: {x=, y=, z=} or {x, y, z}
+
+/// @class Quat
+/// A unit quaternion {w=, x=, y=, z=}.
+/// @field w number
+/// @field x number
+/// @field y number
+/// @field z number
+
 int raiseLuaError(lua_State* L, const char* message) {
   luaL_where(L, 1);
   lua_pushstring(L, message);
