@@ -73,8 +73,9 @@ int listMods(const std::vector<std::string>& modDirs) {
   return reg.problems().empty() ? 0 : 1;
 }
 
-int checkModDir(const std::string& dir) {
-  auto problems = script::checkMod(dir);
+int checkModDir(const std::string& dir, const std::vector<std::string>& modDirs) {
+  // Dependencies resolve against every mod folder, as when playing.
+  auto problems = script::checkMod(dir, modSearchDirs(modDirs));
   if (problems.empty()) {
     std::printf("%s: no problems found\n", dir.c_str());
     return 0;
@@ -130,7 +131,7 @@ void addCommands(CLI::App& cli, int* exitCode) {
 
   CLI::App* check = cli.add_subcommand("check", "validate a mod folder and list all its problems");
   check->add_option("moddir", st->checkDir, "the mod's folder")->required();
-  check->callback([st, exitCode] { *exitCode = checkModDir(st->checkDir); });
+  check->callback([st, exitCode] { *exitCode = checkModDir(st->checkDir, st->modDirs); });
 
   CLI::App* list = cli.add_subcommand("list", "list mods, scenarios, vehicles and emitters");
   list->callback([st, exitCode] { *exitCode = listMods(st->modDirs); });

@@ -40,6 +40,16 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
   for (const auto& e : scene.host().errors())
     errors.push_back({{"mod", e.mod}, {"file", e.file}, {"line", e.line}, {"message", e.message},
                       {"traceback", e.traceback}});
+  // Game state scripts set (game.score, game.win/lose, game.message).
+  const auto& host = scene.host();
+  json game = {{"score", host.hasScore() ? json(host.score()) : json(nullptr)},
+               {"outcome", host.outcome() == script::Outcome::Won    ? json("won")
+                           : host.outcome() == script::Outcome::Lost ? json("lost")
+                                                                     : json(nullptr)},
+               {"reason", host.outcomeReason()},
+               {"at_s", host.outcome() != script::Outcome::None ? json(host.outcomeTime_s()) : json(nullptr)},
+               {"messages", json::array()}};
+  for (const auto& m : host.messages()) game["messages"].push_back({{"text", m.text}, {"time_s", m.time_s}});
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(world.stateHash()));
   return json{
@@ -73,6 +83,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
         {"nan_events", err.nanEvents}}},
       {"expectations", expectations},
       {"script_errors", errors},
+      {"game", game},
       {"state_hash", std::string(hash)},
   };
 }

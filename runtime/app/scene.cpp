@@ -5,6 +5,9 @@
 
 #include "app/paths.h"
 #include "script/mods.h"
+#if TUMBLE_HAVE_TERRAIN
+#include "app/terrain_scene.h"
+#endif
 
 namespace tumble::app {
 
@@ -60,6 +63,10 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
     if (!(st = parseSetting(key, value, &d))) return st;
     if (!(d > 0 && d <= 1)) return makeError("--set " + key + ": baumgarte must be in (0, 1]");
     s.baumgarte = Real(d);
+  } else if (k == "solver_tolerance") {
+    if (!(st = parseSetting(key, value, &d))) return st;
+    if (!(d >= 0 && d < 1)) return makeError("--set " + key + ": solver_tolerance must be in [0, 1)");
+    s.solverTolerance = Real(d);
   } else if (k == "gravity") {
     if (!(st = parseSetting(key, value, &d))) return st;
     s.gravity_mps2 = Vec3(0, Real(-d), 0);
@@ -67,7 +74,7 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
     return makeError("--set " + key +
                      ": unknown physics setting (known: physics.substeps, physics.iterations, "
                      "physics.relax_iterations, physics.soft_contacts, physics.sleep, physics.baumgarte, "
-                     "physics.gravity)");
+                     "physics.solver_tolerance, physics.gravity)");
   }
   return Ok{};
 }
@@ -105,22 +112,52 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   script::ScenarioOptions so;
   so.seed = options.seed;
   so.scriptsDir = scriptsDir();
+  std::map<std::string, std::string> terrainSettings = options.terrainDefaults;
   for (const auto& [key, value] : options.sets) {
-    if (key.rfind("physics.", 0) == 0) {
+    if (key.rfind("terrain.", 0) == 0) {
+      terrainSettings[key] = value;
+    } else if (key.rfind("physics.", 0) == 0) {
       if (auto st = applyPhysicsSetting(ws, key, value); !st) return makeError(st.error());
     } else {
       so.params[key] = value;
     }
   }
   scene->m_world = std::make_unique<physics::World>(ws);
+#if TUMBLE_HAVE_TERRAIN
+  if (TerrainScene::requested(terrainSettings)) {
+    auto terrain = TerrainScene::create(terrainSettings);
+    if (!terrain) return makeError(terrain.error());
+    scene->m_terrain = std::move(terrain.value());
+    scene->m_world->setHeightField(&scene->m_terrain->heightField());
+  }
+#else
+  if (!terrainSettings.empty()) return makeError("terrain.*: this build has no terrain module");
+#endif
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
   return scene;
 }
 
+Scene::~Scene() = default;
+
+void Scene::registerStaticObjects() {
+#if TUMBLE_HAVE_TERRAIN
+  if (!m_terrain) return;
+  m_world->forEachBody([&](physics::BodyId id, const physics::Body& b) {
+    if (b.type != physics::BodyType::Static || b.shape.type == physics::ShapeType::Plane) return;
+    Vec3 ext = Vec3::Constant(b.shape.boundingRadius());
+    if (b.shape.type == physics::ShapeType::Box)
+      ext = b.orientation.toRotationMatrix().cwiseAbs() * b.shape.halfExtents_m;
+    // Objects off the map are simply not registered.
+    (void)m_terrain->terrain().addStaticObject(id.index, terrain::Aabb{b.position_m - ext, b.position_m + ext});
+  });
+#endif
+}
+
 std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
+  if (m_terrain) names.push_back("terrain");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -139,6 +176,9 @@ void Scene::savePreviousState() {
 
 void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
   out.shapes.clear();
+#if TUMBLE_HAVE_TERRAIN
+  out.terrain = m_terrain ? &m_terrain->surface() : nullptr;
+#endif
   m_world->forEachBody([&](physics::BodyId id, const physics::Body& b) {
     render::DrawShape s;
     Vec3 p = b.position_m;

@@ -23,7 +23,12 @@ struct SceneOptions {
   int substeps = 0;  ///< 0: the world's default
   std::string integrator = "symplectic_euler";
   std::uint64_t seed = 1;
+  /// terrain.* settings a scenario asks for by default (terrain_scene.h lists
+  /// the keys); --set terrain.* wins. Empty: no terrain unless --set asks.
+  std::map<std::string, std::string> terrainDefaults;
 };
+
+class TerrainScene;
 
 /// Integrators the rigid-body world offers (more come with the numerics lab).
 const std::vector<std::string>& rigidBodyIntegrators();
@@ -31,6 +36,7 @@ const std::vector<std::string>& rigidBodyIntegrators();
 class Scene {
  public:
   static Result<std::unique_ptr<Scene>> create(const SceneOptions& options);
+  ~Scene();
 
   physics::World& world() { return *m_world; }
   script::ScenarioHost& host() { return *m_host; }
@@ -39,6 +45,11 @@ class Scene {
   std::string name() const { return m_modName + ":" + m_scenarioName; }
   std::vector<std::string> subsystems() const;
   void noteSubsystem(const std::string& name) { m_extraSubsystems.push_back(name); }
+  /// A terrain exists only when asked for (--set terrain.*, terrainDefaults).
+  bool hasTerrain() const { return m_terrain != nullptr; }
+  /// Registers every static body over the terrain in its tree of static
+  /// objects (call after the scenario's on_start made them). No terrain: nothing.
+  void registerStaticObjects();
 
   /// Builds what the renderer reads: every body as a shape with its colour.
   /// alpha in [0, 1] interpolates between the previous and current step.
@@ -49,6 +60,7 @@ class Scene {
  private:
   SceneOptions m_options;
   std::string m_modName, m_scenarioName;
+  std::unique_ptr<TerrainScene> m_terrain;  ///< before m_world: the world points at its height field
   std::unique_ptr<physics::World> m_world;
   std::unique_ptr<script::ScenarioHost> m_host;
   std::vector<Vec3> m_prevPosition;

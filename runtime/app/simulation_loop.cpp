@@ -17,9 +17,12 @@ void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   scene.host().update(time_s, scene.options().dt_s, step);
   double script = sw.seconds();
   scene.world().step(Real(scene.options().dt_s));
+  double physics = sw.seconds() - script;
+  // Contact events and trigger volumes (no Lua call when nothing listens).
+  scene.host().afterStep(time_s + scene.options().dt_s, step);
   double total = sw.seconds();
-  t.script_s += script;
-  t.physics_s += total - script;
+  t.script_s += total - physics;
+  t.physics_s += physics;
   t.stepMs.push_back(total * 1000.0);
 }
 
@@ -64,6 +67,11 @@ render::HudStats hudStats(Scene& scene, double fps, const RunTimings& perFrame, 
   for (const auto& e : scene.host().errors()) h.messages.push_back(e.summary());
   if (h.messages.size() > 5) h.messages.erase(h.messages.begin(), h.messages.end() - 5);
   for (const auto& line : scene.host().hudText()) h.messages.insert(h.messages.begin(), line);
+  for (const auto& m : scene.host().activeMessages(time_s)) h.messages.insert(h.messages.begin(), m);
+  if (scene.host().hasScore()) h.messages.insert(h.messages.begin(), "score: " + std::to_string(scene.host().score()));
+  if (scene.host().outcome() != script::Outcome::None)
+    h.messages.insert(h.messages.begin(), std::string(scene.host().outcome() == script::Outcome::Won ? "WON: " : "LOST: ") +
+                                              scene.host().outcomeReason());
   return h;
 }
 
@@ -74,6 +82,7 @@ Result<std::unique_ptr<render::Renderer>> makeRenderer(Scene& scene, int w, int 
   cfg.title = "Tumble - " + scene.name();
   cfg.forceOffscreen = offscreen;
   cfg.hud = hud;
+  if (scene.hasTerrain()) cfg.msaaSamples = 1;  // terrain fill rate on llvmpipe (render/README.md)
   auto r = render::Renderer::create(cfg);
   if (!r) return makeError("cannot open a window or an offscreen GL context: " + r.error());
   scene.noteSubsystem("render");
@@ -107,6 +116,7 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     Stopwatch sw;
     scene.host().start();
     t.script_s += sw.seconds();
+    scene.registerStaticObjects();
   }
   if (renderer) frameCamera(scene, renderer->camera());  // after on_start made the bodies
   t.startup_s = processClock.seconds();
@@ -181,6 +191,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   render::Controls controls;
   render::FrameSnapshot snap;
   scene.host().start();
+  scene.registerStaticObjects();
   frameCamera(scene, renderer.camera());  // after on_start made the bodies
   scene.savePreviousState();
   double time_s = 0, accumulator = 0;

@@ -51,13 +51,16 @@ TEST(Screenshot, RunScreenshotShowsTheBodiesNotJustTheSky) {
 
 TEST(Screenshot, AtPicksTheMomentOfThePicture) {
   std::string dir = outDir("screenshot_at");
-  auto r0 = runTumble("run base:drop --seconds 3 --screenshot " + dir + "/t0.png --at 0 --width 320 --height 240");
-  auto r3 = runTumble("run base:drop --seconds 3 --screenshot " + dir + "/t3.png --width 320 --height 240");
-  ASSERT_EQ(r0.exitCode, 2) << "expectations fail at 3 s, things still move: " << r0.output;
+  // At 1 s the bodies are still falling; whether the scenario's rest checks
+  // hold then is not this test's business, only that both runs finished.
+  auto r0 = runTumble("run base:drop --seconds 1 --screenshot " + dir + "/t0.png --at 0 --width 320 --height 240");
+  auto r3 = runTumble("run base:drop --seconds 1 --screenshot " + dir + "/t3.png --width 320 --height 240");
+  ASSERT_TRUE(r0.exitCode == 0 || r0.exitCode == 2) << r0.output;
+  ASSERT_TRUE(r3.exitCode == 0 || r3.exitCode == 2) << r3.output;
   Image a = load(dir + "/t0.png"), b = load(dir + "/t3.png");
   ASSERT_EQ(a.rgb.size(), b.rgb.size());
   ASSERT_FALSE(a.rgb.empty());
-  EXPECT_NE(a.rgb, b.rgb) << "bodies fell between 0 s and 3 s";
+  EXPECT_NE(a.rgb, b.rgb) << "bodies fell between 0 s and 1 s";
 }
 
 TEST(Screenshot, PlayWithoutADisplayPlaysOffscreenAndWritesAPicture) {

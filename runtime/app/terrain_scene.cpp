@@ -1,0 +1,175 @@
+#include "app/terrain_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "terrain/generators.h"
+
+namespace tumble::app {
+
+// ---- TerrainHeightField --------------------------------------------------------
+
+void TerrainHeightField::visitTriangles(const Vec3& lo, const Vec3& hi, TriangleVisitor visit, void* ctx) const {
+  terrain::Aabb box{lo, hi};
+  m_terrain.forEachTriangleInBox(box, [&](const terrain::TerrainTriangle& t) {
+    physics::HeightFieldTriangle h;
+    h.v[0] = t.vertices[0];
+    h.v[1] = t.vertices[1];
+    h.v[2] = t.vertices[2];
+    h.normal = t.normal;
+    h.id = 2 * t.block + t.half;
+    visit(ctx, h);
+  });
+}
+
+bool TerrainHeightField::surfaceAt(Real x, Real z, Real* height, Vec3* normal) const {
+  if (!m_terrain.contains(x, z)) return false;
+  *height = m_terrain.heightAt(x, z);
+  *normal = m_terrain.normalAt(x, z);
+  return true;
+}
+
+Real TerrainHeightField::frictionAt(Real x, Real z) const { return m_terrain.frictionAt(x, z); }
+
+bool TerrainHeightField::rayCast(const Vec3& origin, const Vec3& dir, Real maxDistance,
+                                 physics::HeightFieldHit* hit) const {
+  auto h = m_terrain.rayCast(origin, dir, maxDistance);
+  if (!h) return false;
+  hit->distance_m = h->distance_m;
+  hit->point_m = h->point;
+  hit->normal = h->normal;
+  return true;
+}
+
+void TerrainHeightField::bounds(Vec3* lo, Vec3* hi) const {
+  const terrain::Aabb b = m_terrain.bounds();
+  *lo = b.min;
+  *hi = b.max;
+}
+
+// ---- TerrainScene ----------------------------------------------------------------
+
+namespace {
+
+using Settings = std::map<std::string, std::string>;
+
+Status parseNumber(const Settings& s, const std::string& key, double lo, double hi, double* out) {
+  auto it = s.find(key);
+  if (it == s.end()) return Ok{};
+  std::istringstream in(it->second);
+  double v = 0;
+  in >> v;
+  if (!in || !in.eof() || !(v >= lo && v <= hi)) {
+    std::ostringstream msg;
+    msg << "--set " << key << "=" << it->second << ": expected a number in [" << lo << ", " << hi << "]";
+    return makeError(msg.str());
+  }
+  *out = v;
+  return Ok{};
+}
+
+/// Island: fades the plasma to nothing towards the border (sea), then adds a
+/// ridge across the middle and a ditch.
+void shapeIsland(terrain::HeightMap& map, std::uint64_t seed) {
+  const int w = map.width(), h = map.height();
+  const double cx = (w - 1) / 2.0, cz = (h - 1) / 2.0, R = std::min(cx, cz);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const double r = std::hypot(i - cx, j - cz) / R;
+      const double t = std::clamp((0.95 - r) / 0.45, 0.0, 1.0);
+      const double f = t * t * (3 - 2 * t);  // smoothstep: 1 inside r = 0.5, 0 beyond 0.95
+      map.set(i, j, std::uint16_t(std::lround(map.at(i, j) * (0.15 + 0.85 * f) * f)));
+    }
+  terrain::RidgeParams ridge;
+  ridge.fromX = 0.3 * w, ridge.fromZ = 0.35 * h, ridge.toX = 0.7 * w, ridge.toZ = 0.6 * h;
+  ridge.height = 22000, ridge.halfWidth = w / 18.0, ridge.seed = seed + 1;
+  terrain::addRidge(map, ridge);
+  terrain::RidgeParams ditch;
+  ditch.fromX = 0.35 * w, ditch.fromZ = 0.72 * h, ditch.toX = 0.68 * w, ditch.toZ = 0.52 * h;
+  ditch.height = -12000, ditch.halfWidth = w / 40.0, ditch.seed = seed + 2;
+  terrain::addRidge(map, ditch);
+}
+
+}  // namespace
+
+bool TerrainScene::requested(const Settings& s) {
+  return s.count("terrain.heightmap") > 0 || s.count("terrain.generate") > 0;
+}
+
+Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s) {
+  static const char* kKnown[] = {"terrain.heightmap", "terrain.generate", "terrain.size",   "terrain.roughness",
+                                 "terrain.spacing",   "terrain.height",   "terrain.style"};
+  for (const auto& [key, value] : s) {
+    if (key.rfind("terrain.", 0) != 0) continue;
+    if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
+      return makeError("--set " + key +
+                       ": unknown terrain setting (known: terrain.heightmap, terrain.generate, terrain.size, "
+                       "terrain.roughness, terrain.spacing, terrain.height, terrain.style)");
+  }
+  double size = 1025, roughness = 0.5, spacing = 1, height = 40, seed = 0;
+  if (auto st = parseNumber(s, "terrain.size", terrain::kMinHeightMapSide, terrain::kMaxHeightMapSide, &size); !st)
+    return makeError(st.error());
+  if (auto st = parseNumber(s, "terrain.roughness", 0.01, 1, &roughness); !st) return makeError(st.error());
+  if (auto st = parseNumber(s, "terrain.spacing", 0.01, 1000, &spacing); !st) return makeError(st.error());
+  if (auto st = parseNumber(s, "terrain.height", 0.01, 10000, &height); !st) return makeError(st.error());
+  const auto styleIt = s.find("terrain.style");
+  const std::string style = styleIt == s.end() ? "hills" : styleIt->second;
+  if (style != "hills" && style != "island")
+    return makeError("--set terrain.style=" + style + ": expected hills or island");
+
+  terrain::HeightMap map;
+  terrain::TerrainDesc desc;
+  desc.spacing_m = spacing;
+  desc.heightScale_m = height / 65535.0;
+  if (auto it = s.find("terrain.heightmap"); it != s.end()) {
+    const std::string& path = it->second;
+    auto loaded = terrain::loadHeightMapPng(path);
+    if (!loaded) return makeError("--set terrain.heightmap=" + path + ": " + loaded.error());
+    map = std::move(loaded.value());
+    // Without a sidecar: centred on the origin, the spacing and height asked for.
+    desc.originX_m = -(map.width() - 1) * spacing / 2;
+    desc.originZ_m = -(map.height() - 1) * spacing / 2;
+    auto sidecar = terrain::loadSidecar(path, desc);
+    if (!sidecar) return makeError("--set terrain.heightmap=" + path + ": " + sidecar.error());
+    desc = sidecar.value();
+  } else {
+    if (auto st = parseNumber(s, "terrain.generate", 0, 9.0e15, &seed); !st) return makeError(st.error());
+    const int n = int(size);
+    map = terrain::generatePlasma(n, n, {std::uint64_t(seed), roughness});
+    if (style == "island") {
+      shapeIsland(map, std::uint64_t(seed));
+      desc.baseHeight_m = -0.1 * height;  // the sea (y < 0) around the island
+    }
+    desc.originX_m = -(n - 1) * spacing / 2;
+    desc.originZ_m = -(n - 1) * spacing / 2;
+  }
+  auto created = terrain::Terrain::create(std::move(map), desc);
+  if (!created) return makeError(created.error());
+  auto scene = std::unique_ptr<TerrainScene>(new TerrainScene());
+  scene->m_terrain = std::make_unique<terrain::Terrain>(std::move(created.value()));
+  scene->m_field = std::make_unique<TerrainHeightField>(*scene->m_terrain);
+  scene->fillSurface();
+  return scene;
+}
+
+void TerrainScene::fillSurface() {
+  const terrain::Terrain& t = *m_terrain;
+  const terrain::TerrainDesc& d = t.desc();
+  m_surface.samplesX = t.heights().width();
+  m_surface.samplesZ = t.heights().height();
+  m_surface.spacing_m = float(d.spacing_m);
+  m_surface.heightScale_m = float(d.heightScale_m);
+  m_surface.baseHeight_m = float(d.baseHeight_m);
+  m_surface.originX_m = float(d.originX_m);
+  m_surface.originZ_m = float(d.originZ_m);
+  m_surface.heights = t.heights().samples().data();
+  if (const terrain::MaterialMaps* m = t.materials()) {
+    m_surface.textureIndex = m->layer(terrain::MaterialLayer::Texture).data();
+    m_surface.bump = m->layer(terrain::MaterialLayer::Bump).data();
+  }
+  ++m_surface.revision;
+}
+
+}  // namespace tumble::app

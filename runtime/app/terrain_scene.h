@@ -1,0 +1,64 @@
+#pragma once
+// Terrain in a scene: the app is where physics and terrain meet
+// (ARCHITECTURE.md). TerrainScene owns a terrain::Terrain, exposes it to
+// physics as a physics::HeightField and to the renderer as a
+// render::TerrainSurface. A scene gets one only when asked for:
+//
+//   --set terrain.heightmap=PATH     16-bit (or 8-bit) grey PNG, with the
+//                                    optional sidecar PATH.json (terrain_desc.h);
+//                                    without a sidecar the map is centred on
+//                                    the origin
+//   --set terrain.generate=SEED      a plasma terrain, deterministic per seed:
+//     terrain.size=N                 samples per side (default 1025)
+//     terrain.roughness=R            plasma roughness in (0, 1] (default 0.5)
+//     terrain.spacing=M              metres between samples (default 1)
+//     terrain.height=M               highest point above the lowest (default 40)
+//     terrain.style=hills|island     island: sea around, a ridge and a ditch
+//
+// SceneOptions::terrainDefaults supplies the same keys per scenario; --set wins.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+#include "physics/height_field.h"
+#include "render/renderer.h"
+#include "terrain/terrain.h"
+
+namespace tumble::app {
+
+/// physics::HeightField over a terrain::Terrain (no copy of the heights).
+class TerrainHeightField final : public physics::HeightField {
+ public:
+  explicit TerrainHeightField(const terrain::Terrain& terrain) : m_terrain(terrain) {}
+  void visitTriangles(const Vec3& lo, const Vec3& hi, TriangleVisitor visit, void* ctx) const override;
+  bool surfaceAt(Real x_m, Real z_m, Real* height_m, Vec3* normal) const override;
+  Real frictionAt(Real x_m, Real z_m) const override;
+  bool rayCast(const Vec3& origin_m, const Vec3& unitDir, Real maxDistance_m,
+               physics::HeightFieldHit* hit) const override;
+  void bounds(Vec3* lo, Vec3* hi) const override;
+
+ private:
+  const terrain::Terrain& m_terrain;
+};
+
+class TerrainScene {
+ public:
+  /// True if `settings` (terrain.* keys) ask for a terrain.
+  static bool requested(const std::map<std::string, std::string>& settings);
+  /// Loads or generates the terrain; errors name the key or the file.
+  static Result<std::unique_ptr<TerrainScene>> create(const std::map<std::string, std::string>& settings);
+
+  const terrain::Terrain& terrain() const { return *m_terrain; }
+  terrain::Terrain& terrain() { return *m_terrain; }
+  const physics::HeightField& heightField() const { return *m_field; }
+  const render::TerrainSurface& surface() const { return m_surface; }
+
+ private:
+  void fillSurface();
+  std::unique_ptr<terrain::Terrain> m_terrain;
+  std::unique_ptr<TerrainHeightField> m_field;
+  render::TerrainSurface m_surface;
+};
+
+}  // namespace tumble::app
