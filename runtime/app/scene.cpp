@@ -123,6 +123,11 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
     }
   }
   scene->m_world = std::make_unique<physics::World>(ws);
+  auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
+  if (!host) return makeError(host.error());
+  scene->m_host = std::move(host.value());
+  // The scenario's own terrain = {...} comes first; --set terrain.* overrides.
+  for (const auto& [key, value] : scene->m_host->terrainRequest()) terrainSettings.emplace(key, value);
 #if TUMBLE_HAVE_TERRAIN
   if (TerrainScene::requested(terrainSettings)) {
     auto terrain = TerrainScene::create(terrainSettings);
@@ -133,9 +138,6 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
 #else
   if (!terrainSettings.empty()) return makeError("terrain.*: this build has no terrain module");
 #endif
-  auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
-  if (!host) return makeError(host.error());
-  scene->m_host = std::move(host.value());
   return scene;
 }
 

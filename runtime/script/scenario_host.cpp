@@ -517,6 +517,38 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
     return makeError(where + ": field 'duration' must be a number of seconds > 0");
   }
   lua_pop(L, 1);
+  // terrain = {generate = 7, size = 1025, ...} or {heightmap = "assets/map.png"}
+  lua_getfield(L, -1, "terrain");
+  if (lua_istable(L, -1)) {
+    lua_pushnil(L);
+    while (lua_next(L, -2) != 0) {
+      bool keyOk = lua_type(L, -2) == LUA_TSTRING;
+      bool valueOk = lua_type(L, -1) == LUA_TSTRING || lua_type(L, -1) == LUA_TNUMBER;
+      if (!keyOk || !valueOk) {
+        lua_pop(L, 4);
+        return makeError(where + ": field 'terrain' must be a table of name = number or string, e.g. "
+                                 "terrain = {generate = 7, size = 1025}");
+      }
+      std::string key = lua_tostring(L, -2);
+      std::string value = lua_tostring(L, -1);  // converts numbers in place (value copy only)
+      lua_pop(L, 1);
+      if (key == "heightmap") {
+        fs::path path = fs::weakly_canonical(fs::path(mod.dir) / value);
+        fs::path root = fs::weakly_canonical(fs::path(mod.dir));
+        auto rel = path.lexically_relative(root);
+        if (rel.empty() || *rel.begin() == "..") {
+          lua_pop(L, 3);
+          return makeError(where + ": terrain.heightmap \"" + value + "\" leaves the mod's folder; paths stay inside it");
+        }
+        value = path.string();
+      }
+      host->m_terrainRequest["terrain." + key] = value;
+    }
+  } else if (!lua_isnil(L, -1)) {
+    lua_pop(L, 2);
+    return makeError(where + ": field 'terrain' must be a table, e.g. terrain = {generate = 7, size = 1025}");
+  }
+  lua_pop(L, 1);
   for (const char* cb : {"on_start", "on_update", "on_finish", "on_reload", "on_contact"}) {
     lua_getfield(L, -1, cb);
     bool bad = !lua_isnil(L, -1) && !lua_isfunction(L, -1);

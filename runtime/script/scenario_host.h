@@ -78,6 +78,10 @@ class ScenarioHost {
   const std::string& title() const { return m_title; }
   /// Seconds the scenario asks to run for when --seconds/--steps are absent.
   double duration_s() const { return m_duration_s; }
+  /// The scenario's `terrain = {...}` field, flattened to "terrain.KEY" =
+  /// value (as --set would give them); `heightmap` is made an absolute path
+  /// inside the mod. Empty when the scenario declares no terrain.
+  const std::map<std::string, std::string>& terrainRequest() const { return m_terrainRequest; }
   const std::vector<ScriptError>& errors() const { return m_errors; }
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
@@ -165,6 +169,7 @@ class ScenarioHost {
   std::string m_file;
   std::string m_title;
   double m_duration_s = 10;
+  std::map<std::string, std::string> m_terrainRequest;
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   bool m_hasUpdate = false, m_updatePaused = false;
   bool m_hasContact = false, m_contactPaused = false;

@@ -4,15 +4,16 @@
 -- and its bounding radius + 0.15 m above the terrain height under it, as
 -- world.raycast finds it), nothing fell through, nearly all have stopped.
 --
---   tumble run base:island --set terrain.generate=3 --set terrain.style=island
---   tumble play base:island --set terrain.generate=3 --set terrain.style=island --set terrain.height=60
+--   tumble run base:island
+--   tumble play base:island --set terrain.height=60
 --
--- The terrain comes from the app (terrain.* settings, see
--- runtime/app/terrain_scene.h); without one the scenario says so and fails.
+-- The terrain is declared in the table below (the settings are described in
+-- runtime/app/terrain_scene.h); --set terrain.KEY=VALUE overrides any of them.
 
 local scenario = {
   title = "Island: bodies tumble off a ridge into a ditch",
   duration = 12,  -- seconds, when run without --seconds/--steps
+  terrain = {generate = 3, style = "island"},  -- generated with ridges and a ditch; --set terrain.* overrides
 }
 
 local bodies = {}
@@ -30,7 +31,7 @@ function scenario.on_start(ctx)
   -- on the default 1025 m island, so bodies tumble down its sides.
   local cx, cz = param("x", 15), param("z", 123)
   if not ground(cx, cz) then
-    expect("terrain present (run with --set terrain.generate=SEED)", false)
+    expect("terrain present", false)
     world.plane{friction = 0.6}
     return
   end
