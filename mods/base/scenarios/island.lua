@@ -10,78 +10,13 @@
 -- The terrain is declared in the table below (the settings are described in
 -- runtime/app/terrain_scene.h); --set terrain.KEY=VALUE overrides any of them.
 
-local scenario = {
+local terrain_drop = require "lib.terrain_drop"
+
+return terrain_drop.scenario{
   title = "Island: bodies tumble off a ridge into a ditch",
   duration = 12,  -- seconds, when run without --seconds/--steps
   terrain = {generate = 3, style = "island"},  -- generated with ridges and a ditch; --set terrain.* overrides
-}
-
-local bodies = {}
-
--- Terrain height under (x, z): the first hit straight down that is not a body.
-local function ground(x, z)
-  for _, hit in ipairs(world.raycast_all({x, 2000, z}, {0, -1, 0}, 5000)) do
-    if not hit.body:is_valid() then return hit.point.y end
-  end
-  return nil
-end
-
-function scenario.on_start(ctx)
   -- The drop zone: over the ditch, which runs from (-154, 225) to (184, 20) m
   -- on the default 1025 m island, so bodies tumble down its sides.
-  local cx, cz = param("x", 15), param("z", 123)
-  if not ground(cx, cz) then
-    expect("terrain present", false)
-    world.plane{friction = 0.6}
-    return
-  end
-  -- Static rocks around the drop zone: boxes partly sunk into the ground.
-  for i = 1, param("rocks", 12) do
-    local a = i * 2.4
-    local x, z = cx + math.cos(a) * (14 + i * 0.7), cz + math.sin(a) * (14 + i * 0.7)
-    local s = 0.8 + math.random() * 1.2
-    world.box{type = "static", size = {s, s * 0.7, s * 1.1}, position = {x, ground(x, z) + s * 0.15, z},
-              rotation = {0, math.random() * 3, 0}, friction = 0.8, color = {0.45, 0.43, 0.4}}
-  end
-  local palette = {{0.85, 0.35, 0.25}, {0.25, 0.55, 0.85}, {0.95, 0.75, 0.2}, {0.4, 0.75, 0.4}}
-  local count = param("count", 24)
-  for i = 1, count do
-    local x = cx + ((i - 1) % 6 - 2.5) * 3 + (math.random() - 0.5)
-    local z = cz + ((i - 1) // 6 - 1.5) * 3 + (math.random() - 0.5)
-    local y = ground(x, z) + 3
-    local color = palette[(i - 1) % #palette + 1]
-    local b, radius
-    if i % 2 == 0 then
-      radius = 0.3 + math.random() * 0.3
-      b = world.sphere{radius = radius, position = {x, y, z}, density = 500, friction = 0.7,
-                       restitution = 0.3, rolling_resistance = 0.3, color = color}
-    else
-      local sx, sy, sz = 0.6 + math.random() * 0.5, 0.4 + math.random() * 0.4, 0.6 + math.random() * 0.5
-      radius = math.sqrt(sx * sx + sy * sy + sz * sz) / 2
-      b = world.box{size = {sx, sy, sz}, position = {x, y, z}, rotation = {math.random(), math.random(), 0},
-                    density = 500, friction = 0.7, restitution = 0.1, color = color}
-    end
-    bodies[#bodies + 1] = {body = b, radius = radius}
-  end
-end
-
-function scenario.on_finish(ctx)
-  if #bodies == 0 then return end
-  local fastest, resting, below, above = 0, 0, math.huge, -math.huge
-  for _, e in ipairs(bodies) do
-    local p = e.body:position()
-    local g = ground(p.x, p.z) or -math.huge
-    fastest = math.max(fastest, e.body:speed())
-    if e.body:speed() < 0.1 then resting = resting + 1 end
-    below = math.min(below, p.y - g)               -- centre above the terrain, m
-    above = math.max(above, p.y - g - e.radius)    -- gap beyond the bounding radius, m
-  end
-  -- Most bodies have stopped; a ball on a slope steeper than its rolling
-  -- resistance allows (tan > ~C_rr) rightly keeps rolling, but none races.
-  expect("bodies at rest (fraction slower than 0.1 m/s)", resting / #bodies, {min = 0.9})
-  expect("no body still racing downhill", fastest, {max = 3})
-  expect("no body fell through the terrain", below, {min = 0})
-  expect("every body rests on the terrain", above, {max = 0.15})
-end
-
-return scenario
+  center = function() return param("x", 15), param("z", 123) end,
+}
