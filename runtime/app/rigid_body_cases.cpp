@@ -1,6 +1,7 @@
 #include "app/rigid_body_cases.h"
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
 
@@ -234,92 +235,92 @@ std::vector<numerics::StabilityCase> rigidBodyStabilityCases() {
   return cases;
 }
 
+namespace {
+
+// A work-precision problem on the rigid-body world: `runOnce(dt)` simulates
+// from scratch to t_end and returns the error; the report times it.
+numerics::PrecisionProblem worldProblem(std::string name, std::string description, const char* unit,
+                                        double tEnd_s, double dtMin_s, double dtMax_s,
+                                        std::function<double(double dt)> runOnce) {
+  numerics::PrecisionProblem p;
+  p.name = std::move(name);
+  p.description = std::move(description);
+  p.errorUnit = unit;
+  p.tEnd_s = tEnd_s;
+  p.dtMin_s = dtMin_s;
+  p.dtMax_s = dtMax_s;
+  p.prepare = [runOnce](numerics::Method m, double dt) -> Result<numerics::PreparedRun> {
+    if (auto s = onlyWorldMethod(m); !s) return makeError(s.error());
+    auto error = std::make_shared<double>(0);
+    numerics::PreparedRun run;
+    run.dt_s = dt;
+    run.integrate = [dt, error, runOnce] { *error = runOnce(dt); };
+    run.error = [error] { return *error; };
+    return run;
+  };
+  return p;
+}
+
+// Torque-free box spinning near its intermediate axis (it flips): energy and
+// |L| are conserved exactly, so their largest relative change is the error.
+double freeBodyInvariantError(double dt) {
+  World w;
+  w.settings().gravity_mps2 = Vec3::Zero();
+  w.settings().enableSleep = false;
+  w.settings().substeps = 1;
+  BodyDef d;
+  d.shape = Shape::box(Vec3(Real(0.1), Real(0.4), Real(1.0)));
+  d.mass_kg = 1;
+  d.angularVelocity_radps = Vec3(Real(0.01), 6, Real(0.01));
+  BodyId id = w.createBody(d).value();
+  auto invariants = [&] {
+    const physics::Body& b = w.body(id);
+    Vec3 wl = b.orientation.conjugate() * b.angularVelocity_radps;
+    Vec3 L = b.inertiaLocal_kgm2.cwiseProduct(wl);
+    return std::make_pair(0.5 * double(wl.dot(L)), double(L.norm()));
+  };
+  auto [e0, l0] = invariants();
+  double worst = 0;
+  long steps = std::lround(10.0 / dt);
+  for (long i = 0; i < steps; ++i) {
+    w.step(Real(dt));
+    auto [e, l] = invariants();
+    worst = std::max({worst, std::abs(e - e0) / e0, std::abs(l - l0) / l0});
+  }
+  return worst;
+}
+
+// Ten stacked boxes for 5 s: the largest horizontal drift of any box (m).
+double stackDrift(double dt) {
+  World w;
+  w.settings().enableSleep = false;
+  addPlane(w);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 10; ++i) boxes.push_back(addBox(w, Vec3::Constant(Real(0.5)), Vec3(0, Real(0.5) + i, 0), 1));
+  long steps = std::lround(5.0 / dt);
+  double worst = 0;
+  for (long i = 0; i < steps; ++i) {
+    w.step(Real(dt));
+    for (BodyId b : boxes) {
+      const Vec3& p = w.body(b).position_m;
+      worst = std::max<double>(worst, std::hypot(p.x(), p.z()));
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
 std::vector<numerics::PrecisionProblem> rigidBodyPrecisionProblems() {
-  std::vector<numerics::PrecisionProblem> problems;
-  {
-    // Torque-free box spinning near its intermediate axis (it flips):
-    // energy and |L| are conserved exactly, so their relative change is the
-    // error.
-    numerics::PrecisionProblem p;
-    p.name = "free_rigid_body";
-    p.description = "free box 0.2 x 0.8 x 2 m spinning near its intermediate axis for 10 s; error = max relative "
-                    "change of kinetic energy and |L|";
-    p.errorUnit = "1";
-    p.tEnd_s = 10;
-    p.dtMin_s = 1.0 / 960;
-    p.dtMax_s = 1.0 / 15;
-    p.prepare = [](numerics::Method m, double dt) -> Result<numerics::PreparedRun> {
-      if (auto s = onlyWorldMethod(m); !s) return makeError(s.error());
-      auto error = std::make_shared<double>(0);
-      numerics::PreparedRun run;
-      run.dt_s = dt;
-      run.integrate = [dt, error] {
-        World w;
-        w.settings().gravity_mps2 = Vec3::Zero();
-        w.settings().enableSleep = false;
-        w.settings().substeps = 1;
-        BodyDef d;
-        d.shape = Shape::box(Vec3(Real(0.1), Real(0.4), Real(1.0)));
-        d.mass_kg = 1;
-        d.angularVelocity_radps = Vec3(Real(0.01), 6, Real(0.01));
-        BodyId id = w.createBody(d).value();
-        auto invariants = [&] {
-          const physics::Body& b = w.body(id);
-          Vec3 wl = b.orientation.conjugate() * b.angularVelocity_radps;
-          Vec3 L = b.inertiaLocal_kgm2.cwiseProduct(wl);
-          return std::make_pair(0.5 * double(wl.dot(L)), double(L.norm()));
-        };
-        auto [e0, l0] = invariants();
-        double worst = 0;
-        long steps = std::lround(10.0 / dt);
-        for (long i = 0; i < steps; ++i) {
-          w.step(Real(dt));
-          auto [e, l] = invariants();
-          worst = std::max({worst, std::abs(e - e0) / e0, std::abs(l - l0) / l0});
-        }
-        *error = worst;
-      };
-      run.error = [error] { return *error; };
-      return run;
-    };
-    problems.push_back(p);
-  }
-  {
-    numerics::PrecisionProblem p;
-    p.name = "box_stack_drift";
-    p.description = "10 one-metre boxes stacked on a plane for 5 s; error = largest horizontal drift of any box";
-    p.errorUnit = "m";
-    p.tEnd_s = 5;
-    p.dtMin_s = 1.0 / 240;
-    p.dtMax_s = 1.0 / 20;
-    p.prepare = [](numerics::Method m, double dt) -> Result<numerics::PreparedRun> {
-      if (auto s = onlyWorldMethod(m); !s) return makeError(s.error());
-      auto error = std::make_shared<double>(0);
-      numerics::PreparedRun run;
-      run.dt_s = dt;
-      run.integrate = [dt, error] {
-        World w;
-        w.settings().enableSleep = false;
-        addPlane(w);
-        std::vector<BodyId> boxes;
-        for (int i = 0; i < 10; ++i) boxes.push_back(addBox(w, Vec3::Constant(Real(0.5)), Vec3(0, Real(0.5) + i, 0), 1));
-        long steps = std::lround(5.0 / dt);
-        double worst = 0;
-        for (long i = 0; i < steps; ++i) {
-          w.step(Real(dt));
-          for (BodyId b : boxes) {
-            const Vec3& p = w.body(b).position_m;
-            worst = std::max<double>(worst, std::hypot(p.x(), p.z()));
-          }
-        }
-        *error = worst;
-      };
-      run.error = [error] { return *error; };
-      return run;
-    };
-    problems.push_back(p);
-  }
-  return problems;
+  return {
+      worldProblem("free_rigid_body",
+                   "free box 0.2 x 0.8 x 2 m spinning near its intermediate axis for 10 s; error = max relative "
+                   "change of kinetic energy and |L|",
+                   "1", 10, 1.0 / 960, 1.0 / 15, freeBodyInvariantError),
+      worldProblem("box_stack_drift",
+                   "10 one-metre boxes stacked on a plane for 5 s; error = largest horizontal drift of any box", "m",
+                   5, 1.0 / 240, 1.0 / 20, stackDrift),
+  };
 }
 
 }  // namespace tumble::app
