@@ -286,7 +286,8 @@ void time1025(int msaa, bool saveDemo) {
     for (int lod = 0; lod <= 6; ++lod) {
       int n = 0;
       for (const TerrainChunkDraw& d : st.drawn) n += d.lod == lod;
-      text += " " + std::to_string(n);
+      text += ' ';
+      text += std::to_string(n);
     }
     return text;
   };
