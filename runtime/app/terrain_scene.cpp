@@ -98,6 +98,54 @@ bool TerrainScene::requested(const Settings& s) {
   return s.count("terrain.heightmap") > 0 || s.count("terrain.generate") > 0;
 }
 
+// Surface materials from the shape of the land, per block: rock where it is
+// steep, snow high up, sand at the shore of an island, mud in patches on
+// flat low ground, grass elsewhere. Each material sets the texture the
+// renderer draws (render::TerrainSurface indices), the bump strength, the
+// friction physics reads through the drag map, and the surface sound.
+struct Material {
+  std::uint8_t texture, bump, friction, sound;  // friction: mu * 100
+};
+constexpr Material kGrass{0, 80, 60, std::uint8_t(terrain::SurfaceSound::Grass)};
+constexpr Material kRock{1, 220, 80, std::uint8_t(terrain::SurfaceSound::Rock)};
+constexpr Material kSand{2, 40, 45, std::uint8_t(terrain::SurfaceSound::Sand)};
+constexpr Material kMud{3, 60, 30, std::uint8_t(terrain::SurfaceSound::Mud)};
+constexpr Material kSnow{4, 30, 20, std::uint8_t(terrain::SurfaceSound::Snow)};
+
+void paintMaterials(terrain::Terrain& t, bool island) {
+  const terrain::HeightMap& h = t.heights();
+  const terrain::TerrainDesc& d = t.desc();
+  terrain::MaterialMaps& m = t.createMaterials();
+  auto& texture = m.layer(terrain::MaterialLayer::Texture);
+  auto& bump = m.layer(terrain::MaterialLayer::Bump);
+  auto& friction = m.layer(terrain::MaterialLayer::Friction);
+  auto& sound = m.layer(terrain::MaterialLayer::Sound);
+  std::uint16_t lo = 65535, hi = 0;
+  for (std::uint16_t v : h.samples()) lo = std::min(lo, v), hi = std::max(hi, v);
+  const double range = std::max(1.0, double(hi) - double(lo));
+  for (int bz = 0; bz < m.blocksZ(); ++bz)
+    for (int bx = 0; bx < m.blocksX(); ++bx) {
+      double h00 = h.at(bx, bz), h10 = h.at(bx + 1, bz), h01 = h.at(bx, bz + 1), h11 = h.at(bx + 1, bz + 1);
+      double dx = (h10 + h11 - h00 - h01) / 2 * d.heightScale_m / d.spacing_m;  // rise per metre along x
+      double dz = (h01 + h11 - h00 - h10) / 2 * d.heightScale_m / d.spacing_m;
+      double slope = std::sqrt(dx * dx + dz * dz);
+      double rel = ((h00 + h10 + h01 + h11) / 4 - lo) / range;  // 0 lowest .. 1 highest
+      double y = d.baseHeight_m + (h00 + h10 + h01 + h11) / 4 * d.heightScale_m;
+      // Patches 32 blocks across, chosen by a hash of the patch index.
+      std::uint32_t patch = std::uint32_t(bx / 32) * 73856093u ^ std::uint32_t(bz / 32) * 19349663u;
+      Material mat = kGrass;
+      if (slope > 0.7) mat = kRock;                                 // steeper than ~35 degrees
+      else if (rel > 0.85) mat = kSnow;
+      else if (island && y < 0.02 * range * d.heightScale_m) mat = kSand;  // just above the sea
+      else if (slope < 0.08 && rel < 0.3 && patch % 5 == 0) mat = kMud;
+      std::size_t i = std::size_t(bz) * m.blocksX() + bx;
+      texture[i] = mat.texture;
+      bump[i] = mat.bump;
+      friction[i] = mat.friction;
+      sound[i] = mat.sound;
+    }
+}
+
 Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s) {
   static const char* kKnown[] = {"terrain.heightmap", "terrain.generate", "terrain.size",   "terrain.roughness",
                                  "terrain.spacing",   "terrain.height",   "terrain.style"};
@@ -149,6 +197,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s) {
   if (!created) return makeError(created.error());
   auto scene = std::unique_ptr<TerrainScene>(new TerrainScene());
   scene->m_terrain = std::make_unique<terrain::Terrain>(std::move(created.value()));
+  paintMaterials(*scene->m_terrain, style == "island");
   scene->m_field = std::make_unique<TerrainHeightField>(*scene->m_terrain);
   scene->fillSurface();
   return scene;

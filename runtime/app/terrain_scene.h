@@ -61,4 +61,10 @@ class TerrainScene {
   render::TerrainSurface m_surface;
 };
 
+/// Paints the terrain's material maps from slope and height (rock where
+/// steeper than ~35 degrees, snow in the top 15% of the height range, sand
+/// just above the sea of an island, mud patches on flat low ground, grass
+/// elsewhere): texture, bump, friction (the drag map physics reads) and sound.
+void paintMaterials(terrain::Terrain& terrain, bool island);
+
 }  // namespace tumble::app
