@@ -78,7 +78,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"error",
        {{"energy_rel_drift_max", err.energyRelDriftMax},
         {"penetration_max_m", err.penetrationMax_m},
-        {"joint_error_max_m", 0.0},
+        {"joint_error_max_m", scene.host().jointErrorMax_m()},
         {"momentum_rel_drift_max", err.momentumRelDriftMax},
         {"nan_events", err.nanEvents}}},
       {"expectations", expectations},

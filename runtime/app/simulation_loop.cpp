@@ -6,6 +6,7 @@
 
 #include "app/run_report.h"
 #include "core/log.h"
+#include "physics/joints/joint_system.h"
 
 namespace tumble::app {
 
@@ -140,6 +141,8 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     fixedStep(scene, time_s, i, t);
     time_s = double(i + 1) * dt;
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
+    if (const physics::JointSystem* joints = scene.host().jointsIfAny())
+      counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
   }
   if (renderer && !shotTaken) takeShot(time_s);
   {

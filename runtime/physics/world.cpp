@@ -165,6 +165,9 @@ bool World::destroyBody(BodyId id) {
   m_manifolds.erase(std::remove_if(m_manifolds.begin(), m_manifolds.end(),
                                    [&](const Manifold& m) { return m.a == id.index || m.b == id.index; }),
                     m_manifolds.end());
+  auto involves = [&](const BodyPair& p) { return p.a == id.index || p.b == id.index; };
+  m_noCollide.erase(std::remove_if(m_noCollide.begin(), m_noCollide.end(), involves), m_noCollide.end());
+  m_islandLinks.erase(std::remove_if(m_islandLinks.begin(), m_islandLinks.end(), involves), m_islandLinks.end());
   return true;
 }
 
@@ -177,46 +180,46 @@ void World::updateInertia(Body& b) {
   b.invInertiaWorld = R * b.invInertiaLocal.asDiagonal() * R.transpose();
 }
 
-void World::setPosition(BodyId id, const Vec3& p) {
+void World::setPosition(BodyId id, const Vec3& p, bool wake) {
   Body& b = mutableBody(id);
   b.position_m = p;
-  wakeIsland(id.index);
+  if (wake) wakeIsland(id.index);
 }
-void World::setOrientation(BodyId id, const Quat& q) {
+void World::setOrientation(BodyId id, const Quat& q, bool wake) {
   Body& b = mutableBody(id);
   b.orientation = q.normalized();
   updateInertia(b);
-  wakeIsland(id.index);
+  if (wake) wakeIsland(id.index);
 }
-void World::setLinearVelocity(BodyId id, const Vec3& v) {
+void World::setLinearVelocity(BodyId id, const Vec3& v, bool wake) {
   Body& b = mutableBody(id);
   if (b.type == BodyType::Static) return;
   b.linearVelocity_mps = v;
-  wakeIsland(id.index);
+  if (wake) wakeIsland(id.index);
 }
-void World::setAngularVelocity(BodyId id, const Vec3& w) {
+void World::setAngularVelocity(BodyId id, const Vec3& w, bool wake) {
   Body& b = mutableBody(id);
   if (b.type == BodyType::Static) return;
   b.angularVelocity_radps = w;
-  wakeIsland(id.index);
+  if (wake) wakeIsland(id.index);
 }
 void World::setMaterial(BodyId id, Real friction, Real restitution) {
   Body& b = mutableBody(id);
   b.friction = friction;
   b.restitution = restitution;
 }
-void World::applyForce(BodyId id, const Vec3& f, const Vec3& point) {
+void World::applyForce(BodyId id, const Vec3& f, const Vec3& point, bool wake) {
   Body& b = mutableBody(id);
   if (!b.isDynamic()) return;
   b.force_N += f;
   b.torque_Nm += (point - b.position_m).cross(f);
-  wakeIsland(id.index);
+  if (wake) wakeIsland(id.index);
 }
-void World::applyTorque(BodyId id, const Vec3& t) {
+void World::applyTorque(BodyId id, const Vec3& t, bool wake) {
   Body& b = mutableBody(id);
   if (!b.isDynamic()) return;
   b.torque_Nm += t;
-  wakeIsland(id.index);
+  if (wake) wakeIsland(id.index);
 }
 void World::applyImpulse(BodyId id, const Vec3& J, const Vec3& point) {
   Body& b = mutableBody(id);
@@ -233,6 +236,64 @@ void World::applyImpulse(BodyId id, const Vec3& J, const Vec3& point) {
 }
 void World::wake(BodyId id) {
   if (isValid(id)) wakeIsland(id.index);
+}
+
+World::BodyPair World::makePair(BodyId x, BodyId y) {
+  if (y.index < x.index) std::swap(x, y);
+  return BodyPair{x.index, y.index, x.generation, y.generation};
+}
+
+void World::disableCollision(BodyId a, BodyId b) {
+  TUMBLE_ASSERT(isValid(a) && isValid(b), "disableCollision: stale or null BodyId; check World::isValid first");
+  if (a.index == b.index) return;
+  const BodyPair p = makePair(a, b);
+  auto it = std::lower_bound(m_noCollide.begin(), m_noCollide.end(), p);
+  if (it != m_noCollide.end() && *it == p) return;
+  m_noCollide.insert(it, p);
+  // Drop the pair's manifold now, so its old impulses do not act once more.
+  m_manifolds.erase(std::remove_if(m_manifolds.begin(), m_manifolds.end(),
+                                   [&](const Manifold& m) {
+                                     return std::min(m.a, m.b) == p.a && std::max(m.a, m.b) == p.b;
+                                   }),
+                    m_manifolds.end());
+}
+
+void World::enableCollision(BodyId a, BodyId b) {
+  const BodyPair p = makePair(a, b);
+  auto it = std::lower_bound(m_noCollide.begin(), m_noCollide.end(), p);
+  if (it != m_noCollide.end() && *it == p) m_noCollide.erase(it);
+}
+
+bool World::collisionDisabled(BodyId a, BodyId b) const {
+  if (!isValid(a) || !isValid(b)) return false;
+  return pairFiltered(a.index, b.index);
+}
+
+bool World::pairFiltered(std::uint32_t a, std::uint32_t b) const {
+  if (m_noCollide.empty()) return false;
+  const BodyPair p{std::min(a, b), std::max(a, b), 0, 0};
+  auto it = std::lower_bound(m_noCollide.begin(), m_noCollide.end(), p);
+  // Generations are checked too, though destroyBody drops the pairs of a
+  // body: a recycled index must never inherit a filter.
+  return it != m_noCollide.end() && *it == p && m_bodies[p.a].generation == it->genA &&
+         m_bodies[p.b].generation == it->genB;
+}
+
+void World::setIslandLinks(const std::vector<std::pair<BodyId, BodyId>>& links) {
+  m_islandLinks.clear();
+  for (const auto& [a, b] : links)
+    if (isValid(a) && isValid(b) && a.index != b.index) m_islandLinks.push_back(makePair(a, b));
+  std::sort(m_islandLinks.begin(), m_islandLinks.end());
+  m_islandLinks.erase(std::unique(m_islandLinks.begin(), m_islandLinks.end()), m_islandLinks.end());
+  // Linked bodies must share an island: a sleeping group and an awake one
+  // just linked to it wake together.
+  for (const BodyPair& p : m_islandLinks) {
+    const bool awakeA = m_bodies[p.a].awake, awakeB = m_bodies[p.b].awake;
+    if (awakeA != awakeB || m_sleepIsland[p.a] != m_sleepIsland[p.b]) {
+      wakeIsland(p.a);
+      wakeIsland(p.b);
+    }
+  }
 }
 
 void World::wakeIsland(std::uint32_t index) {
@@ -348,12 +409,12 @@ void World::collide(Real dt) {
   auto canCollide = [&](std::uint32_t a, std::uint32_t b) {
     const Body& A = m_bodies[a];
     const Body& B = m_bodies[b];
-    return A.moves() || B.moves();
+    return (A.moves() || B.moves()) && !pairFiltered(a, b);
   };
   m_broad->findPairs(boxes, active, canCollide, pairs);
   for (std::uint32_t p : planes)
     for (std::uint32_t i = 0; i < n; ++i)
-      if (active[i] && m_bodies[i].moves()) pairs.emplace_back(std::min(p, i), std::max(p, i));
+      if (active[i] && m_bodies[i].moves() && !pairFiltered(p, i)) pairs.emplace_back(std::min(p, i), std::max(p, i));
 
   m_events.clear();
   int points = 0;
@@ -564,6 +625,11 @@ void World::updateSleep(Real dt) {
     if (m.b == kHeightFieldBody) continue;  // the ground joins no island
     if (!m_bodies[m.a].isDynamic() || !m_bodies[m.b].isDynamic()) continue;
     parent[find(m.a)] = find(m.b);
+  }
+  // Island links (joints) join islands like touching contacts.
+  for (const BodyPair& p : m_islandLinks) {
+    if (!m_bodies[p.a].isDynamic() || !m_bodies[p.b].isDynamic()) continue;
+    parent[find(p.a)] = find(p.b);
   }
   std::vector<Real> islandMin(n, std::numeric_limits<Real>::max());
   const Real lin2 = m_settings.sleepLinearSpeed_mps * m_settings.sleepLinearSpeed_mps;

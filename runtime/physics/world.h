@@ -11,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -126,17 +127,36 @@ class World {
   int bodyCount() const { return m_bodyCount; }
   BodyId idOf(std::uint32_t index) const;
 
-  void setPosition(BodyId id, const Vec3& p_m);
-  void setOrientation(BodyId id, const Quat& q);
-  void setLinearVelocity(BodyId id, const Vec3& v_mps);
-  void setAngularVelocity(BodyId id, const Vec3& w_radps);
+  /// Setters wake the body's island and restart its sleep timer; wake =
+  /// false does neither (for small corrections that must not keep a body
+  /// awake, like the joints' post-stabilization projection).
+  void setPosition(BodyId id, const Vec3& p_m, bool wake = true);
+  void setOrientation(BodyId id, const Quat& q, bool wake = true);
+  void setLinearVelocity(BodyId id, const Vec3& v_mps, bool wake = true);
+  void setAngularVelocity(BodyId id, const Vec3& w_radps, bool wake = true);
   void setMaterial(BodyId id, Real friction, Real restitution);
-  /// Force (N) at a world point (m), applied over the next step.
-  void applyForce(BodyId id, const Vec3& force_N, const Vec3& point_m);
-  void applyTorque(BodyId id, const Vec3& torque_Nm);
+  /// Force (N) at a world point (m), applied over the next step. wake =
+  /// false leaves a sleeping body (and its island) asleep and the force
+  /// unused: for forces that only hold a body where it is, like joint
+  /// constraint forces (waking on them kept jointed bodies awake forever).
+  void applyForce(BodyId id, const Vec3& force_N, const Vec3& point_m, bool wake = true);
+  void applyTorque(BodyId id, const Vec3& torque_Nm, bool wake = true);
   /// Impulse (N s) at a world point, applied at once.
   void applyImpulse(BodyId id, const Vec3& impulse_Ns, const Vec3& point_m);
   void wake(BodyId id);
+
+  /// Collision filter: the pair no longer collides (e.g. the two parts of a
+  /// joint). Idempotent; the pair is dropped when either body is destroyed.
+  void disableCollision(BodyId a, BodyId b);
+  void enableCollision(BodyId a, BodyId b);
+  bool collisionDisabled(BodyId a, BodyId b) const;
+
+  /// Island links: pairs of bodies that sleep and wake together, as if they
+  /// touched (joints: a jointed group falls asleep as one and a touch on any
+  /// part wakes all of it). Replaces the previous set; pairs with a stale
+  /// handle are ignored; links are dropped when a body is destroyed.
+  void setIslandLinks(const std::vector<std::pair<BodyId, BodyId>>& links);
+  int islandLinkCount() const { return int(m_islandLinks.size()); }
 
   void step(Real dt_s);
 
@@ -188,6 +208,16 @@ class World {
   void freezeBody(std::uint32_t index);
   void trackErrors(Real dt);
   void wakeIsland(std::uint32_t index);
+  bool pairFiltered(std::uint32_t a, std::uint32_t b) const;
+
+  /// A body pair by index (a < b) and generations: the collision filter and
+  /// the island links, kept sorted by (a, b) for binary search.
+  struct BodyPair {
+    std::uint32_t a = 0, b = 0, genA = 0, genB = 0;
+    bool operator<(const BodyPair& o) const { return a != o.a ? a < o.a : b < o.b; }
+    bool operator==(const BodyPair& o) const { return a == o.a && b == o.b; }
+  };
+  static BodyPair makePair(BodyId x, BodyId y);
 
   void collideHeightField(Real dt, int& points);
   void inheritImpulses(const Manifold& previous, Manifold& m) const;
@@ -205,6 +235,8 @@ class World {
   std::unique_ptr<StepScratch> m_scratch;  ///< solver arrays kept between steps (no allocation per step)
   std::vector<std::uint32_t> m_sleepIsland;  ///< per body: island it fell asleep with (0 = none)
   std::uint32_t m_nextIsland = 1;
+  std::vector<BodyPair> m_noCollide;    ///< sorted; see disableCollision
+  std::vector<BodyPair> m_islandLinks;  ///< sorted; see setIslandLinks
   int m_lastContactPoints = 0;
   ErrorStats m_error;
   // Energy / momentum bookkeeping (double: sums over many bodies).

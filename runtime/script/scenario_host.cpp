@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "core/log.h"
+#include "physics/joints/joint_system.h"
 #include "script/internal/lua_util.h"
 
 extern "C" {
@@ -453,6 +454,7 @@ void ScenarioHost::buildEnvironment() {
   openTimerBindings(L, env);
   openRandomBindings(L, env);
   openTriggerBindings(L, env);
+  openRagdollBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
@@ -621,11 +623,30 @@ void ScenarioHost::start() {
 void ScenarioHost::update(double time_s, double dt_s, std::int64_t step) {
   m_now_s = time_s;
   if (!m_timers.empty() && m_timers.front().due_s <= time_s + 1e-9) runTimers(time_s, dt_s, step);
-  if (!hasUpdate()) return;
-  pushCtx(time_s, dt_s, step);
-  lua_pushnumber(m_vm.state(), dt_s);
-  callLifecycle("on_update", 2, &m_updatePaused, &m_updateErrors);
+  if (hasUpdate()) {
+    pushCtx(time_s, dt_s, step);
+    lua_pushnumber(m_vm.state(), dt_s);
+    callLifecycle("on_update", 2, &m_updatePaused, &m_updateErrors);
+  }
+  // Last, so that every force of the step (scripts included) is in the
+  // joints' Q; the app calls World::step right after this.
+  if (m_joints) m_joints->beforeWorldStep();
 }
+
+physics::JointSystem& ScenarioHost::joints() {
+  if (!m_joints) {
+    // Velocity-only projection: with the World's separate contact solver a
+    // rag-doll lying on the ground then comes to rest and sleeps (the
+    // position projection fights the contacts: parts keep moving at
+    // ~0.3 m/s); see JointSettings::projectPositions.
+    physics::JointSettings js;
+    js.projectPositions = false;
+    m_joints = std::make_unique<physics::JointSystem>(m_world, js);
+  }
+  return *m_joints;
+}
+
+double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }
 
 void ScenarioHost::afterStep(double time_s, std::int64_t step) {
   m_now_s = time_s;

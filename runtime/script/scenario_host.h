@@ -26,6 +26,10 @@
 #include "script/mods.h"
 #include "script/script_error.h"
 
+namespace tumble::physics {
+class JointSystem;
+}
+
 namespace tumble::script {
 
 struct Expectation {
@@ -65,7 +69,8 @@ class ScenarioHost {
   ~ScenarioHost();
 
   void start();
-  /// Before World::step: due timers, then on_update. time_s: the step's start.
+  /// Before World::step: due timers, then on_update, then (when the scenario
+  /// made rag-dolls) the joints' constraint forces. time_s: the step's start.
   void update(double time_s, double dt_s, std::int64_t step);
   /// After World::step (time_s: the step's end): on_contact for each contact
   /// that began, then trigger volumes' on_enter / on_exit. No Lua call, and
@@ -102,6 +107,12 @@ class ScenarioHost {
   /// Display colour (linear RGB 0..1) of a body made by the script.
   Eigen::Vector3f colorOf(physics::BodyId id) const;
   physics::World& world() { return m_world; }
+  /// The scene's joints, created on first use (spawn_ragdoll); null before.
+  physics::JointSystem* jointsIfAny() { return m_joints.get(); }
+  physics::JointSystem& joints();
+  /// Largest joint anchor separation seen (m), 0 without joints: the run
+  /// report's joint_error_max_m.
+  double jointErrorMax_m() const;
   const ModInfo& mod() const { return m_mod; }
   const std::string& scenarioFile() const { return m_file; }
   std::size_t luaMemoryBytes() const { return m_vm.memoryUsed(); }
@@ -198,6 +209,7 @@ class ScenarioHost {
   std::vector<TriggerEvent> m_triggerEvents;        ///< reused each step
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
+  std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -211,5 +223,7 @@ void openGameBindings(lua_State* L, int envIndex);
 void openTimerBindings(lua_State* L, int envIndex);
 void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
+/// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
+void openRagdollBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

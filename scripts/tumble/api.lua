@@ -509,6 +509,25 @@ function world.raycast_all(origin, dir, max_distance) end
 ---@return boolean # true if the body was removed now, false if it was already gone
 function world.remove(body) end
 
+---Creates the default human (11 parts, 10 joints; Winter's anthropometric
+---table, see ragdoll.cpp) with its feet at `position` when standing.
+---Adjacent parts do not collide; the parts sleep and wake together.
+--- (m, default 1.75), mass? number (kg, default 75), rotation? Vec3Arg
+--- rotation vector (axis times angle, rad)
+--- upper_arm_l, lower_arm_l, upper_arm_r, lower_arm_r, upper_leg_l,
+--- lower_leg_l, upper_leg_r, lower_leg_r)
+---
+---```lua
+---local doll = spawn_ragdoll{position = {0, 2, 0}, rotation = {1.5, 0, 0}}
+---```
+---@param def table position? Vec3Arg (m, default {0,0,0}), height? number
+---@return table # the part Bodies keyed by part name (pelvis, torso, head,
+function spawn_ragdoll(def) end
+
+---@return number # the largest joint anchor separation now (m), 0 without joints
+---@return number # the largest seen since the start (m)
+function joints_error() end
+
 ---Writes its arguments, separated by tabs, to the log as "mod NAME: ...".
 ---
 ---```lua

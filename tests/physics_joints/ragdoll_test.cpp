@@ -50,6 +50,8 @@ TEST(Ragdoll, BadDescriptionsNameTheField) {
 
 struct DropResult {
   double errorMax_m, errorEnd_m, fastest_mps;
+  double asleepAt_s;  ///< first time every part was asleep (-1: never)
+  bool asleepAtEnd;
 };
 
 /// The default human dropped face-first on the ground, 5 s at 60 Hz.
@@ -67,13 +69,22 @@ DropResult dropRagdoll(const JointSettings& settings, const char* label) {
   EXPECT_EQ(r.joints.size(), 10u);
   EXPECT_EQ(r.noCollide.size(), 10u);
   EXPECT_EQ(joints.connectedPairs().size(), 10u);
-  for (int i = 0; i < 5 * 60; ++i) joints.step(Real(1.0 / 60.0));
-  DropResult out{joints.maxAnchorError_m(), joints.anchorError_m(), 0};
+  auto allAsleep = [&] {
+    for (BodyId b : r.bodies)
+      if (world.body(b).awake) return false;
+    return true;
+  };
+  double asleepAt = -1;
+  for (int i = 0; i < 5 * 60; ++i) {
+    joints.step(Real(1.0 / 60.0));
+    if (asleepAt < 0 && allAsleep()) asleepAt = (i + 1) / 60.0;
+  }
+  DropResult out{joints.maxAnchorError_m(), joints.anchorError_m(), 0, asleepAt, allAsleep()};
   for (BodyId b : r.bodies) out.fastest_mps = std::max<double>(out.fastest_mps, world.body(b).linearVelocity_mps.norm());
-  std::printf("[ragdoll drop] %s: anchor error max %.2e m, at 5 s %.2e m, fastest part %.4f m/s, solve %.3f ms "
-              "(%d rows)\n",
-              label, out.errorMax_m, out.errorEnd_m, out.fastest_mps, joints.lastSolve().solveMs,
-              joints.lastSolve().rows);
+  std::printf("[ragdoll drop] %s: anchor error max %.2e m, at 5 s %.2e m, fastest part %.4f m/s, asleep at %.2f s "
+              "(%s at 5 s), solve %.3f ms (%d rows)\n",
+              label, out.errorMax_m, out.errorEnd_m, out.fastest_mps, out.asleepAt_s,
+              out.asleepAtEnd ? "asleep" : "awake", joints.lastSolve().solveMs, joints.lastSolve().rows);
   return out;
 }
 
@@ -94,6 +105,42 @@ TEST(Ragdoll, DroppedOnTheGroundComesToRestWithVelocityProjection) {
   const DropResult d = dropRagdoll(s, "velocity projection only");
   EXPECT_LT(d.errorEnd_m, 0.05);
   EXPECT_LT(d.fastest_mps, 0.01);
+  // Issue 4: asleep within 5 s of the drop.
+  EXPECT_GE(d.asleepAt_s, 0) << "never fell asleep";
+  EXPECT_LE(d.asleepAt_s, 5);
+}
+
+TEST(CollisionFilter, DisabledPairsPassThroughEachOtherAndOthersStillCollide) {
+  World w;
+  w.settings().gravity_mps2 = Vec3::Zero();
+  auto box = [&](const Vec3& p, const Vec3& v) {
+    BodyDef d;
+    d.shape = Shape::box(Vec3::Constant(Real(0.5)));
+    d.position_m = p;
+    d.linearVelocity_mps = v;
+    d.mass_kg = 1;
+    return w.createBody(d).value();
+  };
+  // Two boxes flying at each other with the pair disabled pass through...
+  BodyId a = box(Vec3(-2, 0, 0), Vec3(2, 0, 0));
+  BodyId b = box(Vec3(2, 0, 0), Vec3(-2, 0, 0));
+  w.disableCollision(a, b);
+  EXPECT_TRUE(w.collisionDisabled(b, a)) << "order does not matter";
+  // ...while a third box, not filtered, stops the first one later on.
+  BodyId c = box(Vec3(6, 0, 0), Vec3::Zero());
+  for (int i = 0; i < 90; ++i) w.step(Real(1.0 / 60));
+  EXPECT_GT(w.body(a).position_m.x(), 1.0) << "a passed through b";
+  EXPECT_LT(w.body(b).position_m.x(), -1.0) << "b passed through a";
+  EXPECT_LT(w.body(a).position_m.x(), w.body(c).position_m.x() - Real(0.9)) << "a did not pass through c";
+  // Enabling the pair again makes them collide.
+  w.enableCollision(a, b);
+  EXPECT_FALSE(w.collisionDisabled(a, b));
+  // A destroyed body's filter entries go with it: a new body in the same
+  // slot collides normally.
+  w.disableCollision(a, c);
+  w.destroyBody(c);
+  BodyId d = box(Vec3(20, 0, 0), Vec3::Zero());
+  EXPECT_FALSE(w.collisionDisabled(a, d));
 }
 
 }  // namespace

@@ -752,6 +752,8 @@ void JointSystem::prepare() {
     for (std::uint32_t i = 0; i < m_slots.size(); ++i)
       if (m_slots[i].alive) defs.push_back(m_slots[i].def), ids.push_back(i);
     im.order = eliminationOrder(m_world, defs, ids);
+    // Jointed bodies sleep and wake as one island (World::setIslandLinks).
+    m_world.setIslandLinks(connectedPairs());
     m_orderDirty = false;
   }
   Evaluation& ev = im.ev;
@@ -840,8 +842,10 @@ void JointSystem::applyConstraintForces() {
   recordForces();
   for (const BodyState& s : im.states) {
     if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0)) continue;
-    m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>());
-    m_world.applyTorque(s.id, s.Tc.cast<Real>());
+    // wake = false: the joint forces alone must not keep an island awake
+    // (they never vanish on a resting rag-doll: gravity keeps them busy).
+    m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>(), false);
+    m_world.applyTorque(s.id, s.Tc.cast<Real>(), false);
   }
   finishBreaks(events);
   m_stats.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -854,10 +858,14 @@ void JointSystem::step(Real dt_s) {
   // contacts the World's contact solver then has the last word on the
   // velocities (projecting after it pushed resting parts back into the
   // ground: a rag-doll never fell asleep, measured 0.3 m/s forever).
-  if (m_settings.postStabilize) postStabilize();
-  applyConstraintForces();
+  beforeWorldStep();
   m_world.step(dt_s);
   measureError();
+}
+
+void JointSystem::beforeWorldStep() {
+  if (m_settings.postStabilize) postStabilize();
+  applyConstraintForces();
 }
 
 void JointSystem::postStabilize() {
@@ -902,12 +910,14 @@ void JointSystem::postStabilize() {
     const V3 x = s.x + s.invMass * dx[i].head<3>(), th = s.invI * dx[i].tail<3>();
     Qd q = s.q;
     q.coeffs() += 0.5 * (Qd(0, th.x(), th.y(), th.z()) * s.q).coeffs();
+    // wake = false: only awake bodies are projected, and the projection
+    // must not restart their sleep timers (it runs every step).
     if (m_settings.projectPositions) {
-      m_world.setPosition(s.id, x.cast<Real>());
-      m_world.setOrientation(s.id, q.normalized().cast<Real>());
+      m_world.setPosition(s.id, x.cast<Real>(), false);
+      m_world.setOrientation(s.id, q.normalized().cast<Real>(), false);
     }
-    m_world.setLinearVelocity(s.id, v.cast<Real>());
-    m_world.setAngularVelocity(s.id, w.cast<Real>());
+    m_world.setLinearVelocity(s.id, v.cast<Real>(), false);
+    m_world.setAngularVelocity(s.id, w.cast<Real>(), false);
   }
 }
 

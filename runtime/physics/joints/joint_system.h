@@ -121,7 +121,12 @@ class JointSystem {
   /// World::step. Bodies that have been removed from the World drop their
   /// joints (reported as broken with zero force).
   void applyConstraintForces();
-  /// applyConstraintForces(); world.step(dt); then records the anchor error.
+  /// What step() does before World::step: the post-stabilization projection
+  /// (JointSettings::postStabilize), then applyConstraintForces(). For
+  /// callers that step the World themselves (the scenario host): call it
+  /// right before World::step.
+  void beforeWorldStep();
+  /// beforeWorldStep(); world.step(dt); then records the anchor error.
   void step(Real dt_s);
 
   /// Joint-only stepping for the paper's integrator comparison: integrates
@@ -143,7 +148,9 @@ class JointSystem {
   const JointSolveStats& lastSolve() const { return m_stats; }
 
   /// Pairs of bodies joined by a joint (both non-null): the pairs whose
-  /// collisions should be filtered.
+  /// collisions should be filtered. The JointSystem also hands them to
+  /// World::setIslandLinks whenever the joint set changes (so one
+  /// JointSystem per World: a second one would replace the first's links).
   std::vector<std::pair<BodyId, BodyId>> connectedPairs() const;
 
   /// Calls f(id, def) for every live joint.

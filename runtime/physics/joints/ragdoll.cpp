@@ -209,6 +209,7 @@ Result<Ragdoll> buildRagdoll(World& world, JointSystem& joints, RagdollDesc desc
   for (auto [a, b] : desc.noCollide)
     if (a >= 0 && b >= 0 && a < int(r.bodies.size()) && b < int(r.bodies.size()))
       r.noCollide.emplace_back(r.bodies[a], r.bodies[b]);
+  for (auto [a, b] : r.noCollide) world.disableCollision(a, b);
   return r;
 }
 

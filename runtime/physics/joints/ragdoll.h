@@ -70,8 +70,8 @@ Status validateRagdoll(RagdollDesc& desc);
 struct Ragdoll {
   std::vector<BodyId> bodies;  ///< one per part, in the description's order
   std::vector<JointId> joints;  ///< one per joint
-  /// Body pairs whose collisions must be filtered (see World API note in the
-  /// report: World::disableCollision(a, b) once it exists).
+  /// Body pairs whose collisions are filtered (buildRagdoll calls
+  /// World::disableCollision on each; destroying a body drops its pairs).
   std::vector<std::pair<BodyId, BodyId>> noCollide;
 };
 
