@@ -442,12 +442,20 @@ void World::collide(Real dt) {
     // which sits where an old point was (features flicker when faces are
     // exactly aligned) takes that point's impulses.
     if (const Manifold* prev = findOld(ia, ib)) inheritImpulses(*prev, m);
-    // A moving body touching a sleeping one wakes it (and its island).
-    bool touching = false;
+    // A moving body touching a sleeping one wakes it (and its island), and
+    // so does one that will close the gap during this step: the speculative
+    // contact acts before the bodies touch, and a sleeper still counts as
+    // static in the solver, so waking only on overlap would stop the moving
+    // body dead against it.
+    Real minSeparation = std::numeric_limits<Real>::max();
     for (int i = 0; i < m.count; ++i) {
-      touching |= m.points[i].separation_m < m_settings.linearSlop_m;
+      minSeparation = std::min(minSeparation, m.points[i].separation_m);
       m_error.penetrationMax_m = std::max(m_error.penetrationMax_m, -m.points[i].separation_m);
     }
+    // The manifold exists only within the speculative margin, so any
+    // approach at all means the contact may act this step.
+    const Real closing_m = -m.normal.dot(b.linearVelocity_mps - a.linearVelocity_mps) * dt;
+    const bool touching = minSeparation < m_settings.linearSlop_m || closing_m > 0;
     if (touching) {
       if (a.isDynamic() && !a.awake && b.moves()) wakeIsland(ia);
       if (b.isDynamic() && !b.awake && a.moves()) wakeIsland(ib);

@@ -133,4 +133,22 @@ TEST(World, RestingBodiesFallAsleepAndAnImpulseWakesThem) {
   EXPECT_GT(w.body(b).position_m.y(), 0.5);
 }
 
+TEST(World, ABodyHittingASleeperWakesItAndPassesItsMomentum) {
+  // Equal boxes, restitution 1, no gravity: the moving one stops and the
+  // struck one leaves at its speed, even though the struck one was asleep
+  // (it must be woken before the speculative contact acts, or it would act
+  // as a wall).
+  World w;
+  w.settings().gravity_mps2 = Vec3::Zero();
+  w.settings().restitutionThreshold_mps = Real(0.1);
+  BodyId sleeper = addBody(w, Shape::box(Vec3::Constant(Real(0.5))), Vec3(5, 0, 0), 1, 0, 1);
+  simulate(w, 1);
+  ASSERT_FALSE(w.body(sleeper).awake) << "the target must be asleep before the hit";
+  BodyId striker = addBody(w, Shape::box(Vec3::Constant(Real(0.5))), Vec3(0, 0, 0), 1, 0, 1);
+  w.setLinearVelocity(striker, Vec3(3, 0, 0));
+  simulate(w, 2);
+  EXPECT_NEAR(w.body(sleeper).linearVelocity_mps.x(), 3, 0.06);
+  EXPECT_NEAR(w.body(striker).linearVelocity_mps.x(), 0, 0.06);
+}
+
 }  // namespace tumble::physics::test

@@ -126,12 +126,14 @@ TEST(CollisionFilter, DisabledPairsPassThroughEachOtherAndOthersStillCollide) {
   BodyId b = box(Vec3(2, 0, 0), Vec3(-2, 0, 0));
   w.disableCollision(a, b);
   EXPECT_TRUE(w.collisionDisabled(b, a)) << "order does not matter";
-  // ...while a third box, not filtered, stops the first one later on.
-  BodyId c = box(Vec3(6, 0, 0), Vec3::Zero());
-  for (int i = 0; i < 90; ++i) w.step(Real(1.0 / 60));
-  EXPECT_GT(w.body(a).position_m.x(), 1.0) << "a passed through b";
-  EXPECT_LT(w.body(b).position_m.x(), -1.0) << "b passed through a";
+  // ...while a third box, not filtered, is hit by the first one at x = 3
+  // (unhindered, a would reach x = 4 in 3 s).
+  BodyId c = box(Vec3(4, 0, 0), Vec3::Zero());
+  for (int i = 0; i < 180; ++i) w.step(Real(1.0 / 60));
+  EXPECT_GT(w.body(a).position_m.x(), 1.5) << "a passed through b";
+  EXPECT_LT(w.body(b).position_m.x(), -1.5) << "b passed through a";
   EXPECT_LT(w.body(a).position_m.x(), w.body(c).position_m.x() - Real(0.9)) << "a did not pass through c";
+  EXPECT_GT(w.body(c).linearVelocity_mps.x(), Real(0.5)) << "c was hit and moves";
   // Enabling the pair again makes them collide.
   w.enableCollision(a, b);
   EXPECT_FALSE(w.collisionDisabled(a, b));

@@ -264,7 +264,7 @@ TEST(FrustumCull, PerspectiveCameraSeesWhatIsInFrontOnly) {
   proj(0, 0) = 1 / tanHalf, proj(1, 1) = 1 / tanHalf;
   proj(2, 2) = -(fa + n) / (fa - n), proj(2, 3) = -2 * fa * n / (fa - n), proj(3, 2) = -1;
   const Eigen::Matrix4f vp = proj * view;
-  const Frustum f = Frustum::fromViewProjection(vp);
+  const Frustum f = Frustum::fromViewProjection(vp.cast<Real>());
   std::vector<std::uint32_t> visible;
   const int level = t->tree().leafLevel();
   t->frustumCull(f, level, visible);
