@@ -10,6 +10,16 @@ namespace tumble::compare {
 
 namespace {
 
+/// Bullet's benchmark ground: a static box 500 x 100 x 500 m, top at y = 0.
+void addGroundBox(SceneSpec& s) {
+  BodySpec ground;
+  ground.shape = BodyShape::Box;
+  ground.halfExtents_m = V3(250, 50, 250);
+  ground.position_m = V3(0, -50, 0);
+  ground.mass_kg = 0;
+  s.bodies.push_back(ground);
+}
+
 /// Bullet's own "3000 boxes" benchmark (bullet3 examples/Benchmarks,
 /// BenchmarkDemo::createTest1), rebuilt from its description: 47 layers of
 /// 8 x 8 cubes of half-extent 1 m and mass 2 kg, 3 m apart (1 m gaps) in x
@@ -24,12 +34,7 @@ void boxes3000(SceneSpec& s) {
   s.friction = 0.5;
   s.restitution = 0;
   s.defaultSteps = 300;
-  BodySpec ground;
-  ground.shape = BodyShape::Box;
-  ground.halfExtents_m = V3(250, 50, 250);
-  ground.position_m = V3(0, -50, 0);
-  ground.mass_kg = 0;
-  s.bodies.push_back(ground);
+  addGroundBox(s);
   const int size = 8, layers = 47;
   const double half = 1, spacing = 1, pitch = 2 * half + spacing;
   double offset = -size * pitch * 0.5;
@@ -59,12 +64,7 @@ void boxes3000Stacked(SceneSpec& s) {
   s.friction = 0.5;
   s.restitution = 0;
   s.defaultSteps = 300;
-  BodySpec ground;
-  ground.shape = BodyShape::Box;
-  ground.halfExtents_m = V3(250, 50, 250);
-  ground.position_m = V3(0, -50, 0);
-  ground.mass_kg = 0;
-  s.bodies.push_back(ground);
+  addGroundBox(s);
   const int size = 8, layers = 47;
   const double half = 1, pitch = 3, gap = 0.01;
   const double offset = -(size - 1) * pitch * 0.5;

@@ -89,14 +89,7 @@ Status ShapePass::init() {
   auto program = buildProgram("shape shader", shaders::kShapeVertex, shaders::kShapeFragment);
   if (!program) return makeError(program.error());
   m_program = std::move(*program);
-  m_viewProjection = uniformLocation(m_program, "uViewProjection");
-  m_eye = uniformLocation(m_program, "uEye");
-  m_lightDirection = uniformLocation(m_program, "uLightDirection");
-  m_lightColor = uniformLocation(m_program, "uLightColor");
-  m_skyAmbient = uniformLocation(m_program, "uSkyAmbient");
-  m_groundAmbient = uniformLocation(m_program, "uGroundAmbient");
-  m_fogColor = uniformLocation(m_program, "uFogColor");
-  m_fogDensity = uniformLocation(m_program, "uFogDensity");
+  m_lit.locate(m_program);
   m_checker = uniformLocation(m_program, "uChecker");
 
   for (ShapeKind kind : {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule, ShapeKind::Plane}) {
@@ -139,14 +132,7 @@ void ShapePass::draw(const std::vector<DrawShape>& shapes, const FrameView& view
   }
 
   glUseProgram(m_program.get());
-  glUniformMatrix4fv(m_viewProjection, 1, GL_FALSE, view.viewProjection.data());  // column-major, as GL wants
-  glUniform3fv(m_eye, 1, view.eye.data());
-  glUniform3fv(m_lightDirection, 1, environment.lightDirection.data());
-  glUniform3fv(m_lightColor, 1, environment.lightColor.data());
-  glUniform3fv(m_skyAmbient, 1, environment.skyAmbient.data());
-  glUniform3fv(m_groundAmbient, 1, environment.groundAmbient.data());
-  glUniform3fv(m_fogColor, 1, environment.horizonColor.data());
-  glUniform1f(m_fogDensity, environment.fogDensity_per_m);
+  m_lit.apply(view, environment);
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

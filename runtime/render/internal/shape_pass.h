@@ -10,6 +10,7 @@
 #include "render/internal/camera_math.h"
 #include "render/internal/environment.h"
 #include "render/internal/gl_util.h"
+#include "render/internal/lit_uniforms.h"
 #include "render/renderer.h"
 
 namespace tumble::render {
@@ -49,8 +50,7 @@ class ShapePass {
   };
   std::array<Batch, kKindCount> m_batches;
   GlProgram m_program;
-  GLint m_viewProjection = -1, m_eye = -1, m_lightDirection = -1, m_lightColor = -1;
-  GLint m_skyAmbient = -1, m_groundAmbient = -1, m_fogColor = -1, m_fogDensity = -1;
+  LitUniforms m_lit;
   GLint m_checker = -1;
 };
 

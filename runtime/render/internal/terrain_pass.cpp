@@ -34,14 +34,7 @@ Status TerrainPass::init() {
   auto program = buildProgram("terrain shader", shaders::kTerrainVertex, shaders::kTerrainFragment);
   if (!program) return makeError(program.error());
   m_program = std::move(*program);
-  m_viewProjection = uniformLocation(m_program, "uViewProjection");
-  m_eye = uniformLocation(m_program, "uEye");
-  m_lightDirection = uniformLocation(m_program, "uLightDirection");
-  m_lightColor = uniformLocation(m_program, "uLightColor");
-  m_skyAmbient = uniformLocation(m_program, "uSkyAmbient");
-  m_groundAmbient = uniformLocation(m_program, "uGroundAmbient");
-  m_fogColor = uniformLocation(m_program, "uFogColor");
-  m_fogDensity = uniformLocation(m_program, "uFogDensity");
+  m_lit.locate(m_program);
   m_origin = uniformLocation(m_program, "uOrigin");
   m_spacing = uniformLocation(m_program, "uSpacing");
   m_blocks = uniformLocation(m_program, "uBlocks");
@@ -215,14 +208,7 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
   stats.chunksCulled = stats.chunksTotal - static_cast<int>(m_visible.size());
 
   glUseProgram(m_program.get());
-  glUniformMatrix4fv(m_viewProjection, 1, GL_FALSE, view.viewProjection.data());
-  glUniform3fv(m_eye, 1, view.eye.data());
-  glUniform3fv(m_lightDirection, 1, environment.lightDirection.data());
-  glUniform3fv(m_lightColor, 1, environment.lightColor.data());
-  glUniform3fv(m_skyAmbient, 1, environment.skyAmbient.data());
-  glUniform3fv(m_groundAmbient, 1, environment.groundAmbient.data());
-  glUniform3fv(m_fogColor, 1, environment.horizonColor.data());
-  glUniform1f(m_fogDensity, environment.fogDensity_per_m);
+  m_lit.apply(view, environment);
   glUniform2f(m_origin, surface.originX_m, surface.originZ_m);
   glUniform1f(m_spacing, surface.spacing_m);
   glUniform2i(m_blocks, m_grid.blocksX, m_grid.blocksZ);

@@ -22,6 +22,7 @@
 #include "render/internal/camera_math.h"
 #include "render/internal/environment.h"
 #include "render/internal/gl_util.h"
+#include "render/internal/lit_uniforms.h"
 #include "render/internal/terrain_mesh.h"
 #include "render/renderer.h"
 
@@ -79,8 +80,7 @@ class TerrainPass {
   GlProgram m_program;
   GlTexture m_textures;  // 2D array, one layer per material
   GlTexture m_materials; // RG8UI, one texel per block
-  GLint m_viewProjection = -1, m_eye = -1, m_lightDirection = -1, m_lightColor = -1;
-  GLint m_skyAmbient = -1, m_groundAmbient = -1, m_fogColor = -1, m_fogDensity = -1;
+  LitUniforms m_lit;
   GLint m_origin = -1, m_spacing = -1, m_blocks = -1, m_texturePerMetre = -1, m_layerCount = -1;
   GLint m_detailSlope = -1;
 
