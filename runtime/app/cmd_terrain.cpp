@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "app/terrain_scene.h"
 #include "terrain/filters.h"
 #include "terrain/generators.h"
 #include "terrain/height_map.h"
@@ -370,6 +371,49 @@ void addInfo(CLI::App& terrain, int& exitCode) {
   });
 }
 
+void addMaterials(CLI::App& terrain, int& exitCode) {
+  struct Opts {
+    std::string in;
+    bool island = false;
+    bool force = false;
+    double spacing_m = 1, height_m = 40;  // the scene's defaults for a map without a sidecar
+  };
+  auto o = std::make_shared<Opts>();
+  auto* cmd = terrain.add_subcommand(
+      "materials", "Paint material layers from slope and height and write them beside the map "
+                   "(NAME.texture.png, NAME.bump.png, NAME.friction.png, NAME.sound.png) for editing");
+  cmd->add_option("input", o->in, "Height map PNG")->required();
+  cmd->add_flag("--island", o->island, "Paint sand at the shore, as the island style does");
+  cmd->add_flag("--force", o->force, "Overwrite layer files that already exist");
+  cmd->add_option("--spacing", o->spacing_m, "Metres between samples without a sidecar (as terrain.spacing)")
+      ->check(CLI::Range(0.01, 1000.0));
+  cmd->add_option("--height", o->height_m, "Height range in metres without a sidecar (as terrain.height)")
+      ->check(CLI::Range(0.01, 10000.0));
+  cmd->callback([o, &exitCode] {
+    runCommand("materials", exitCode, [&]() -> Status {
+      if (!o->force) {
+        for (int l = 0; l < kMaterialLayerCount; ++l) {
+          const std::string path = app::materialLayerPath(o->in, MaterialLayer(l));
+          std::error_code ec;
+          if (std::filesystem::exists(path, ec))
+            return makeError(path + " exists; it may hold a designer's work (use --force to overwrite it)");
+        }
+      }
+      TerrainDesc defaults;
+      defaults.spacing_m = o->spacing_m;
+      defaults.heightScale_m = o->height_m / 65535.0;
+      auto t = Terrain::loadPng(o->in, defaults);
+      if (!t) return makeError(t.error());
+      app::paintMaterials(*t, o->island);
+      if (auto st = app::saveMaterialLayersBeside(*t, o->in); !st) return st;
+      for (int l = 0; l < kMaterialLayerCount; ++l)
+        std::printf("wrote %s\n", app::materialLayerPath(o->in, MaterialLayer(l)).c_str());
+      std::fflush(stdout);
+      return Ok{};
+    });
+  });
+}
+
 }  // namespace
 
 void addTerrainCommand(CLI::App& root, int& exitCode) {
@@ -384,6 +428,7 @@ void addTerrainCommand(CLI::App& root, int& exitCode) {
   addImport(*terrain, exitCode);
   addPreview(*terrain, exitCode);
   addInfo(*terrain, exitCode);
+  addMaterials(*terrain, exitCode);
 }
 
 }  // namespace tumble

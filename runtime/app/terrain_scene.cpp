@@ -198,9 +198,45 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s) {
   auto scene = std::unique_ptr<TerrainScene>(new TerrainScene());
   scene->m_terrain = std::make_unique<terrain::Terrain>(std::move(created.value()));
   paintMaterials(*scene->m_terrain, style == "island");
+  if (auto it = s.find("terrain.heightmap"); it != s.end()) {
+    if (auto st = loadMaterialLayersBeside(*scene->m_terrain, it->second); !st)
+      return makeError("--set terrain.heightmap=" + it->second + ": " + st.error());
+  }
   scene->m_field = std::make_unique<TerrainHeightField>(*scene->m_terrain);
   scene->fillSurface();
   return scene;
+}
+
+std::string materialLayerPath(const std::string& heightMapPath, terrain::MaterialLayer layer) {
+  std::string stem = heightMapPath;
+  if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".png") == 0) stem.resize(stem.size() - 4);
+  return stem + "." + terrain::materialLayerName(layer) + ".png";
+}
+
+Status loadMaterialLayersBeside(terrain::Terrain& terrain, const std::string& heightMapPath) {
+  terrain::MaterialMaps* maps = terrain.materials();
+  if (!maps) return makeError("the terrain has no material maps to load layers into");
+  for (int l = 0; l < terrain::kMaterialLayerCount; ++l) {
+    const auto layer = terrain::MaterialLayer(l);
+    const std::string path = materialLayerPath(heightMapPath, layer);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) continue;
+    if (auto st = maps->loadLayerPng(layer, path); !st)
+      return makeError(std::string(terrain::materialLayerName(layer)) + " layer " + path + ": " + st.error() +
+                       " (expected an 8-bit grey PNG of " + std::to_string(maps->blocksX()) + " x " +
+                       std::to_string(maps->blocksZ()) + " pixels, one per block)");
+  }
+  return Ok();
+}
+
+Status saveMaterialLayersBeside(const terrain::Terrain& terrain, const std::string& heightMapPath) {
+  const terrain::MaterialMaps* maps = terrain.materials();
+  if (!maps) return makeError("the terrain has no material maps");
+  for (int l = 0; l < terrain::kMaterialLayerCount; ++l) {
+    const auto layer = terrain::MaterialLayer(l);
+    if (auto st = maps->saveLayerPng(layer, materialLayerPath(heightMapPath, layer)); !st) return st;
+  }
+  return Ok();
 }
 
 void TerrainScene::fillSurface() {

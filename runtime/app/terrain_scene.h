@@ -7,7 +7,13 @@
 //   --set terrain.heightmap=PATH     16-bit (or 8-bit) grey PNG, with the
 //                                    optional sidecar PATH.json (terrain_desc.h);
 //                                    without a sidecar the map is centred on
-//                                    the origin
+//                                    the origin. Material layers beside it,
+//                                    PATH-without-.png + ".texture.png",
+//                                    ".bump.png", ".friction.png" (the drag
+//                                    map: mu = value * 0.01) and ".sound.png",
+//                                    replace the layers painted from slope and
+//                                    height; `tumble terrain materials PATH`
+//                                    writes those painted layers as a start
 //   --set terrain.generate=SEED      a plasma terrain, deterministic per seed:
 //     terrain.size=N                 samples per side (default 1025)
 //     terrain.roughness=R            plasma roughness in (0, 1] (default 0.5)
@@ -66,5 +72,13 @@ class TerrainScene {
 /// just above the sea of an island, mud patches on flat low ground, grass
 /// elsewhere): texture, bump, friction (the drag map physics reads) and sound.
 void paintMaterials(terrain::Terrain& terrain, bool island);
+
+/// "maps/alps.png" + Friction -> "maps/alps.friction.png" (see the header comment).
+std::string materialLayerPath(const std::string& heightMapPath, terrain::MaterialLayer layer);
+/// Replaces each layer whose file exists beside the height map; a layer file
+/// of the wrong size or format is an error naming the file and the size expected.
+Status loadMaterialLayersBeside(terrain::Terrain& terrain, const std::string& heightMapPath);
+/// Writes all four layers beside the height map (each atomically).
+Status saveMaterialLayersBeside(const terrain::Terrain& terrain, const std::string& heightMapPath);
 
 }  // namespace tumble::app

@@ -103,6 +103,7 @@ class Terrain {
   // --- materials ------------------------------------------------------------
   /// Nullptr until created: a scene without material maps pays nothing.
   const MaterialMaps* materials() const { return m_materials.has_value() ? &*m_materials : nullptr; }
+  MaterialMaps* materials() { return m_materials.has_value() ? &*m_materials : nullptr; }
   MaterialMaps& createMaterials(const MaterialDefaults& defaults = {});
   /// Coulomb friction coefficient of the block under (x, z): from the
   /// friction layer, or the default (0.6) without material maps.

@@ -1,8 +1,12 @@
 // Materials painted on generated terrain follow the land's shape, and the
 // friction physics reads through the drag map follows the materials.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include "app/terrain_scene.h"
+#include "terrain/height_map.h"
 #include "terrain/terrain.h"
 
 namespace tumble::app {
@@ -48,6 +52,60 @@ TEST(TerrainMaterials, HighFlatGroundIsSnow) {
   const auto& texture = t.materials()->layer(terrain::MaterialLayer::Texture);
   EXPECT_EQ(texture[std::size_t(5) * 32 + 25], 4) << "high plateau: snow";
   EXPECT_NEAR(t.frictionAt(Real(25.5), Real(5.5)), 0.2, 1e-6) << "snow is slippery";
+}
+
+}  // namespace tumble::app
+
+// Material layers painted by a designer beside a height-map image replace the
+// painted ones: friction from "NAME.friction.png" reaches physics.
+namespace tumble::app {
+
+namespace {
+std::filesystem::path freshDir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("tumble_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+}  // namespace
+
+TEST(TerrainMaterials, LayerFilesBesideAHeightMapReplaceThePaintedLayers) {
+  const auto dir = freshDir("layers");
+  const std::string mapPath = (dir / "flat.png").string();
+  terrain::HeightMap map(17, 9);  // flat: painted grass, mu 0.6 (or mud)
+  ASSERT_TRUE(terrain::saveHeightMapPng(map, mapPath).ok());
+  EXPECT_EQ(materialLayerPath(mapPath, terrain::MaterialLayer::Friction), (dir / "flat.friction.png").string());
+
+  // The designer's drag map: mu 0.15 on the left half, 1.2 on the right.
+  terrain::MaterialMaps painted(16, 8);
+  for (int bz = 0; bz < 8; ++bz)
+    for (int bx = 0; bx < 16; ++bx)
+      painted.set(terrain::MaterialLayer::Friction, bx, bz, std::uint8_t(bx < 8 ? 15 : 120));
+  ASSERT_TRUE(painted.saveLayerPng(terrain::MaterialLayer::Friction, (dir / "flat.friction.png").string()).ok());
+
+  auto scene = TerrainScene::create({{"terrain.heightmap", mapPath}, {"terrain.spacing", "1"}});
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  const physics::HeightField& field = scene.value()->heightField();
+  // Centred on the origin: x from -8 to 8, z from -4 to 4.
+  EXPECT_NEAR(field.frictionAt(Real(-6.5), Real(0.5)), 0.15, 1e-6);
+  EXPECT_NEAR(field.frictionAt(Real(6.5), Real(-2.5)), 1.2, 1e-6);
+  // Layers without a file keep their painted values (texture: grass or mud).
+  const auto& texture = scene.value()->terrain().materials()->layer(terrain::MaterialLayer::Texture);
+  EXPECT_TRUE(texture[0] == 0 || texture[0] == 3) << int(texture[0]);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(TerrainMaterials, ALayerFileOfTheWrongSizeIsAnErrorNamingItAndTheSizeExpected) {
+  const auto dir = freshDir("badlayer");
+  const std::string mapPath = (dir / "map.png").string();
+  ASSERT_TRUE(terrain::saveHeightMapPng(terrain::HeightMap(17, 9), mapPath).ok());
+  // One pixel per sample instead of per block: a common mistake.
+  ASSERT_TRUE(terrain::MaterialMaps(17, 9).saveLayerPng(terrain::MaterialLayer::Bump, (dir / "map.bump.png").string()).ok());
+  auto scene = TerrainScene::create({{"terrain.heightmap", mapPath}});
+  ASSERT_FALSE(scene.ok());
+  EXPECT_NE(scene.error().find("map.bump.png"), std::string::npos) << scene.error();
+  EXPECT_NE(scene.error().find("16 x 8"), std::string::npos) << scene.error();
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace tumble::app

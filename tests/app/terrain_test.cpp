@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -48,6 +49,29 @@ TEST(Terrain, BadSettingsAndFilesGiveClearErrors) {
   r = runTumble(testMods() + " run good:boxes --steps 1 --set terrain.generate=1 --set terrain.sise=9");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("terrain.sise"), std::string::npos) << r.output;
+}
+
+// `tumble terrain materials MAP` gives a designer the painted layers to edit
+// (one pixel per block) and never overwrites their work without --force.
+TEST(Terrain, MaterialsCommandWritesEditableLayersBesideTheMap) {
+  const std::string dir = outDir("terrain_materials_cmd");
+  const std::string map = dir + "/m.png";
+  std::filesystem::remove(dir + "/m.friction.png");
+  auto r = runTumble("terrain gen --width 33 --height 17 --seed 3 --out " + map);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* layer : {"texture", "bump", "friction", "sound"}) std::filesystem::remove(dir + "/m." + layer + ".png");
+  r = runTumble("terrain materials " + map);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* layer : {"texture", "bump", "friction", "sound"})
+    EXPECT_TRUE(std::filesystem::exists(dir + "/m." + layer + ".png")) << layer;
+  // A second call would destroy edits: refused, naming the file.
+  r = runTumble("terrain materials " + map);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.output.find("m.texture.png exists"), std::string::npos) << r.output;
+  EXPECT_EQ(runTumble("terrain materials --force " + map).exitCode, 0);
+  // The scene plays with them.
+  r = runTumble(testMods() + " run good:boxes --steps 5 --set terrain.heightmap=" + map);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 
 }  // namespace tumble::test
