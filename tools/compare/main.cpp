@@ -5,6 +5,7 @@
 //   tumble_compare list
 //   tumble_compare SCENE [--steps N] [--dt H] [--report FILE] [--quick]
 //                        [--bullet-iterations N] [--no-bullet-default] [--sleep]
+//   tumble_compare terrain_rays [--rays N] [--terrain-size N] [--report FILE] [--quick]
 //
 // Solver budget. Tumble's default step is 8 substeps x (4 solve + 1 relax)
 // iterations = 40 sweeps over every contact per 1/60 s step, with one
@@ -28,6 +29,7 @@
 #include "core/file_util.h"
 #include "physics/world.h"
 #include "scenes.h"
+#include "terrain_rays.h"
 
 using nlohmann::json;
 using namespace tumble::compare;
@@ -138,11 +140,34 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 10000));
   app.add_flag("--no-bullet-default", noBulletDefault, "skip the extra Bullet run at its default 10 iterations");
   app.add_flag("--sleep", sleep, "let both engines put resting bodies to sleep (off: time the solvers, not idle worlds)");
+  TerrainRaysOptions rayOptions;
+  app.add_option("--rays", rayOptions.rays, "terrain_rays: rays in the batch (default 100000)")
+      ->check(CLI::Range(1, 100000000));
+  app.add_option("--terrain-size", rayOptions.size, "terrain_rays: samples per side (default 1025)")
+      ->check(CLI::Range(3, 4097));
   CLI11_PARSE(app, argc, argv);
 
   const std::vector<std::string> names = sceneNames();
   if (sceneName == "list") {
     for (const std::string& n : names) std::printf("%-20s %s\n", n.c_str(), sceneDescription(n).c_str());
+    std::printf("%-20s %s\n", "terrain_rays", "a batch of ray casts against a 1025^2 height field (issue 5)");
+    return 0;
+  }
+  if (sceneName == "terrain_rays") {
+    if (quick) rayOptions.rays = std::min(rayOptions.rays, 3000), rayOptions.size = std::min(rayOptions.size, 257);
+    const json report = runTerrainRays(rayOptions);
+    if (report.contains("error")) {
+      std::fprintf(stderr, "tumble_compare: terrain_rays: %s\n", report["error"].get<std::string>().c_str());
+      return 1;
+    }
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!reportPath.empty()) {
+      if (auto s = tumble::writeFileAtomic(reportPath, text); !s) {
+        std::fprintf(stderr, "tumble_compare: %s\n", s.error().c_str());
+        return 1;
+      }
+    }
     return 0;
   }
   SceneSpec scene;
