@@ -1,12 +1,16 @@
 #include "app/scene.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
 #include <sstream>
 
 #include "app/paths.h"
 #include "script/mods.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
+#include "script/terrain_build.h"
 #endif
 
 namespace tumble::app {
@@ -129,8 +133,28 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   // The scenario's own terrain = {...} comes first; --set terrain.* overrides.
   for (const auto& [key, value] : scene->m_host->terrainRequest()) terrainSettings.emplace(key, value);
 #if TUMBLE_HAVE_TERRAIN
-  if (TerrainScene::requested(terrainSettings)) {
-    auto terrain = TerrainScene::create(terrainSettings);
+  // terrain.build(map) in the scenario makes the height map in Lua, unless
+  // the command line asks for another one (--set terrain.heightmap or
+  // terrain.generate: a player can play any scenario on any map).
+  std::optional<terrain::HeightMap> built;
+  const bool commandLineMap = std::any_of(options.sets.begin(), options.sets.end(), [](const auto& kv) {
+    return kv.first == "terrain.heightmap" || kv.first == "terrain.generate";
+  });
+  if (scene->m_host->hasTerrainBuild() && !commandLineMap) {
+    double size = 1025;
+    if (auto it = terrainSettings.find("terrain.size"); it != terrainSettings.end()) {
+      char* end = nullptr;
+      size = std::strtod(it->second.c_str(), &end);
+      if (end == it->second.c_str() || *end != '\0' || size != std::floor(size))
+        return makeError("terrain.size=" + it->second + ": expected a whole number of samples per side");
+    }
+    auto map = script::buildScenarioTerrain(*scene->m_host, int(size), int(size));
+    if (!map) return makeError(map.error());
+    built = std::move(map.value());
+  }
+  terrainSettings.erase("terrain.build");
+  if (built || TerrainScene::requested(terrainSettings)) {
+    auto terrain = TerrainScene::create(terrainSettings, built ? &*built : nullptr);
     if (!terrain) return makeError(terrain.error());
     scene->m_terrain = std::move(terrain.value());
     scene->m_world->setHeightField(&scene->m_terrain->heightField());

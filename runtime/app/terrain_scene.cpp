@@ -146,7 +146,7 @@ void paintMaterials(terrain::Terrain& t, bool island) {
     }
 }
 
-Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s) {
+Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s, terrain::HeightMap* built) {
   static const char* kKnown[] = {"terrain.heightmap", "terrain.generate", "terrain.size",   "terrain.roughness",
                                  "terrain.spacing",   "terrain.height",   "terrain.style"};
   for (const auto& [key, value] : s) {
@@ -171,7 +171,13 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s) {
   terrain::TerrainDesc desc;
   desc.spacing_m = spacing;
   desc.heightScale_m = height / 65535.0;
-  if (auto it = s.find("terrain.heightmap"); it != s.end()) {
+  if (built && s.count("terrain.heightmap") == 0 && s.count("terrain.generate") == 0) {
+    // Made by the scenario's terrain.build (script/terrain_build.h).
+    map = std::move(*built);
+    if (style == "island") desc.baseHeight_m = -0.1 * height;
+    desc.originX_m = -(map.width() - 1) * spacing / 2;
+    desc.originZ_m = -(map.height() - 1) * spacing / 2;
+  } else if (auto it = s.find("terrain.heightmap"); it != s.end()) {
     const std::string& path = it->second;
     auto loaded = terrain::loadHeightMapPng(path);
     if (!loaded) return makeError("--set terrain.heightmap=" + path + ": " + loaded.error());

@@ -53,7 +53,10 @@ class TerrainScene {
   /// True if `settings` (terrain.* keys) ask for a terrain.
   static bool requested(const std::map<std::string, std::string>& settings);
   /// Loads or generates the terrain; errors name the key or the file.
-  static Result<std::unique_ptr<TerrainScene>> create(const std::map<std::string, std::string>& settings);
+  /// `built`: a height map the scenario made (terrain.build in Lua), used
+  /// unless the settings name a heightmap or a generate seed; it is moved from.
+  static Result<std::unique_ptr<TerrainScene>> create(const std::map<std::string, std::string>& settings,
+                                                      terrain::HeightMap* built = nullptr);
 
   const terrain::Terrain& terrain() const { return *m_terrain; }
   terrain::Terrain& terrain() { return *m_terrain; }

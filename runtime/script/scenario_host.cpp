@@ -525,11 +525,20 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
     lua_pushnil(L);
     while (lua_next(L, -2) != 0) {
       bool keyOk = lua_type(L, -2) == LUA_TSTRING;
+      if (keyOk && std::strcmp(lua_tostring(L, -2), "build") == 0) {
+        if (!lua_isfunction(L, -1)) {
+          lua_pop(L, 4);
+          return makeError(where + ": terrain.build must be a function(map) that shapes the height map");
+        }
+        host->m_terrainBuildRef = luaL_ref(L, LUA_REGISTRYINDEX);  // pops the function
+        host->m_terrainRequest["terrain.build"] = "lua";
+        continue;
+      }
       bool valueOk = lua_type(L, -1) == LUA_TSTRING || lua_type(L, -1) == LUA_TNUMBER;
       if (!keyOk || !valueOk) {
         lua_pop(L, 4);
-        return makeError(where + ": field 'terrain' must be a table of name = number or string, e.g. "
-                                 "terrain = {generate = 7, size = 1025}");
+        return makeError(where + ": field 'terrain' must be a table of name = number or string (and an optional "
+                                 "build = function(map)), e.g. terrain = {generate = 7, size = 1025}");
       }
       std::string key = lua_tostring(L, -2);
       std::string value = lua_tostring(L, -1);  // converts numbers in place (value copy only)
@@ -578,6 +587,13 @@ void ScenarioHost::pushCtx(double time_s, double dt_s, std::int64_t step) {
   lua_setfield(L, -2, "step");
   lua_pushinteger(L, lua_Integer(m_options.seed));
   lua_setfield(L, -2, "seed");
+}
+
+bool ScenarioHost::callTerrainBuild(const std::function<void(lua_State*)>& pushArg, ScriptError* err) {
+  lua_State* L = m_vm.state();
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_terrainBuildRef);
+  pushArg(L);
+  return m_vm.call(1, 0, m_mod.name, m_file, "terrain.build", err);
 }
 
 bool ScenarioHost::callRecorded(int nargs, const std::string& what) {

@@ -14,6 +14,7 @@
 // it. Neither calls into Lua unless there is something to call: on_update,
 // a due timer, on_contact with a contact event, a trigger enter/exit.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -87,6 +88,14 @@ class ScenarioHost {
   /// value (as --set would give them); `heightmap` is made an absolute path
   /// inside the mod. Empty when the scenario declares no terrain.
   const std::map<std::string, std::string>& terrainRequest() const { return m_terrainRequest; }
+  /// True if the scenario's terrain table has a `build = function(map)`
+  /// (script/terrain_build.h runs it; terrainRequest() then also holds
+  /// "terrain.build" = "lua").
+  bool hasTerrainBuild() const { return m_terrainBuildRef != 0; }
+  /// Calls terrain.build with the one argument `pushArg` pushes, under the
+  /// instruction and memory budgets; false and `err` filled on failure.
+  bool callTerrainBuild(const std::function<void(lua_State*)>& pushArg, ScriptError* err);
+  lua_State* luaState() { return m_vm.state(); }
   const std::vector<ScriptError>& errors() const { return m_errors; }
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
@@ -181,6 +190,7 @@ class ScenarioHost {
   std::string m_title;
   double m_duration_s = 10;
   std::map<std::string, std::string> m_terrainRequest;
+  int m_terrainBuildRef = 0;  ///< registry ref of terrain.build, 0 = none
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   bool m_hasUpdate = false, m_updatePaused = false;
   bool m_hasContact = false, m_contactPaused = false;

@@ -369,6 +369,72 @@ function random.chance(p) end
 ---@return any
 function random.pick(list) end
 
+---The height map a scenario builds in `terrain.build(map)`, before
+---on_start. It starts flat at 0, `terrain.size` samples per side. Positions
+---and extents are fractions of the map (x across its columns, z across its
+---rows, 0..1); heights are fractions of the terrain's height range
+---(`terrain.height` metres from value 0 to value 1). Everything is
+---deterministic for its seeds. --set terrain.heightmap or
+---terrain.generate on the command line replaces the built map.
+HeightMap = {}
+
+---Samples across (along X).
+---@return integer
+function HeightMap:width() end
+
+---Samples down (along Z).
+---@return integer
+function HeightMap:height() end
+
+---Height of one sample, as a fraction of the height range.
+---@param i integer column, 0 .. width - 1
+---@param j integer row, 0 .. height - 1
+---@return number # 0..1
+function HeightMap:get(i, j) end
+
+---Sets one sample (clamped to 0..1).
+---@param i integer column
+---@param j integer row
+---@param h number height, fraction of the range
+function HeightMap:set(i, j, h) end
+
+---Every sample to one height.
+---@param h number fraction of the range (clamped to 0..1)
+function HeightMap:fill(h) end
+
+---Replaces the map with a plasma fractal (diamond-square), normalised to the full range.
+---@param p table {seed = integer, roughness = number (0.01..1; 0.3 rolling, 0.5 natural, 0.7 craggy)}
+function HeightMap:plasma(p) end
+
+---Adds plasma to a rectangle, fading to nothing at its border (no cliff); negative amplitude digs.
+---@param p table {x, z, width, depth: the rectangle (fractions of the map); amplitude: -1..1 of the range; seed; roughness}
+function HeightMap:bump(p) end
+
+---Adds a ridge (or, with a negative height, a ditch) along a midpoint-displaced line.
+---@param p table {from = {x, z}, to = {x, z} (fractions); height: -1..1 of the range; width: half width, fraction of the map's width; jaggedness: sideways wander 0..1; seed}
+function HeightMap:ridge(p) end
+
+---Smooths with the 3 x 3 binomial kernel.
+---@param passes? integer 1..64 (default 1)
+function HeightMap:smooth(passes) end
+
+---Sharpens with a Laplacian kernel.
+---@param amount? number 0..4 (default 0.5)
+function HeightMap:sharpen(amount) end
+
+---Convolves with a custom square kernel (odd size; weights row by row, normalised by their sum when it is not 0).
+---@param weights table a sequence of size * size numbers (9 for 3 x 3, 25 for 5 x 5, ...)
+function HeightMap:convolve(weights) end
+
+---Bicubic resampling to a new size (corners stay put).
+---@param width integer samples across, 2..4097
+---@param height integer samples down, 2..4097
+function HeightMap:resample(width, height) end
+
+---Replaces the map with an image from the mod's folder (8- or 16-bit grey, or RGB as luminance), at its own size.
+---@param path string inside the mod, e.g. "assets/valley.png"
+function HeightMap:import(path) end
+
 ---Calls a function after a delay or every period, in simulated time. Timers
 ---are checked before on_update each step: a timer due at t fires in the
 ---first step that starts at or after t, at most once per step, in order of
