@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "app/terrain_scene.h"
+#include "physics/world.h"
 #include "terrain/height_map.h"
 #include "terrain/terrain.h"
 
@@ -106,6 +107,46 @@ TEST(TerrainMaterials, ALayerFileOfTheWrongSizeIsAnErrorNamingItAndTheSizeExpect
   EXPECT_NE(scene.error().find("map.bump.png"), std::string::npos) << scene.error();
   EXPECT_NE(scene.error().find("16 x 8"), std::string::npos) << scene.error();
   std::filesystem::remove_all(dir);
+}
+
+// The drag map decides how far a sliding block goes (issue 5 check): the
+// same block at the same speed on grass (mu 0.64) and on mud (mu 0.16) of
+// one terrain stops where Coulomb friction says, v0^2 / (2 mu g), with the
+// pair coefficient sqrt(mu_block * mu_ground) (world.h) and mu_block = 1.
+TEST(TerrainMaterials, DragMapSetsASlidingBlocksStoppingDistance) {
+  terrain::HeightMap map(129, 65);  // flat, 0.5 m spacing: 64 x 32 m
+  terrain::TerrainDesc desc;
+  desc.spacing_m = 0.5;
+  desc.originX_m = -32;
+  desc.originZ_m = -16;
+  auto created = terrain::Terrain::create(std::move(map), desc);
+  ASSERT_TRUE(created.ok()) << created.error();
+  terrain::Terrain t = std::move(created.value());
+  terrain::MaterialMaps& m = t.createMaterials();
+  for (int bz = 0; bz < m.blocksZ(); ++bz)
+    for (int bx = 0; bx < m.blocksX(); ++bx)
+      m.set(terrain::MaterialLayer::Friction, bx, bz, std::uint8_t(bz < 32 ? 64 : 16));  // z < 0: grass, z > 0: mud
+  TerrainHeightField field(t);
+  physics::World w;
+  w.setHeightField(&field);
+  const Real v0 = 6;
+  auto slide = [&](Real z) {
+    physics::BodyDef d;
+    d.shape = physics::Shape::box(Vec3(Real(0.3), Real(0.2), Real(0.3)));
+    d.position_m = Vec3(-25, Real(0.2), z);
+    d.linearVelocity_mps = Vec3(v0, 0, 0);
+    d.friction = 1;
+    return w.createBody(d).value();
+  };
+  const physics::BodyId grass = slide(-8), mud = slide(8);
+  for (int i = 0; i < 360; ++i) w.step(Real(1.0 / 60));
+  for (auto [id, mu] : {std::pair{grass, 0.8}, std::pair{mud, 0.4}}) {
+    const double dist = w.body(id).position_m.x() + 25;
+    const double expected = v0 * v0 / (2 * mu * 9.80665);
+    std::printf("mu %.2f: slid %.3f m, expected %.3f m (%+.2f%%)\n", mu, dist, expected, 100 * (dist / expected - 1));
+    EXPECT_NEAR(dist, expected, 0.02 * expected);
+    EXPECT_LT(w.body(id).linearVelocity_mps.norm(), 1e-3);
+  }
 }
 
 }  // namespace tumble::app
