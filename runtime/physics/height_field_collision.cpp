@@ -33,6 +33,9 @@
 // kPeakTolerance_m) than every corner.
 // Capsules: the two end caps as spheres, plus terrain vertices against the
 // core segment where they reach deeper than the caps.
+// Hulls: as boxes - every vertex against the triangle under it, and terrain
+// vertices against the hull's lowest face (the face whose normal points most
+// downwards) where they reach deeper than every vertex.
 //
 // Contacts are then grouped by normal (within kSameNormalCos) into at most
 // kMaxHeightFieldManifolds manifolds of at most 4 points each, deepest first.
@@ -41,6 +44,8 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+
+#include "physics/convex_hull.h"
 
 namespace tumble::physics {
 namespace {
@@ -268,6 +273,47 @@ void boxContacts(const Body& b, const HeightField& field, Real margin, HeightFie
     }
 }
 
+void hullContacts(const Body& b, const HeightField& field, Real margin, HeightFieldScratch& s) {
+  const ConvexHull& hull = *b.shape.hull;
+  const Mat3 R = b.orientation.toRotationMatrix();
+  for (std::uint32_t i = 0; i < hull.vertices_m.size(); ++i) {
+    const Vec3 v = b.position_m + R * hull.vertices_m[i];
+    Real h;
+    Vec3 n;
+    if (!field.surfaceAt(v.x(), v.z(), &h, &n)) continue;
+    const Real sep = (v.y() - h) * n.y();
+    if (sep > margin) continue;
+    s.contacts.push_back({n, v - n * (sep / 2), sep, i});
+  }
+  std::size_t low = 0;
+  for (std::size_t f = 1; f < hull.faces.size(); ++f)
+    if ((R * hull.faces[f].normal).y() < (R * hull.faces[low].normal).y()) low = f;
+  const HullFace& face = hull.faces[low];
+  const Vec3 down = R * face.normal;  // outward normal of the lowest face
+  const Real deepest = minSeparation(s.contacts) - kPeakTolerance_m;
+  const std::size_t corners = s.contacts.size();
+  const Real depth = hull.boundsHi_m.norm() + hull.boundsLo_m.norm();  // no contact deeper than the hull is thick
+  for (const HeightFieldTriangle& t : s.triangles)
+    for (const Vec3& v : t.v) {
+      const Vec3 local = R.transpose() * (v - b.position_m);
+      const Real sep = face.normal.dot(local) - face.offset_m;
+      if (sep > margin || sep >= deepest || sep < -depth) continue;
+      bool inside = true;
+      for (std::uint32_t k = 0; k < face.count && inside; ++k) {
+        const Vec3& a = hull.vertices_m[hull.faceVertices[face.first + k]];
+        const Vec3& c = hull.vertices_m[hull.faceVertices[face.first + (k + 1) % face.count]];
+        inside = (c - a).cross(face.normal).dot(local - a) <= 0;
+      }
+      if (!inside) continue;
+      const std::uint32_t id = vertexId(v);
+      bool seen = false;
+      for (std::size_t j = corners; j < s.contacts.size(); ++j) seen |= s.contacts[j].id == id;
+      if (seen) continue;
+      const Vec3 n = -down;
+      s.contacts.push_back({n, v + n * (sep / 2), sep, id});
+    }
+}
+
 void capsuleContacts(const Body& b, Real margin, HeightFieldScratch& s) {
   const Vec3 axis = b.orientation * Vec3::UnitY();
   const Real r = b.shape.radius_m;
@@ -309,7 +355,9 @@ int collideHeightField(const Body& body, const HeightField& field, const Vec3& l
     case ShapeType::Sphere: roundContacts(body.position_m, shape.radius_m, margin, 0, s); break;
     case ShapeType::Box: boxContacts(body, field, margin, s); break;
     case ShapeType::Capsule: capsuleContacts(body, margin, s); break;
+    case ShapeType::Hull: hullContacts(body, field, margin, s); break;
     case ShapeType::Plane: break;
+    case ShapeType::Compound: break;  // World passes compounds child by child
   }
   if (s.contacts.empty()) return 0;
   // Deepest first; ties by id so the order never depends on the triangle order.

@@ -17,6 +17,9 @@
 #include <algorithm>
 #include <array>
 
+#include "physics/compound_shape.h"
+#include "physics/internal/hull_collision.h"
+
 namespace tumble::physics {
 namespace {
 
@@ -24,7 +27,6 @@ struct Xf {
   Vec3 p;
   Mat3 R;
 };
-Xf xfOf(const Body& b) { return {b.position_m, b.orientation.toRotationMatrix()}; }
 
 void addPoint(Manifold& m, const Vec3& p, Real sep, std::uint32_t id) {
   if (m.count >= kMaxManifoldPoints) return;
@@ -411,15 +413,16 @@ int collideSpheresSwept(const Body& a, const Body& b, const Vec3& motion, Real s
   return m.count;
 }
 
-int collideBodies(const Body& ba, const Body& bb, Real margin, Manifold& m) {
+int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Shape& shapeB, const Vec3& pb,
+                  const Quat& qb, Real margin, Manifold& m) {
   m.count = 0;
   // Order by shape type so each pair has one routine; flip the normal back.
-  bool swapped = ba.shape.type > bb.shape.type;
-  const Body& a = swapped ? bb : ba;
-  const Body& b = swapped ? ba : bb;
-  Xf A = xfOf(a), B = xfOf(b);
-  const Shape& sa = a.shape;
-  const Shape& sb = b.shape;
+  const bool swapped = shapeA.type > shapeB.type;
+  const Shape& sa = swapped ? shapeB : shapeA;
+  const Shape& sb = swapped ? shapeA : shapeB;
+  const Xf A = swapped ? Xf{pb, qb.toRotationMatrix()} : Xf{pa, qa.toRotationMatrix()};
+  const Xf B = swapped ? Xf{pa, qa.toRotationMatrix()} : Xf{pb, qb.toRotationMatrix()};
+  const Pose PA{A.p, A.R}, PB{B.p, B.R};
   switch (sa.type) {
     case ShapeType::Sphere:
       switch (sb.type) {
@@ -432,7 +435,9 @@ int collideBodies(const Body& ba, const Body& bb, Real margin, Manifold& m) {
           spheres(A.p, sa.radius_m, q0 + (q1 - q0) * t, sb.radius_m, margin, m, 0);
           break;
         }
+        case ShapeType::Hull: collideSphereHull(A.p, sa.radius_m, PB, *sb.hull, margin, m, 0); break;
         case ShapeType::Plane: planePoints(B, &A.p, 1, sa.radius_m, margin, m, false); break;
+        case ShapeType::Compound: break;
       }
       break;
     case ShapeType::Box:
@@ -441,6 +446,9 @@ int collideBodies(const Body& ba, const Body& bb, Real margin, Manifold& m) {
         case ShapeType::Capsule:
           capsuleBox(B, sb, A, sa.halfExtents_m, margin, m);
           m.normal = -m.normal;  // computed capsule -> box
+          break;
+        case ShapeType::Hull:
+          collidePolytopes(PA, unitCubeHull(), sa.halfExtents_m, PB, *sb.hull, Vec3::Ones(), margin, m);
           break;
         case ShapeType::Plane: {
           auto v = boxVertices(A, sa.halfExtents_m);
@@ -453,6 +461,10 @@ int collideBodies(const Body& ba, const Body& bb, Real margin, Manifold& m) {
     case ShapeType::Capsule:
       switch (sb.type) {
         case ShapeType::Capsule: capsuleCapsule(A, sa, B, sb, margin, m); break;
+        case ShapeType::Hull:
+          collideCapsuleHull(capsuleEnd(A, sa.halfHeight_m, 0), capsuleEnd(A, sa.halfHeight_m, 1), sa.radius_m, PB,
+                             *sb.hull, margin, m);
+          break;
         case ShapeType::Plane: {
           Vec3 ends[2] = {capsuleEnd(A, sa.halfHeight_m, 0), capsuleEnd(A, sa.halfHeight_m, 1)};
           planePoints(B, ends, 2, sa.radius_m, margin, m, false);
@@ -461,10 +473,72 @@ int collideBodies(const Body& ba, const Body& bb, Real margin, Manifold& m) {
         default: break;
       }
       break;
-    case ShapeType::Plane: break;  // plane-plane never collides
+    case ShapeType::Hull:
+      switch (sb.type) {
+        case ShapeType::Hull: collidePolytopes(PA, *sa.hull, Vec3::Ones(), PB, *sb.hull, Vec3::Ones(), margin, m); break;
+        case ShapeType::Plane: collideHullPlane(PA, *sa.hull, B.p, B.R.col(1), margin, m); break;
+        default: break;
+      }
+      break;
+    case ShapeType::Plane: break;     // plane-plane never collides
+    case ShapeType::Compound: break;  // children are handled by collidePair
   }
   if (swapped && m.count > 0) m.normal = -m.normal;
   return m.count;
+}
+
+int collideBodies(const Body& a, const Body& b, Real margin, Manifold& m) {
+  return collideShapes(a.shape, a.position_m, a.orientation, b.shape, b.position_m, b.orientation, margin, m);
+}
+
+const Shape& childShape(const Shape& s, std::uint16_t child) {
+  return s.type == ShapeType::Compound ? s.compound->children[child].shape : s;
+}
+
+int collidePair(const Body& a, const Body& b, Real margin, std::vector<Manifold>& out) {
+  out.clear();
+  const bool ca = a.shape.type == ShapeType::Compound, cb = b.shape.type == ShapeType::Compound;
+  if (!ca && !cb) {
+    Manifold m;
+    if (collideBodies(a, b, margin, m) > 0) out.push_back(m);
+    return int(out.size());
+  }
+  // Child by child; children whose boxes (grown by the margin) miss the other
+  // body's box are skipped.
+  auto children = [](const Body& body, auto&& fn) {
+    if (body.shape.type != ShapeType::Compound) {
+      fn(std::uint16_t(0), body.shape, body.position_m, body.orientation);
+      return;
+    }
+    const auto& kids = body.shape.compound->children;
+    for (std::size_t i = 0; i < kids.size(); ++i)
+      fn(std::uint16_t(i), kids[i].shape, Vec3(body.position_m + body.orientation * kids[i].position_m),
+         Quat(body.orientation * kids[i].orientation));
+  };
+  Vec3 loA, hiA, loB, hiB;
+  a.shape.bounds(a.position_m, a.orientation, &loA, &hiA);
+  b.shape.bounds(b.position_m, b.orientation, &loB, &hiB);
+  const Vec3 grow = Vec3::Constant(margin);
+  children(a, [&](std::uint16_t ia, const Shape& sa, const Vec3& pa, const Quat& qa) {
+    Vec3 l, h;
+    sa.bounds(pa, qa, &l, &h);
+    if (sa.type != ShapeType::Plane &&
+        ((l.array() - margin > hiB.array()).any() || (h.array() + margin < loB.array()).any()))
+      return;
+    children(b, [&](std::uint16_t ib, const Shape& sb, const Vec3& pb, const Quat& qb) {
+      Vec3 l2, h2;
+      sb.bounds(pb, qb, &l2, &h2);
+      if (sa.type != ShapeType::Plane && sb.type != ShapeType::Plane &&
+          ((l.array() - grow.array() > h2.array()).any() || (h.array() + grow.array() < l2.array()).any()))
+        return;
+      Manifold m;
+      if (collideShapes(sa, pa, qa, sb, pb, qb, margin, m) == 0) return;
+      m.childA = ia;
+      m.childB = ib;
+      out.push_back(m);
+    });
+  });
+  return int(out.size());
 }
 
 }  // namespace tumble::physics

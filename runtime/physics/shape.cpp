@@ -2,6 +2,9 @@
 
 #include <string>
 
+#include "physics/compound_shape.h"
+#include "physics/convex_hull.h"
+
 namespace tumble::physics {
 
 Shape Shape::sphere(Real r) {
@@ -37,6 +40,8 @@ Real Shape::volume() const {
       Real r = radius_m;
       return kPi * r * r * (2 * halfHeight_m) + Real(4.0 / 3.0) * kPi * r * r * r;
     }
+    case ShapeType::Hull: return hull ? hull->volume_m3 : 0;
+    case ShapeType::Compound: return compound ? compound->volume_m3 : 0;
     case ShapeType::Plane: return 0;
   }
   return 0;
@@ -64,6 +69,8 @@ Vec3 Shape::unitInertia() const {
       Real ixCaps = mCaps * (Real(0.4) * r * r + h * h / 4 + Real(3.0 / 8.0) * h * r);
       return Vec3(ixCyl + ixCaps, iyCyl + iyCaps, ixCyl + ixCaps);
     }
+    case ShapeType::Hull: return hull ? Vec3(hull->unitInertia_m2.diagonal()) : Vec3::Zero();
+    case ShapeType::Compound: return compound ? compound->unitInertia_m2 : Vec3::Zero();
     case ShapeType::Plane: return Vec3::Zero();
   }
   return Vec3::Zero();
@@ -74,9 +81,53 @@ Real Shape::boundingRadius() const {
     case ShapeType::Sphere: return radius_m;
     case ShapeType::Box: return halfExtents_m.norm();
     case ShapeType::Capsule: return radius_m + halfHeight_m;
+    case ShapeType::Hull: return hull ? hull->boundingRadius_m : 0;
+    case ShapeType::Compound: return compound ? compound->boundingRadius_m : 0;
     case ShapeType::Plane: return std::numeric_limits<Real>::infinity();
   }
   return 0;
+}
+
+Real Shape::innerRadius() const {
+  switch (type) {
+    case ShapeType::Sphere: return radius_m;
+    case ShapeType::Box: return halfExtents_m.minCoeff();
+    case ShapeType::Capsule: return radius_m;
+    case ShapeType::Hull: return hull ? std::max<Real>(hull->innerRadius_m, 0) : 0;
+    case ShapeType::Compound: return compound ? std::max<Real>(compound->innerRadius_m, 0) : 0;
+    case ShapeType::Plane: return 0;
+  }
+  return 0;
+}
+
+void Shape::bounds(const Vec3& p, const Quat& q, Vec3* lo, Vec3* hi) const {
+  Vec3 centre = p, ext = Vec3::Zero();
+  switch (type) {
+    case ShapeType::Sphere: ext = Vec3::Constant(radius_m); break;
+    case ShapeType::Box: ext = q.toRotationMatrix().cwiseAbs() * halfExtents_m; break;
+    case ShapeType::Capsule: ext = (q * Vec3(0, halfHeight_m, 0)).cwiseAbs() + Vec3::Constant(radius_m); break;
+    case ShapeType::Hull: {
+      const Mat3 R = q.toRotationMatrix();
+      centre = p + R * ((hull->boundsLo_m + hull->boundsHi_m) / 2);
+      ext = R.cwiseAbs() * ((hull->boundsHi_m - hull->boundsLo_m) / 2);
+      break;
+    }
+    case ShapeType::Compound: {
+      Vec3 l = Vec3::Constant(std::numeric_limits<Real>::max()), h = -l;
+      for (const CompoundChild& c : compound->children) {
+        Vec3 cl, ch;
+        c.shape.bounds(p + q * c.position_m, q * c.orientation, &cl, &ch);
+        l = l.cwiseMin(cl);
+        h = h.cwiseMax(ch);
+      }
+      *lo = l;
+      *hi = h;
+      return;
+    }
+    case ShapeType::Plane: ext = Vec3::Constant(std::numeric_limits<Real>::infinity()); break;
+  }
+  *lo = centre - ext;
+  *hi = centre + ext;
 }
 
 static bool positiveFinite(Real v) { return std::isfinite(v) && v > 0; }
@@ -98,6 +149,14 @@ Status validateShape(const Shape& s) {
       if (!positiveFinite(s.radius_m)) return bad("radius", s.radius_m);
       if (!std::isfinite(s.halfHeight_m) || s.halfHeight_m < 0) return bad("half_height", s.halfHeight_m);
       break;
+    case ShapeType::Hull:
+      if (!s.hull || s.hull->faces.size() < 4 || !(s.hull->volume_m3 > 0))
+        return makeError("a hull shape must be made with makeHullShape (it has no faces or no volume)");
+      break;
+    case ShapeType::Compound:
+      if (!s.compound || s.compound->children.empty() || !(s.compound->volume_m3 > 0))
+        return makeError("a compound shape must be made with makeCompoundShape (it has no children or no volume)");
+      break;
     case ShapeType::Plane: break;
   }
   return Ok{};
@@ -108,7 +167,9 @@ const char* shapeTypeName(ShapeType t) {
     case ShapeType::Sphere: return "sphere";
     case ShapeType::Box: return "box";
     case ShapeType::Capsule: return "capsule";
+    case ShapeType::Hull: return "hull";
     case ShapeType::Plane: return "plane";
+    case ShapeType::Compound: return "compound";
   }
   return "?";
 }

@@ -3,13 +3,28 @@
 //
 // Every shape is described in its body's local frame, centred on the body's
 // centre of mass, with its principal axes along the body's axes, so the body
-// inertia tensor is diagonal in the body frame.
+// inertia tensor is diagonal in the body frame. Hulls and compounds are
+// moved into that frame when they are made (makeHullShape, makeCompoundShape),
+// which say where it lies in the frame the caller described them in.
+#include <memory>
+
 #include "core/math.h"
 #include "core/result.h"
 
 namespace tumble::physics {
 
-enum class ShapeType { Sphere, Box, Capsule, Plane };
+/// The order matters: the narrow phase handles each pair once, as (lower, higher).
+enum class ShapeType { Sphere, Box, Capsule, Hull, Plane, Compound };
+
+struct ConvexHull;     // physics/convex_hull.h
+struct CompoundShape;  // physics/compound_shape.h
+
+/// Where a shape's body frame (centre of mass, principal axes) sits in the
+/// frame its data was given in: x_given = centre_m + rotation * x_body.
+struct ShapeFrame {
+  Vec3 centre_m = Vec3::Zero();
+  Quat rotation = Quat::Identity();
+};
 
 struct Shape {
   ShapeType type = ShapeType::Sphere;
@@ -18,6 +33,10 @@ struct Shape {
   Real halfHeight_m = Real(0.5);  ///< Capsule: half length of the core segment along local Y, caps excluded
   // Plane: the body's local +Y is the plane normal; the plane passes through
   // the body position. Planes are always static and infinite.
+  /// Hull: vertices and faces in the body frame (shared, immutable; see makeHullShape).
+  std::shared_ptr<const ConvexHull> hull;
+  /// Compound: children in the body frame (shared, immutable; see makeCompoundShape).
+  std::shared_ptr<const CompoundShape> compound;
 
   static Shape sphere(Real radius_m);
   static Shape box(const Vec3& halfExtents_m);
@@ -30,6 +49,11 @@ struct Shape {
   Vec3 unitInertia() const;
   /// Radius of a sphere around the centre that contains the shape (m).
   Real boundingRadius() const;
+  /// Radius of the largest sphere about the centre inside the shape (m; 0
+  /// for planes, and for compounds whose centre lies outside every child).
+  Real innerRadius() const;
+  /// Axis-aligned box (m) of the shape at pose (p, q).
+  void bounds(const Vec3& p_m, const Quat& q, Vec3* lo_m, Vec3* hi_m) const;
 };
 
 /// Refuses sizes that are not finite and positive; the message names the field.

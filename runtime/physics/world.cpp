@@ -19,9 +19,11 @@
 #include <numeric>
 
 #include "core/hash.h"
+#include "physics/compound_shape.h"
 #include "physics/internal/broad_phase.h"
 #include "physics/internal/contact_solver.h"
 #include "physics/internal/height_field_collision.h"
+#include "physics/internal/hull_collision.h"
 #include "physics/internal/narrow_phase.h"
 
 namespace tumble::physics {
@@ -44,6 +46,8 @@ struct StepScratch {
   std::vector<Manifold> old;
   std::vector<std::uint32_t> oldStart, oldIndex, cursor;
   HeightFieldScratch heightField;
+  std::vector<Manifold> pairManifolds;  ///< manifolds of one body pair (compounds have several)
+  std::vector<std::uint32_t> usedOld;   ///< old height-field manifolds already inherited from
 };
 
 Status validateBodyDef(const BodyDef& d) {
@@ -159,6 +163,7 @@ bool World::destroyBody(BodyId id) {
     }
   Body& b = m_bodies[id.index];
   b.alive = false;
+  b.shape = Shape{};  // releases hull / compound data
   ++b.generation;
   m_freeList.push_back(id.index);
   --m_bodyCount;
@@ -316,18 +321,7 @@ void World::wakeIsland(std::uint32_t index) {
 
 static Aabb shapeBounds(const Body& b) {
   Aabb box;
-  const Shape& s = b.shape;
-  Vec3 ext = Vec3::Zero();
-  switch (s.type) {
-    case ShapeType::Sphere: ext = Vec3::Constant(s.radius_m); break;
-    case ShapeType::Box: ext = b.orientation.toRotationMatrix().cwiseAbs() * s.halfExtents_m; break;
-    case ShapeType::Capsule:
-      ext = (b.orientation * Vec3(0, s.halfHeight_m, 0)).cwiseAbs() + Vec3::Constant(s.radius_m);
-      break;
-    case ShapeType::Plane: ext = Vec3::Constant(std::numeric_limits<Real>::infinity()); break;
-  }
-  box.lo = b.position_m - ext;
-  box.hi = b.position_m + ext;
+  b.shape.bounds(b.position_m, b.orientation, &box.lo, &box.hi);
   return box;
 }
 
@@ -372,9 +366,12 @@ void World::collide(Real dt) {
   st.cursor.assign(st.oldStart.begin(), st.oldStart.end() - 1);
   st.oldIndex.resize(old.size());
   for (std::uint32_t i = 0; i < old.size(); ++i) st.oldIndex[st.cursor[old[i].a]++] = i;
-  auto findOld = [&](std::uint32_t a, std::uint32_t b) -> const Manifold* {
-    for (std::uint32_t k = st.oldStart[a]; k < st.oldStart[a + 1]; ++k)
-      if (old[st.oldIndex[k]].b == b) return &old[st.oldIndex[k]];
+  auto findOld = [&](std::uint32_t a, std::uint32_t b, std::uint16_t childA,
+                     std::uint16_t childB) -> const Manifold* {
+    for (std::uint32_t k = st.oldStart[a]; k < st.oldStart[a + 1]; ++k) {
+      const Manifold& o = old[st.oldIndex[k]];
+      if (o.b == b && o.childA == childA && o.childB == childB) return &o;
+    }
     return nullptr;
   };
 
@@ -424,44 +421,54 @@ void World::collide(Real dt) {
     // Margin: the closing speed along any direction this step, bounded.
     Vec3 dv = b.linearVelocity_mps - a.linearVelocity_mps;
     Real margin = spec + dv.norm() * dt;
-    Manifold m;
-    m.a = ia;
-    m.b = ib;
     // Two spheres closing fast: contact along the normal they will have when
     // they touch (time of impact), none if they pass each other this step.
+    // Compounds give one manifold per touching child pair.
     const bool swept = a.shape.type == ShapeType::Sphere && b.shape.type == ShapeType::Sphere && margin > 2 * spec;
-    const int count = swept ? collideSpheresSwept(a, b, dv * dt, spec, m) : collideBodies(a, b, margin, m);
-    if (count == 0) continue;
-    m.friction = std::sqrt(a.friction * b.friction);
-    m.restitution = std::max(a.restitution, b.restitution);
-    m.roundA = rollingRadius(a.shape) > 0;
-    m.roundB = rollingRadius(b.shape) > 0;
-    m.rollingArm_m = std::max(a.rollingResistance, b.rollingResistance) *
-                     std::max(rollingRadius(a.shape), rollingRadius(b.shape));
-    // Warm start from matching feature ids; a point whose id changed but
-    // which sits where an old point was (features flicker when faces are
-    // exactly aligned) takes that point's impulses.
-    if (const Manifold* prev = findOld(ia, ib)) inheritImpulses(*prev, m);
-    // A moving body touching a sleeping one wakes it (and its island), and
-    // so does one that will close the gap during this step: the speculative
-    // contact acts before the bodies touch, and a sleeper still counts as
-    // static in the solver, so waking only on overlap would stop the moving
-    // body dead against it.
-    Real minSeparation = std::numeric_limits<Real>::max();
-    for (int i = 0; i < m.count; ++i) {
-      minSeparation = std::min(minSeparation, m.points[i].separation_m);
-      m_error.penetrationMax_m = std::max(m_error.penetrationMax_m, -m.points[i].separation_m);
+    std::vector<Manifold>& found = st.pairManifolds;
+    found.clear();
+    if (swept) {
+      Manifold m;
+      if (collideSpheresSwept(a, b, dv * dt, spec, m) > 0) found.push_back(m);
+    } else {
+      collidePair(a, b, margin, found);
     }
-    // The manifold exists only within the speculative margin, so any
-    // approach at all means the contact may act this step.
-    const Real closing_m = -m.normal.dot(b.linearVelocity_mps - a.linearVelocity_mps) * dt;
-    const bool touching = minSeparation < m_settings.linearSlop_m || closing_m > 0;
-    if (touching) {
-      if (a.isDynamic() && !a.awake && b.moves()) wakeIsland(ia);
-      if (b.isDynamic() && !b.awake && a.moves()) wakeIsland(ib);
+    for (Manifold& m : found) {
+      m.a = ia;
+      m.b = ib;
+      const Shape& shapeA = childShape(a.shape, m.childA);
+      const Shape& shapeB = childShape(b.shape, m.childB);
+      m.friction = std::sqrt(a.friction * b.friction);
+      m.restitution = std::max(a.restitution, b.restitution);
+      m.roundA = rollingRadius(shapeA) > 0;
+      m.roundB = rollingRadius(shapeB) > 0;
+      m.rollingArm_m = std::max(a.rollingResistance, b.rollingResistance) *
+                       std::max(rollingRadius(shapeA), rollingRadius(shapeB));
+      // Warm start from matching feature ids; a point whose id changed but
+      // which sits where an old point was (features flicker when faces are
+      // exactly aligned) takes that point's impulses.
+      if (const Manifold* prev = findOld(ia, ib, m.childA, m.childB)) inheritImpulses(*prev, m);
+      // A moving body touching a sleeping one wakes it (and its island), and
+      // so does one that will close the gap during this step: the speculative
+      // contact acts before the bodies touch, and a sleeper still counts as
+      // static in the solver, so waking only on overlap would stop the moving
+      // body dead against it.
+      Real minSeparation = std::numeric_limits<Real>::max();
+      for (int i = 0; i < m.count; ++i) {
+        minSeparation = std::min(minSeparation, m.points[i].separation_m);
+        m_error.penetrationMax_m = std::max(m_error.penetrationMax_m, -m.points[i].separation_m);
+      }
+      // The manifold exists only within the speculative margin, so any
+      // approach at all means the contact may act this step.
+      const Real closing_m = -m.normal.dot(b.linearVelocity_mps - a.linearVelocity_mps) * dt;
+      const bool touching = minSeparation < m_settings.linearSlop_m || closing_m > 0;
+      if (touching) {
+        if (a.isDynamic() && !a.awake && b.moves()) wakeIsland(ia);
+        if (b.isDynamic() && !b.awake && a.moves()) wakeIsland(ib);
+      }
+      points += m.count;
+      m_manifolds.push_back(m);
     }
-    points += m.count;
-    m_manifolds.push_back(m);
   }
   if (m_heightField) collideHeightField(dt, points);
   m_lastContactPoints = points;
@@ -478,38 +485,60 @@ void World::collideHeightField(Real dt, int& points) {
   Vec3 fieldLo, fieldHi;
   m_heightField->bounds(&fieldLo, &fieldHi);
   const Real spec = m_settings.speculativeDistance_m;
-  Manifold found[kMaxHeightFieldManifolds];
+  std::vector<Manifold>& found = st.pairManifolds;
+  std::vector<std::uint32_t>& usedOld = st.usedOld;
   for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
     const Body& b = m_bodies[i];
     if (!b.alive || !b.isDynamic() || !b.awake || !st.active[i]) continue;
     const Aabb& box = st.boxes[i];
     if ((box.lo.array() > fieldHi.array()).any() || (box.hi.array() < fieldLo.array()).any()) continue;
     const Real margin = spec + b.linearVelocity_mps.norm() * dt;
-    const int k = physics::collideHeightField(b, *m_heightField, box.lo, box.hi, margin, st.heightField, found);
-    std::uint32_t usedOld[kMaxHeightFieldManifolds];
-    int usedCount = 0;
-    for (int f = 0; f < k; ++f) {
-      Manifold& m = found[f];
+    found.clear();
+    auto collideOne = [&](const Body& part, std::uint16_t child) {
+      Manifold m[kMaxHeightFieldManifolds];
+      const int k = physics::collideHeightField(part, *m_heightField, box.lo, box.hi, margin, st.heightField, m);
+      for (int f = 0; f < k; ++f) {
+        m[f].childA = child;
+        found.push_back(m[f]);
+      }
+    };
+    if (b.shape.type == ShapeType::Compound) {
+      // Child by child, each as a body of its own at its world pose.
+      Body part = b;
+      const auto& kids = b.shape.compound->children;
+      for (std::size_t c = 0; c < kids.size(); ++c) {
+        part.shape = kids[c].shape;
+        part.position_m = b.position_m + b.orientation * kids[c].position_m;
+        part.orientation = b.orientation * kids[c].orientation;
+        collideOne(part, std::uint16_t(c));
+      }
+    } else {
+      collideOne(b, 0);
+    }
+    usedOld.clear();
+    for (Manifold& m : found) {
       m.a = i;
       m.b = kHeightFieldBody;
       const Vec3& p = m.points[0].point_m;
+      const Shape& shape = childShape(b.shape, m.childA);
       m.friction = std::sqrt(b.friction * std::max<Real>(m_heightField->frictionAt(p.x(), p.z()), 0));
       m.restitution = b.restitution;
-      m.roundA = rollingRadius(b.shape) > 0;
+      m.roundA = rollingRadius(shape) > 0;
       m.roundB = false;
-      m.rollingArm_m = b.rollingResistance * rollingRadius(b.shape);
-      // Warm start from the old manifold of this body with the closest normal.
+      m.rollingArm_m = b.rollingResistance * rollingRadius(shape);
+      // Warm start from the old manifold of this body (and child) with the closest normal.
       std::int64_t best = -1;
       Real bestDot = Real(0.95);
       for (std::uint32_t q = st.oldStart[i]; q < st.oldStart[i + 1]; ++q) {
         const std::uint32_t oi = st.oldIndex[q];
-        if (st.old[oi].b != kHeightFieldBody || std::find(usedOld, usedOld + usedCount, oi) != usedOld + usedCount)
+        if (st.old[oi].b != kHeightFieldBody || st.old[oi].childA != m.childA ||
+            std::find(usedOld.begin(), usedOld.end(), oi) != usedOld.end())
           continue;
         const Real d = st.old[oi].normal.dot(m.normal);
         if (d > bestDot) bestDot = d, best = oi;
       }
       if (best >= 0) {
-        usedOld[usedCount++] = std::uint32_t(best);
+        usedOld.push_back(std::uint32_t(best));
         inheritImpulses(st.old[std::size_t(best)], m);
       }
       for (int j = 0; j < m.count; ++j)
@@ -770,17 +799,6 @@ void World::step(Real dt) {
   trackErrors(dt);
 }
 
-/// Radius of the largest sphere about the centre inside the shape (m).
-static Real innerRadius(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::Sphere: return s.radius_m;
-    case ShapeType::Box: return s.halfExtents_m.minCoeff();
-    case ShapeType::Capsule: return s.radius_m;
-    case ShapeType::Plane: return 0;
-  }
-  return 0;
-}
-
 static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
                      Real inflate = 0);
 
@@ -808,7 +826,7 @@ void World::clampToStatic() {
   for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
     Body& b = m_bodies[i];
     if (!b.alive || !b.isDynamic() || !b.awake) continue;
-    const Real r = innerRadius(b.shape);
+    const Real r = b.shape.innerRadius();
     const Vec3 p0 = m_stepStartPosition[i];
     const Vec3 d = b.position_m - p0;
     const Real len2 = d.squaredNorm();
@@ -931,10 +949,13 @@ std::uint64_t World::stateHash() const {
 
 // ---- queries -----------------------------------------------------------------------
 
-static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
-                     Real inflate) {
+static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orientation, const Vec3& o, const Vec3& d,
+                       Real maxT, Real& tHit, Vec3& nHit, Real inflate) {
   // d is unit length here.
-  const Shape& s = b.shape;
+  struct {
+    const Vec3& position_m;
+    const Quat& orientation;
+  } b{position, orientation};
   auto raySphere = [&](const Vec3& c, Real r, Real& t, Vec3& n) {
     Vec3 m = o - c;
     Real bq = m.dot(d), cq = m.squaredNorm() - r * r;
@@ -1019,8 +1040,26 @@ static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Rea
       nHit = bestN;
       return true;
     }
+    case ShapeType::Hull:
+      return rayHull(o, d, maxT, Pose{position, orientation.toRotationMatrix()}, *s.hull, inflate, tHit, nHit);
+    case ShapeType::Compound: {
+      bool any = false;
+      for (const CompoundChild& c : s.compound->children) {
+        Real t;
+        Vec3 n;
+        if (rayShapeAt(c.shape, position + orientation * c.position_m, orientation * c.orientation, o, d, maxT, t, n,
+                       inflate) &&
+            (!any || t < tHit))
+          any = true, tHit = t, nHit = n;
+      }
+      return any;
+    }
   }
   return false;
+}
+
+static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit, Real inflate) {
+  return rayShapeAt(b.shape, b.position_m, b.orientation, o, d, maxT, tHit, nHit, inflate);
 }
 
 std::vector<RayHit> World::rayCastAll(const Vec3& origin, const Vec3& dir, Real maxDistance) const {

@@ -87,6 +87,14 @@ struct RayHit {
   Vec3 normal = Vec3::Zero();
 };
 
+/// First hit of a shape swept along a line (World::shapeCast).
+struct ShapeCastHit {
+  BodyId body;               ///< null (isNull()) when the shape hit the height field
+  Real distance_m = 0;       ///< how far the shape's centre travelled along the unit direction
+  Vec3 point_m = Vec3::Zero();  ///< contact point, world
+  Vec3 normal = Vec3::Zero();   ///< unit surface normal of what was hit, pointing back at the cast shape
+};
+
 /// Error figures gathered while stepping (filled into the run report).
 struct ErrorStats {
   Real penetrationMax_m = 0;     ///< deepest overlap seen by the narrow phase
@@ -176,6 +184,21 @@ class World {
   bool rayCast(const Vec3& origin_m, const Vec3& dir, Real maxDistance_m, RayHit* hit) const;
   /// Every hit, nearest first.
   std::vector<RayHit> rayCastAll(const Vec3& origin_m, const Vec3& dir, Real maxDistance_m) const;
+
+  /// Bodies (not the height field) whose shape overlaps `shape` placed at
+  /// (position, orientation), in body-index order; touching within
+  /// kQueryTolerance_m counts. A shape that fails validateShape, a plane or a
+  /// non-finite pose overlaps nothing.
+  std::vector<BodyId> overlapShape(const Shape& shape, const Vec3& position_m, const Quat& orientation) const;
+  /// Sweeps `shape` from (position, orientation) along dir (need not be
+  /// unit) for up to maxDistance_m without turning; the first body or
+  /// height-field triangle it touches (within kQueryTolerance_m) is the hit.
+  /// `ignore` is skipped (e.g. the car casting its wheels). A shape already
+  /// overlapping something hits it at distance 0. Conservative advancement
+  /// (see queries.cpp): never reports a hit later than the true one.
+  bool shapeCast(const Shape& shape, const Vec3& position_m, const Quat& orientation, const Vec3& dir,
+                 Real maxDistance_m, ShapeCastHit* hit, BodyId ignore = {}) const;
+  static constexpr Real kQueryTolerance_m = Real(1e-3);
 
   /// Kinetic + gravitational potential energy of dynamic bodies (J).
   double totalEnergy() const;

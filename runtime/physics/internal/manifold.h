@@ -33,6 +33,9 @@ struct Manifold {
   /// lifted off the ground and lose its normal force, friction and rolling
   /// resistance).
   bool roundA = false, roundB = false;
+  /// Compound bodies: which child of a and of b this manifold is between (0
+  /// for simple shapes). A pair has one manifold per touching child pair.
+  std::uint16_t childA = 0, childB = 0;
 };
 
 /// Pair key, order independent.
