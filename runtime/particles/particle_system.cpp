@@ -78,9 +78,11 @@ void ParticleSystem::stop(EmitterId id) {
   }
 }
 
-void ParticleSystem::burst(EmitterId id, int n) {
+void ParticleSystem::burst(EmitterId id, int n, bool thenStop) {
   Emitter* e = get(id);
-  if (e && !e->stopped && n > 0) e->pendingBurst = int(std::min<long long>(kMaxParticlesPerEmitter, (long long)e->pendingBurst + n));
+  if (!e || e->stopped) return;
+  if (n > 0) e->pendingBurst = int(std::min<long long>(kMaxParticlesPerEmitter, (long long)e->pendingBurst + n));
+  e->stopAfterBurst = e->stopAfterBurst || thenStop;
 }
 
 void ParticleSystem::setRate(EmitterId id, float rate_per_s) {
@@ -302,6 +304,7 @@ void ParticleSystem::step(float dt_s) {
       for (int k = 0; k < n; ++k) spawnOne(e, 1.0f, dt_s);  // fraction 1: not advanced here
       e.position_m = keep;
     }
+    if (e.stopAfterBurst) e.stopped = true;
     updateParticles(e, dt_s);
     spawnParticles(e, dt_s);
     e.age_s += double(dt_s);

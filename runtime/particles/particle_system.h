@@ -90,6 +90,7 @@ struct Emitter {
   double carry = 0;           ///< fractional particle carried to the next step
   std::size_t nextBurst = 0;  ///< index into def.bursts (sorted by time)
   int pendingBurst = 0;       ///< burst(n) asked for, spawned at the next step's start
+  bool stopAfterBurst = false;  ///< burst(n, thenStop)
   bool stopped = false;
   std::uint64_t dropped = 0;  ///< particles not spawned because the pool was full
   Random random;
@@ -112,8 +113,9 @@ class ParticleSystem {
   /// the emitter frees itself.
   void stop(EmitterId id);
   /// n particles at once, spawned at the start of the next step (at the
-  /// emitter's pose then). Ignored for a stopped emitter.
-  void burst(EmitterId id, int n);
+  /// emitter's pose then). Ignored for a stopped emitter. thenStop: stop
+  /// right after those are born (a one-shot, e.g. sparks from an impact).
+  void burst(EmitterId id, int n, bool thenStop = false);
   void setRate(EmitterId id, float rate_per_s);
   /// Moves the emitter. The move counts as motion during the next step (its
   /// trail is interpolated) unless `teleport`.
