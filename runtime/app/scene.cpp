@@ -242,6 +242,10 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
       const Eigen::Vector3f rgb = d.color.eval(life);
       q.color = Eigen::Vector4f(rgb.x(), rgb.y(), rgb.z(), a);
       q.angle_rad = p.angle_rad[i] - p.spin_radps[i] * back_s;
+      if (d.stretch_s > 0) {
+        const Eigen::Vector3f v(p.vx[i], p.vy[i], p.vz[i]);
+        q.stretch_m = (local ? Eigen::Vector3f(rot * v) : v) * d.stretch_s;
+      }
       dst.push_back(q);
     }
   });

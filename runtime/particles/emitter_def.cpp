@@ -96,6 +96,8 @@ Status validate(const EmitterDef& d) {
   if (!finite(d.spinMin_radps) || !finite(d.spinMax_radps) || d.spinMin_radps > d.spinMax_radps)
     return makeError("field 'spin': {" + num(d.spinMin_radps) + ", " + num(d.spinMax_radps) +
                      "} is not valid; expected rad/s, a number or {min, max} with min <= max");
+  if (!finite(d.stretch_s) || d.stretch_s < 0 || d.stretch_s > 10)
+    return makeError("field 'stretch': " + num(d.stretch_s) + "; expected seconds 0..10 (streak length = speed x stretch)");
   if (auto s = validateCurve(d.size_m, "size", 0, 1e4f, "sizes are metres >= 0"); !s) return s;
   if (auto s = validateCurve(d.color, "color", 0, 64, "colour channels are linear 0..1 (up to 64 for glowing additive particles)"); !s) return s;
   if (auto s = validateCurve(d.alpha, "alpha", 0, 1, "alpha is 0..1"); !s) return s;

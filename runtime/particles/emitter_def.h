@@ -97,6 +97,7 @@ struct EmitterDef {
   Curve1 size_m = Curve1::constant(0.2f);                      ///< size: billboard width, m; number or {{t, m}, ...}
   Curve3 color = Curve3::constant(Eigen::Vector3f(1, 1, 1));   ///< color: {r, g, b} or {{t, {r, g, b}}, ...}
   Curve1 alpha = Curve1::constant(1);                          ///< alpha: opacity 0..1; number or {{t, a}, ...}
+  float stretch_s = 0;                                         ///< stretch: drawn stretched along the velocity by v * stretch (s): streaks for rain, sparks; 0: round
   BlendMode blend = BlendMode::Alpha;                          ///< blend: "alpha" or "additive"
   SimSpace space = SimSpace::World;                            ///< space: "world" or "local"
 };

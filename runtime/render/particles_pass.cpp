@@ -13,6 +13,7 @@ constexpr unsigned kAttribPosition = 1;
 constexpr unsigned kAttribSize = 2;
 constexpr unsigned kAttribColor = 3;
 constexpr unsigned kAttribAngle = 4;
+constexpr unsigned kAttribStretch = 5;
 
 // The quad spans the camera's right and up axes (a true billboard: every
 // particle faces the same way, so nothing twists near the screen's edge).
@@ -23,6 +24,7 @@ layout(location = 1) in vec3 iPosition;
 layout(location = 2) in float iSize;
 layout(location = 3) in vec4 iColor;
 layout(location = 4) in float iAngle;
+layout(location = 5) in vec3 iStretch;   // world vector; zero: round
 
 uniform mat4 uViewProjection;
 uniform vec3 uRight;
@@ -32,8 +34,19 @@ out vec2 vCorner;
 out vec4 vColor;
 
 void main() {
-  float c = cos(iAngle), s = sin(iAngle);
-  vec2 k = vec2(c * aCorner.x - s * aCorner.y, s * aCorner.x + c * aCorner.y) * (0.5 * iSize);
+  // Round: the quad turned by iAngle. Streak: its long side along the
+  // stretch vector as seen on screen, lengthened by that vector.
+  vec2 along = vec2(dot(iStretch, uRight), dot(iStretch, uUp));
+  float len = length(along);
+  vec2 k;
+  if (len > 1e-5) {
+    vec2 a = along / len;
+    vec2 across = vec2(-a.y, a.x);
+    k = across * (aCorner.x * 0.5 * iSize) + a * (aCorner.y * 0.5 * (iSize + len));
+  } else {
+    float c = cos(iAngle), s = sin(iAngle);
+    k = vec2(c * aCorner.x - s * aCorner.y, s * aCorner.x + c * aCorner.y) * (0.5 * iSize);
+  }
   vec3 world = iPosition + uRight * k.x + uUp * k.y;
   vCorner = aCorner;
   vColor = iColor;
@@ -97,6 +110,7 @@ Status ParticlesPass::init() {
   instanced(kAttribSize, 1, offsetof(Instance, size));
   instanced(kAttribColor, 4, offsetof(Instance, color));
   instanced(kAttribAngle, 1, offsetof(Instance, angle));
+  instanced(kAttribStretch, 3, offsetof(Instance, stretch));
   glBindVertexArray(0);
   if (std::string errors = drainGlErrors(); !errors.empty())
     return makeError("particle pass set-up: " + errors);
@@ -110,7 +124,8 @@ void ParticlesPass::upload(const std::vector<DrawParticle>& particles, const std
     m_scratch[k] = {{p.position.x(), p.position.y(), p.position.z()},
                     p.size_m,
                     {p.color.x(), p.color.y(), p.color.z(), p.color.w()},
-                    p.angle_rad};
+                    p.angle_rad,
+                    {p.stretch_m.x(), p.stretch_m.y(), p.stretch_m.z()}};
   }
   glBindBuffer(GL_ARRAY_BUFFER, m_instances.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_scratch.size() * sizeof(Instance)), m_scratch.data(),

@@ -53,7 +53,10 @@ struct DrawParticle {
   Eigen::Vector3f position{0, 0, 0};  // m, world: the centre
   float size_m = 0.2f;                // width of the square
   Eigen::Vector4f color{1, 1, 1, 1};  // linear RGB 0..1 (more glows, additive) and alpha 0..1
-  float angle_rad = 0;                // turn in the screen plane
+  float angle_rad = 0;                // turn in the screen plane (round particles only)
+  // Non-zero: drawn as a streak along this world vector (its length on
+  // screen is added to the size), e.g. velocity x 0.03 s for rain.
+  Eigen::Vector3f stretch_m{0, 0, 0};
 };
 
 /// A plain view of a height field (render never includes terrain; the app

@@ -27,7 +27,7 @@ const std::vector<std::string> kFields = [] {
   std::vector<std::string> f = {"rate",  "bursts", "duration", "lifetime", "max_count", "shape", "box_size",
                                 "radius", "cone_angle", "direction", "spread", "speed", "inherit_velocity",
                                 "gravity", "acceleration", "drag", "spin", "size", "color", "alpha", "blend",
-                                "space", "description"};
+                                "space", "stretch", "description"};
   std::sort(f.begin(), f.end());
   return f;
 }();
@@ -304,6 +304,7 @@ void readEmitterTable(lua_State* L, int idx, EmitterDef& d, std::vector<std::str
   r.curve1("size", &d.size_m, "billboard width, m");
   r.curve3("color", &d.color);
   r.curve1("alpha", &d.alpha, "opacity 0..1");
+  r.number("stretch", &d.stretch_s, "seconds >= 0 (streak length = speed x stretch; 0: round)");
   r.choice<BlendMode>("blend", &d.blend, {{"alpha", BlendMode::Alpha}, {"additive", BlendMode::Additive}});
   r.choice<SimSpace>("space", &d.space, {{"world", SimSpace::World}, {"local", SimSpace::Local}});
   if (lua_getfield(L, lua_absindex(L, idx), "description"), !lua_isnil(L, -1) && lua_type(L, -1) != LUA_TSTRING)

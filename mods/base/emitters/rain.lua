@@ -11,9 +11,10 @@ return {
   speed = {9, 10},                    -- m/s, about a drop's terminal speed
   gravity = 1,
   drag = 0.3,                         -- 1/s
-  size = 0.06,                        -- m
-  color = {0.75, 0.82, 0.95},
-  alpha = {{0, 0.7}, {0.9, 0.7}, {1, 0}},
+  size = 0.035,                       -- m: the streak's width
+  stretch = 0.05,                     -- s: drawn as a streak of speed x 0.05 s, about 0.5 m
+  color = {0.52, 0.58, 0.70},
+  alpha = {{0, 0.55}, {0.9, 0.55}, {1, 0}},
   blend = "alpha",
   space = "world",
 }

@@ -14,8 +14,9 @@ return {
   speed = {3, 7},                     -- m/s
   gravity = 1,
   drag = 0.8,                         -- 1/s
-  size = {{0, 0.09}, {1, 0.04}},      -- m
-  color = {{0, {3.0, 2.4, 1.2}}, {0.5, {2.0, 0.9, 0.2}}, {1, {0.9, 0.25, 0.05}}},
+  size = {{0, 0.07}, {1, 0.035}},     -- m: width
+  stretch = 0.03,                     -- s: short streaks along the flight
+  color = {{0, {1.0, 0.9, 0.5}}, {0.4, {1.0, 0.55, 0.15}}, {1, {0.8, 0.2, 0.05}}},
   alpha = {{0, 1}, {1, 0}},
   blend = "additive",
   space = "world",

@@ -39,9 +39,9 @@ function scenario.on_start(ctx)
   fire = particles.spawn("base:fire", {position = {0, 1.0, 0}})
   smoke = particles.spawn("base:smoke", {position = {0, 1.7, 0}})
   rain = particles.spawn("base:rain", {position = {0, 14, 0}})
-  crate = world.box{size = {1, 1, 1}, position = {4, 3, 1.5}, mass = 20, color = {0.7, 0.55, 0.3}}
-  ball = world.sphere{radius = 0.3, position = {-3.5, 4, 2}, mass = 2, restitution = 0.6, color = {0.6, 0.62, 0.7}}
-  sled = world.box{size = {0.8, 0.4, 1.2}, position = {-1.5, 0.2, -5}, velocity = {0, 0, 4}, friction = 0.5,
+  crate = world.box{size = {1, 1, 1}, position = {2.5, 3, 1.2}, mass = 20, color = {0.7, 0.55, 0.3}}
+  ball = world.sphere{radius = 0.3, position = {-2.2, 4, 1.5}, mass = 2, restitution = 0.6, color = {0.6, 0.62, 0.7}}
+  sled = world.box{size = {0.8, 0.4, 1.2}, position = {-1.2, 0.2, -3.5}, velocity = {0, 0, 4}, friction = 0.5,
                    mass = 30, color = {0.2, 0.35, 0.7}}
   sled_dust = particles.spawn("base:dust", {body = sled, offset = SLED_OFFSET}, {rate = 0})
 end

@@ -33,6 +33,7 @@ class ParticlesPass {
     float size;
     float color[4];
     float angle;
+    float stretch[3];
   };
   Status init();
   void upload(const std::vector<DrawParticle>& particles, const std::vector<std::uint32_t>* order);
