@@ -65,7 +65,7 @@ int listMods(const std::vector<std::string>& modDirs) {
     for (const char* folder : {"scenarios", "vehicles", "emitters"}) {
       auto names = script::ModRegistry::listLua(m, folder);
       std::string line;
-      for (const auto& n : names) line += (line.empty() ? "" : ", ") + (std::string(folder) == "scenarios" ? m.name + ":" + n : n);
+      for (const auto& n : names) line += (line.empty() ? "" : ", ") + (std::string(folder) != "vehicles" ? m.name + ":" + n : n);
       std::printf("  %-10s %s\n", folder, line.empty() ? "-" : line.c_str());
     }
   }

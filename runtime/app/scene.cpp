@@ -116,6 +116,7 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   script::ScenarioOptions so;
   so.seed = options.seed;
   so.scriptsDir = scriptsDir();
+  so.mods = registry.mods();  // emitters may come from other mods ("base:dust")
   std::map<std::string, std::string> terrainSettings = options.terrainDefaults;
   for (const auto& [key, value] : options.sets) {
     if (key.rfind("terrain.", 0) == 0) {
@@ -184,6 +185,7 @@ void Scene::registerStaticObjects() {
 std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
   if (m_terrain) names.push_back("terrain");
+  if (m_host->particlesIfAny()) names.push_back("particles");  // created by the first particles.spawn
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -234,6 +236,42 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
       case physics::ShapeType::Plane: s.kind = render::ShapeKind::Plane; break;
     }
     out.shapes.push_back(s);
+  });
+  snapshotParticles(out, alpha);
+}
+
+void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
+  out.particles.clear();
+  out.additiveParticles.clear();
+  const particles::ParticleSystem* ps = m_host->particlesIfAny();
+  if (!ps) return;
+  // Positions are the step's end; back them up along the velocity to the
+  // interpolated time (alpha = 1: the step's end).
+  const float back_s = float((1.0 - alpha) * m_options.dt_s);
+  ps->forEach([&](particles::EmitterId, const particles::Emitter& e) {
+    const particles::ParticlePool& p = e.pool;
+    const particles::EmitterDef& d = e.def;
+    std::vector<render::DrawParticle>& dst =
+        d.blend == particles::BlendMode::Additive ? out.additiveParticles : out.particles;
+    const bool local = d.space == particles::SimSpace::Local;
+    const Eigen::Matrix3f rot = e.rotation.toRotationMatrix();
+    for (std::uint32_t i = 0; i < p.count; ++i) {
+      const float life = std::min(1.0f, p.age_s[i] * p.invLifetime[i]);
+      render::DrawParticle q;
+      q.size_m = d.size_m.eval(life);
+      const float a = d.alpha.eval(life);
+      if (q.size_m <= 0 || a <= 0) continue;
+      Eigen::Vector3f pos(p.px[i] - p.vx[i] * back_s, p.py[i] - p.vy[i] * back_s, p.pz[i] - p.vz[i] * back_s);
+      q.position = local ? Eigen::Vector3f(rot * pos + e.position_m) : pos;
+      const Eigen::Vector3f rgb = d.color.eval(life);
+      q.color = Eigen::Vector4f(rgb.x(), rgb.y(), rgb.z(), a);
+      q.angle_rad = p.angle_rad[i] - p.spin_radps[i] * back_s;
+      if (d.stretch_s > 0) {
+        const Eigen::Vector3f v(p.vx[i], p.vy[i], p.vz[i]);
+        q.stretch_m = (local ? Eigen::Vector3f(rot * v) : v) * d.stretch_s;
+      }
+      dst.push_back(q);
+    }
   });
 }
 

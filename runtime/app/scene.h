@@ -2,7 +2,8 @@
 // A scene: what one scenario run creates. Subsystems are created only when
 // used (ARCHITECTURE.md "Leave out what a scene does not need"): the world
 // always, the script host when the scenario has a file, the renderer only
-// for play or --screenshot. `subsystems()` lists what exists, for the report.
+// for play or --screenshot, the particle system only when the scenario
+// spawns an emitter. `subsystems()` lists what exists, for the report.
 #include <map>
 #include <memory>
 #include <string>
@@ -54,6 +55,8 @@ class Scene {
   /// Builds what the renderer reads: every body as a shape with its colour.
   /// alpha in [0, 1] interpolates between the previous and current step.
   void snapshot(render::FrameSnapshot& out, double alpha) const;
+  /// The particles part of snapshot(): billboards of every live particle.
+  void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
   /// Remembers the current state as "previous" (call before each step).
   void savePreviousState();
 

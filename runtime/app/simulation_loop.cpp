@@ -12,7 +12,30 @@ namespace tumble::app {
 
 namespace {
 
-// One fixed step: the scenario's on_update, then physics.
+// Particles, after physics (and after on_contact, which may spawn sparks):
+// attached emitters take their body's pose and velocity, then every pool
+// steps. Nothing at all when the scenario never spawned an emitter.
+void stepParticles(Scene& scene, RunTimings& t) {
+  particles::ParticleSystem* ps = scene.host().particlesIfAny();
+  if (!ps) return;
+  Stopwatch sw;
+  const physics::World& world = scene.world();
+  ps->forEachAnchored([&](particles::EmitterId id, std::uint64_t anchor) {
+    const physics::BodyId body = script::bodyOfEmitterAnchor(anchor);
+    if (!world.isValid(body)) {
+      ps->anchorLost(id);  // the body was removed: stop, let the particles finish
+      return;
+    }
+    const physics::Body& b = world.body(body);
+    ps->setAnchorState(id, b.position_m.cast<float>(), b.orientation.cast<float>(),
+                       b.linearVelocity_mps.cast<float>(), b.angularVelocity_radps.cast<float>());
+  });
+  ps->setGravity(world.settings().gravity_mps2.cast<float>());
+  ps->step(float(scene.options().dt_s));
+  t.particles_s += sw.seconds();
+}
+
+// One fixed step: the scenario's on_update, then physics, then particles.
 void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   Stopwatch sw;
   scene.host().update(time_s, scene.options().dt_s, step);
@@ -25,6 +48,12 @@ void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   t.script_s += total - physics;
   t.physics_s += physics;
   t.stepMs.push_back(total * 1000.0);
+  stepParticles(scene, t);
+}
+
+int particleCount(Scene& scene) {
+  const particles::ParticleSystem* ps = scene.host().particlesIfAny();
+  return ps ? ps->particleCount() : 0;
 }
 
 // Orbit around the dynamic bodies, far enough to see them all.
@@ -62,6 +91,7 @@ render::HudStats hudStats(Scene& scene, double fps, const RunTimings& perFrame, 
   h.physics_ms = perFrame.physics_s * 1000;
   h.script_ms = perFrame.script_s * 1000;
   h.render_ms = perFrame.render_s * 1000;
+  h.particles_ms = perFrame.particles_s * 1000;
   h.simTime_s = time_s;
   h.bodies = scene.world().bodyCount();
   h.contacts = scene.world().contactPointCount();
@@ -143,6 +173,7 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
     if (const physics::JointSystem* joints = scene.host().jointsIfAny())
       counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
+    counts.particlesMax = std::max(counts.particlesMax, particleCount(scene));
   }
   if (renderer && !shotTaken) takeShot(time_s);
   {
@@ -219,6 +250,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     RunTimings perStep = total;
     perStep.physics_s /= double(std::max(1LL, steps));
     perStep.script_s /= double(std::max(1LL, steps));
+    perStep.particles_s /= double(std::max(1LL, steps));
     Status st = renderer.drawFrame(snap, hudStats(scene, 0, perStep, time_s), controls, o.screenshotPath.c_str());
     scene.host().finish(time_s, step);
     if (!st) {

@@ -4,6 +4,7 @@
 // last two steps.
 //
 //   SDL events -> Lua on_update (fixed dt) -> physics step (K substeps)
+//     -> particles (only once a scenario spawned an emitter)
 //     -> render snapshot (interpolated) -> renderer -> HUD
 #include <string>
 

@@ -88,6 +88,11 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   drawTerrain(r, frame, view);
   r.shapes.draw(frame.shapes, view, r.environment);
   r.lines.draw(frame.lines, view);
+  // Last in the scene: transparent, depth-tested, no depth writes.
+  if (Status s = r.particles.draw(frame.particles, frame.additiveParticles, view); !s && !r.reportedParticleError) {
+    log::warn("render: particles not drawn: " + s.error() + " (reported once)");
+    r.reportedParticleError = true;
+  }
   r.targets.resolve();
   if (r.hud) r.hud->draw(hud, controls, r.camera.mode);
   r.hasFrame = true;

@@ -5,6 +5,7 @@
 //
 // Index
 //   DrawShape, DebugLine, FrameSnapshot   what the renderer reads (plain data)
+//   DrawParticle                          one camera-facing particle billboard
 //   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
@@ -45,6 +46,19 @@ struct DebugLine {
   Eigen::Vector3f color{1, 1, 0};           // linear RGB 0..1
 };
 
+/// One particle, drawn as a camera-facing square with a soft round sprite
+/// (made in the shader; no texture). The app fills these from the particle
+/// system; render never includes particles.
+struct DrawParticle {
+  Eigen::Vector3f position{0, 0, 0};  // m, world: the centre
+  float size_m = 0.2f;                // width of the square
+  Eigen::Vector4f color{1, 1, 1, 1};  // linear RGB 0..1 (more glows, additive) and alpha 0..1
+  float angle_rad = 0;                // turn in the screen plane (round particles only)
+  // Non-zero: drawn as a streak along this world vector (its length on
+  // screen is added to the size), e.g. velocity x 0.03 s for rain.
+  Eigen::Vector3f stretch_m{0, 0, 0};
+};
+
 /// A plain view of a height field (render never includes terrain; the app
 /// fills this from terrain::Terrain). No ownership: the arrays must stay
 /// valid during each drawFrame that is handed this surface.
@@ -78,6 +92,11 @@ struct FrameSnapshot {
   std::vector<DebugLine> lines;
   double simTime_s = 0;
   const TerrainSurface* terrain = nullptr;  // optional; null: no terrain, no terrain GPU memory
+  // Particles: alpha-blended ones are sorted back to front by the renderer;
+  // additive ones are drawn after them in any order. Both depth-tested
+  // against the scene, neither writes depth. Empty: no particle GPU objects.
+  std::vector<DrawParticle> particles;
+  std::vector<DrawParticle> additiveParticles;
 };
 
 /// What the terrain pass did in the last drawFrame (Renderer::terrainStats).

@@ -8,6 +8,7 @@
 #include <set>
 #include <regex>
 
+#include "script/emitter_files.h"
 #include "script/lua_vm.h"
 
 extern "C" {
@@ -439,7 +440,7 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
       problems.push_back(std::move(p));
     }
   }
-  // Every Lua file must compile (syntax).
+  // Every Lua file must compile (syntax); emitter files must also be valid.
   std::vector<fs::path> files;
   for (auto& entry : fs::recursive_directory_iterator(dir))
     if (entry.is_regular_file() && entry.path().extension() == ".lua") files.push_back(entry.path());
@@ -451,6 +452,9 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
     if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) {
       ScriptError e = LuaVm::parseError(info.name, lua_tostring(L, -1), "");
       problems.push_back({file.string(), e.line, e.message, info.name});
+    } else if (file.parent_path().lexically_normal() == (fs::path(dir) / "emitters").lexically_normal()) {
+      // Emitter definitions are data: run them and check every field.
+      for (ModProblem& p : checkEmitterFile(file.string(), info.name)) problems.push_back(std::move(p));
     }
   }
   return problems;

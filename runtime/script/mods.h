@@ -68,7 +68,8 @@ Result<ModInfo> loadManifest(const std::string& dir);
 
 /// Every problem in a mod folder at once: manifest fields, dependencies
 /// (resolved against the mods in searchDirs; without them, against the mod's
-/// sibling folders), every .lua file compiles.
+/// sibling folders), every .lua file compiles, every emitters/*.lua file
+/// is a valid emitter definition (each bad field: file:line: field 'x': ...).
 std::vector<ModProblem> checkMod(const std::string& dir);
 std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::string>& searchDirs);
 

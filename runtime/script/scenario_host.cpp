@@ -7,6 +7,7 @@
 
 #include "core/log.h"
 #include "physics/joints/joint_system.h"
+#include "script/internal/emitter_table.h"
 #include "script/internal/lua_util.h"
 
 extern "C" {
@@ -455,6 +456,7 @@ void ScenarioHost::buildEnvironment() {
   openRandomBindings(L, env);
   openTriggerBindings(L, env);
   openRagdollBindings(L, env);
+  openEmitterBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
@@ -464,6 +466,8 @@ void ScenarioHost::buildEnvironment() {
   m_ctxRef = luaL_ref(L, LUA_REGISTRYINDEX);
   lua_newtable(L);
   m_timerFnsRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  lua_newtable(L);
+  m_emitterTablesRef = luaL_ref(L, LUA_REGISTRYINDEX);
 }
 
 /// @class Scenario
@@ -660,6 +664,90 @@ physics::JointSystem& ScenarioHost::joints() {
     m_joints = std::make_unique<physics::JointSystem>(m_world, js);
   }
   return *m_joints;
+}
+
+particles::ParticleSystem& ScenarioHost::particles() {
+  if (!m_particles) {
+    m_particles = std::make_unique<particles::ParticleSystem>(m_options.seed);
+    m_particles->setGravity(m_world.settings().gravity_mps2.cast<float>());
+  }
+  return *m_particles;
+}
+
+Result<particles::EmitterDef> ScenarioHost::emitterDef(const std::string& ref, int overridesIdx) {
+  lua_State* L = m_vm.state();
+  if (overridesIdx) overridesIdx = lua_absindex(L, overridesIdx);
+  // "mod:name" or "name" (this mod, then base).
+  std::string modName, name = ref;
+  if (auto colon = ref.find(':'); colon != std::string::npos) {
+    modName = ref.substr(0, colon);
+    name = ref.substr(colon + 1);
+  }
+  static const std::regex nameRe(R"(^[A-Za-z0-9_\-]+$)");
+  if (!std::regex_match(name, nameRe) || (!modName.empty() && !std::regex_match(modName, nameRe)))
+    return makeError("emitter \"" + ref + "\" is not of the form MOD:NAME or NAME (for example \"base:dust\")");
+  std::vector<const ModInfo*> candidates;
+  auto findMod = [&](const std::string& m) -> const ModInfo* {
+    if (m == m_mod.name) return &m_mod;
+    for (const ModInfo& info : m_options.mods)
+      if (info.name == m) return &info;
+    return nullptr;
+  };
+  if (!modName.empty()) {
+    if (const ModInfo* m = findMod(modName)) candidates.push_back(m);
+    else return makeError("emitter \"" + ref + "\": no mod named \"" + modName + "\" is loaded");
+  } else {
+    candidates.push_back(&m_mod);
+    if (const ModInfo* base = findMod("base"); base && base != &m_mod) candidates.push_back(base);
+  }
+  const ModInfo* mod = nullptr;
+  for (const ModInfo* m : candidates)
+    if (fs::exists(fs::path(m->dir) / "emitters" / (name + ".lua"))) {
+      mod = m;
+      break;
+    }
+  if (!mod) {
+    std::string known;
+    for (const ModInfo* m : candidates)
+      for (const std::string& e : ModRegistry::listLua(*m, "emitters")) known += (known.empty() ? "" : ", ") + m->name + ":" + e;
+    return makeError("emitter \"" + ref + "\" not found (emitters/" + name + ".lua; known: " +
+                     (known.empty() ? std::string("none") : known) + ")");
+  }
+  const std::string key = mod->name + ":" + name;
+  const std::string path = (fs::path(mod->dir) / "emitters" / (name + ".lua")).string();
+  const std::string file = "emitters/" + name + ".lua";
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_emitterTablesRef);
+  if (lua_getfield(L, -1, key.c_str()) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    std::string error;
+    int line = 0;
+    if (!runEmitterChunk(m_vm, path, mod->name, &error, &line)) {
+      lua_pop(L, 1);
+      return makeError("mod " + mod->name + ": " + file + (line > 0 ? ":" + std::to_string(line) : "") + ": " + error);
+    }
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, key.c_str());
+  }
+  // The file's fields, then the overrides on top, into a fresh table.
+  lua_newtable(L);
+  for (int src : {-2, overridesIdx}) {
+    if (src == 0) continue;
+    int from = src < 0 ? lua_gettop(L) - 1 : src;
+    lua_pushnil(L);
+    while (lua_next(L, from) != 0) {
+      lua_pushvalue(L, -2);
+      lua_insert(L, -2);
+      lua_settable(L, -4);
+    }
+  }
+  particles::EmitterDef def;
+  std::vector<std::string> problems;
+  readEmitterTable(L, -1, def, problems);
+  lua_pop(L, 3);
+  if (problems.empty()) return def;
+  std::string msg;
+  for (const std::string& p : problems) msg += (msg.empty() ? "" : "; ") + p;
+  return makeError("mod " + mod->name + ": " + file + (overridesIdx ? " (with overrides)" : "") + ": " + msg);
 }
 
 double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "particles/particle_system.h"
 #include "physics/world.h"
 #include "script/lua_vm.h"
 #include "script/mods.h"
@@ -56,7 +57,19 @@ struct ScenarioOptions {
   std::uint64_t seed = 1;
   std::string scriptsDir;  ///< the runtime's Lua library (require "tumble.x")
   VmLimits limits;
+  /// Other loadable mods, for references like "base:dust" (particles.spawn).
+  /// The scenario's own mod is always searched first.
+  std::vector<ModInfo> mods;
 };
+
+/// Emitters attached to bodies carry the body as an opaque anchor number
+/// (particles never sees physics); the app turns it back into a BodyId.
+inline std::uint64_t emitterAnchorOf(physics::BodyId id) {
+  return (std::uint64_t(id.generation) << 32) | id.index;  // generation >= 1: never kNoAnchor
+}
+inline physics::BodyId bodyOfEmitterAnchor(std::uint64_t anchor) {
+  return physics::BodyId{std::uint32_t(anchor & 0xffffffffu), std::uint32_t(anchor >> 32)};
+}
 
 class ScenarioHost {
  public:
@@ -119,6 +132,14 @@ class ScenarioHost {
   /// The scene's joints, created on first use (spawn_ragdoll); null before.
   physics::JointSystem* jointsIfAny() { return m_joints.get(); }
   physics::JointSystem& joints();
+  /// The scene's particle emitters, created on first use (particles.spawn);
+  /// null before, so a scene without emitters has no particle pools.
+  particles::ParticleSystem* particlesIfAny() { return m_particles.get(); }
+  particles::ParticleSystem& particles();
+  /// The emitter definition "mod:name" (or "name": this mod, then base) with
+  /// the fields of the table at overridesIdx (0: none) on top. The file is
+  /// read once and cached. Error: file, field and what is expected.
+  Result<particles::EmitterDef> emitterDef(const std::string& ref, int overridesIdx);
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
@@ -220,6 +241,8 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  std::unique_ptr<particles::ParticleSystem> m_particles;  ///< see particles()
+  int m_emitterTablesRef = 0;  ///< registry table: "mod:name" -> the file's returned table
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -235,5 +258,7 @@ void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
 /// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
 void openRagdollBindings(lua_State* L, int envIndex);
+/// The `particles` table and Emitter type (bind_emitter.cpp).
+void openEmitterBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

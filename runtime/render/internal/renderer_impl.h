@@ -9,6 +9,7 @@
 #include "render/internal/gl_context.h"
 #include "render/internal/hud.h"
 #include "render/internal/line_pass.h"
+#include "render/internal/particles_pass.h"
 #include "render/internal/render_targets.h"
 #include "render/internal/shape_pass.h"
 #include "render/internal/sky_pass.h"
@@ -25,6 +26,7 @@ struct Renderer::Impl {
   ShapePass shapes;
   LinePass lines;
   TerrainPass terrain;       // creates nothing until the first frame with a terrain
+  ParticlesPass particles;   // creates nothing until the first frame with particles
   TerrainStats terrainStats;
   std::unique_ptr<Hud> hud;  // null when config.hud is false
   Environment environment;
@@ -32,6 +34,7 @@ struct Renderer::Impl {
   bool hasFrame = false;         // a finished frame exists for saveScreenshot
   bool reportedGlError = false;  // GL errors are logged once, not every frame
   bool reportedTerrainError = false;
+  bool reportedParticleError = false;
   bool dragging = false;         // mouse button held down on the scene
 };
 
