@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "input/input_system.h"
 #include "physics/world.h"
 #include "script/lua_vm.h"
 #include "script/mods.h"
@@ -55,6 +56,9 @@ struct ScenarioOptions {
   std::uint64_t seed = 1;
   std::string scriptsDir;  ///< the runtime's Lua library (require "tumble.x")
   VmLimits limits;
+  /// The actions scripts read (input.value, ...); not owned, must outlive
+  /// the host. Null: the host makes an empty one (no actions).
+  input::InputSystem* input = nullptr;
 };
 
 class ScenarioHost {
@@ -107,6 +111,8 @@ class ScenarioHost {
   /// Display colour (linear RGB 0..1) of a body made by the script.
   Eigen::Vector3f colorOf(physics::BodyId id) const;
   physics::World& world() { return m_world; }
+  /// The input actions scripts read (options.input, or the host's own empty set).
+  input::InputSystem& input() { return *m_input; }
   /// The scene's joints, created on first use (spawn_ragdoll); null before.
   physics::JointSystem* jointsIfAny() { return m_joints.get(); }
   physics::JointSystem& joints();
@@ -210,6 +216,8 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  std::unique_ptr<input::InputSystem> m_ownInput;  ///< when options.input is null
+  input::InputSystem* m_input = nullptr;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -225,5 +233,7 @@ void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
 /// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
 void openRagdollBindings(lua_State* L, int envIndex);
+/// The `input` table: actions by name, contexts, injection (bind_input.cpp).
+void openInputBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -33,6 +33,7 @@ struct Renderer::Impl {
   bool reportedGlError = false;  // GL errors are logged once, not every frame
   bool reportedTerrainError = false;
   bool dragging = false;         // mouse button held down on the scene
+  EventHook eventHook;           // the app's (input); may be empty
 };
 
 }  // namespace tumble::render
