@@ -301,8 +301,8 @@ bool InputSystem::handleEvent(const SDL_Event& e, bool uiWants) {
       if (sc < 0 || sc >= int(m_keys.size())) break;
       if (isDown && e.key.repeat) return usedByOwnedBinding(Device::Key, sc);
       if (m_capturing && isDown) {
-        m_keys[std::size_t(sc)] = true;  // modifiers held for ctrl+X
-        captureFrom(e);
+        captureFrom(e);  // a modifier alone keeps capturing; it is held for ctrl+X
+        if (m_capturing) m_keys[std::size_t(sc)] = true;
         return true;
       }
       if (isDown && uiWants) break;

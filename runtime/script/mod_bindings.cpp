@@ -49,7 +49,7 @@ class Reader {
 
   // Line of the first "name =" (or ["name"] =) in the file, 0 if not found:
   // tables carry no line numbers, the text does.
-  int lineOf(const std::string& name) const {
+  int lineOf(const std::string& name, int fromLine = 1) const {
     const std::string quoted = "[\"" + name + "\"]";
     int line = 1;
     std::size_t start = 0;
@@ -69,7 +69,7 @@ class Reader {
           }
         }
       }
-      if (after != std::string::npos) {
+      if (after != std::string::npos && line >= fromLine) {
         std::size_t eq = l.find_first_not_of(" \t", after);
         if (eq != std::string::npos && l[eq] == '=') return line;
       }
@@ -133,11 +133,12 @@ class Reader {
     c.name = name;
     lua_getfield(m_L, -1, "priority");
     if (lua_isinteger(m_L, -1)) c.priority = int(lua_tointeger(m_L, -1));
-    else if (!lua_isnil(m_L, -1)) problem(line, where + ".priority: expected an integer (higher wins a shared key)");
+    else if (!lua_isnil(m_L, -1))
+      problem(lineOf("priority", line), where + ".priority: expected an integer (higher wins a shared key)");
     lua_pop(m_L, 1);
     lua_getfield(m_L, -1, "enabled");
     if (lua_isboolean(m_L, -1)) c.enabled = lua_toboolean(m_L, -1);
-    else if (!lua_isnil(m_L, -1)) problem(line, where + ".enabled: expected true or false");
+    else if (!lua_isnil(m_L, -1)) problem(lineOf("enabled", line), where + ".enabled: expected true or false");
     lua_pop(m_L, 1);
     out.contexts.push_back(c);
     lua_getfield(m_L, -1, "actions");
