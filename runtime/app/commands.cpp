@@ -6,6 +6,7 @@
 #include "app/paths.h"
 #include "app/simulation_loop.h"
 #include "core/log.h"
+#include "script/mod_bindings.h"
 #include "script/mods.h"
 
 #ifdef TUMBLE_HAVE_TERRAIN_COMMAND
@@ -58,6 +59,20 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& scene, std::vector<std::string
   cmd->add_option("--seed", scene.seed, "seed for the scenario's random numbers (default 1)");
 }
 
+// The actions a mod's bindings.lua declares, by context: "  actions    vehicle: steer (axis), ...".
+void listActions(const script::ModInfo& m) {
+  script::ModBindings b = script::loadModBindings(m);
+  std::string line;
+  for (const input::ContextDef& c : b.set.contexts) {
+    std::string names;
+    for (const input::ActionDef& a : b.set.actions)
+      if (a.context == c.name) names += (names.empty() ? "" : ", ") + a.name + (a.type == input::ActionType::Axis ? " (axis)" : "");
+    line += (line.empty() ? "" : "; ") + c.name + ": " + (names.empty() ? "-" : names);
+  }
+  std::printf("  %-10s %s\n", "actions", line.empty() ? "-" : line.c_str());
+  for (const auto& p : b.problems) std::printf("  problem: %s\n", p.text().c_str());
+}
+
 int listMods(const std::vector<std::string>& modDirs) {
   script::ModRegistry reg = script::ModRegistry::discover(modSearchDirs(modDirs));
   for (const script::ModInfo& m : reg.mods()) {
@@ -68,6 +83,7 @@ int listMods(const std::vector<std::string>& modDirs) {
       for (const auto& n : names) line += (line.empty() ? "" : ", ") + (std::string(folder) != "vehicles" ? m.name + ":" + n : n);
       std::printf("  %-10s %s\n", folder, line.empty() ? "-" : line.c_str());
     }
+    listActions(m);
   }
   for (const auto& p : reg.problems()) std::printf("problem: %s\n", p.text().c_str());
   return reg.problems().empty() ? 0 : 1;

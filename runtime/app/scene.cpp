@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "app/paths.h"
+#include "core/log.h"
+#include "script/mod_bindings.h"
 #include "script/mods.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
@@ -83,6 +86,27 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
   return Ok{};
 }
 
+// Bindings of base and of the scenario's mod with everything it depends on,
+// in load order. Problems are reported and the valid rest is used: a typo in
+// one binding must not stop the game.
+std::unique_ptr<input::InputSystem> loadInput(const script::ModRegistry& registry, const script::ModInfo& mod) {
+  std::set<std::string> wanted{"base", mod.name};
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const script::ModInfo& m : registry.mods()) {
+      if (!wanted.count(m.name)) continue;
+      for (const script::ModDependency& d : m.depends)
+        if (registry.find(d.name) && wanted.insert(d.name).second) grew = true;
+    }
+  }
+  std::vector<script::ModInfo> mods;
+  for (const script::ModInfo& m : registry.mods())
+    if (wanted.count(m.name)) mods.push_back(m);
+  script::ModBindings bindings = script::loadBindings(mods);
+  for (const script::ModProblem& p : bindings.problems) log::warn("bindings: " + p.text());
+  return std::make_unique<input::InputSystem>(std::move(bindings.set));
+}
+
 }  // namespace
 
 Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
@@ -128,6 +152,8 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
     }
   }
   scene->m_world = std::make_unique<physics::World>(ws);
+  scene->m_input = loadInput(registry, *mod);
+  so.input = scene->m_input.get();
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());

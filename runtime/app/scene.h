@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "input/input_system.h"
 #include "physics/world.h"
 #include "render/renderer.h"
 #include "script/scenario_host.h"
@@ -41,6 +42,10 @@ class Scene {
 
   physics::World& world() { return *m_world; }
   script::ScenarioHost& host() { return *m_host; }
+  /// Input actions of base and the scenario's mod with its dependencies
+  /// (their bindings.lua, merged in load order). Scripts read them; play
+  /// feeds SDL events in; headless runs only see injected values.
+  input::InputSystem& input() { return *m_input; }
   const script::ScenarioHost& host() const { return *m_host; }
   const SceneOptions& options() const { return m_options; }
   std::string name() const { return m_modName + ":" + m_scenarioName; }
@@ -65,6 +70,7 @@ class Scene {
   std::string m_modName, m_scenarioName;
   std::unique_ptr<TerrainScene> m_terrain;  ///< before m_world: the world points at its height field
   std::unique_ptr<physics::World> m_world;
+  std::unique_ptr<input::InputSystem> m_input;  ///< before m_host, which reads it
   std::unique_ptr<script::ScenarioHost> m_host;
   std::vector<Vec3> m_prevPosition;
   std::vector<Quat> m_prevOrientation;

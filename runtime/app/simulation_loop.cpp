@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/bindings_menu.h"
 #include "app/run_report.h"
 #include "core/log.h"
+#include "input/overrides_file.h"
 #include "physics/joints/joint_system.h"
 
 namespace tumble::app {
@@ -38,6 +40,7 @@ void stepParticles(Scene& scene, RunTimings& t) {
 // One fixed step: the scenario's on_update, then physics, then particles.
 void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   Stopwatch sw;
+  scene.input().step();  // the actions every script reads in this step
   scene.host().update(time_s, scene.options().dt_s, step);
   double script = sw.seconds();
   scene.world().step(Real(scene.options().dt_s));
@@ -269,6 +272,13 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     return 0;
   }
 
+  // Input: SDL events -> the mods' actions; the player's overrides; F1 menu.
+  input::InputSystem& in = scene.input();
+  BindingsMenu menu(in, input::bindingsConfigPath());
+  if (Status st = in.enableGamepads(); !st) log::info("input: " + st.error());
+  renderer.setEventHook([&in](const SDL_Event& e, bool hudWants) { return in.handleEvent(e, hudWants); });
+  renderer.addHudPanel([&menu] { menu.draw(); });
+
   Stopwatch clock;
   double last = clock.seconds(), fpsTime = 0;
   int fpsFrames = 0;
@@ -277,6 +287,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   double lastRender_s = 0;
   while (!controls.quitRequested) {
     renderer.processEvents(controls);
+    applyAppActions(in, menu, controls, renderer.camera());
     double now = clock.seconds();
     double elapsed = std::min(now - last, 0.25);  // avoid the spiral of death after a stall
     last = now;

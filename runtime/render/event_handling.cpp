@@ -49,6 +49,10 @@ void Renderer::processEvents(Controls& controls) {
     if (r.hud) r.hud->processEvent(event);
     const bool hudKeyboard = r.hud && r.hud->wantsKeyboard();
     const bool hudMouse = r.hud && r.hud->wantsMouse();
+    if (r.eventHook) {
+      const bool keyboard = event.type == SDL_KEYDOWN || event.type == SDL_KEYUP;
+      if (r.eventHook(event, keyboard ? hudKeyboard : hudMouse)) continue;
+    }
     switch (event.type) {
       case SDL_QUIT: controls.quitRequested = true; break;
       case SDL_WINDOWEVENT:
@@ -85,6 +89,12 @@ void Renderer::processEvents(Controls& controls) {
     }
   }
   clampCamera(r.camera);
+}
+
+void Renderer::setEventHook(EventHook hook) { m_impl->eventHook = std::move(hook); }
+
+void Renderer::addHudPanel(HudPanel panel) {
+  if (m_impl->hud) m_impl->hud->addPanel(std::move(panel));
 }
 
 }  // namespace tumble::render

@@ -10,18 +10,22 @@
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
 //   WindowConfig, Renderer                window, events, drawing, screenshots
+//   EventHook, HudPanel                   the app's share of events and HUD (input, menus)
 //
 // render is a leaf: it depends on core only. The app copies simulation state
 // into a FrameSnapshot; nothing here reads physics, script or particles, and
 // the simulation never reads render (ARCHITECTURE.md).
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/math.h"
 #include "core/result.h"
+
+union SDL_Event;  // render.h does not include SDL; hooks get events by reference
 
 namespace tumble::render {
 
@@ -160,6 +164,17 @@ struct Controls {
 /// The slow-motion levels that '-' / '=' and the HUD slider step through.
 inline constexpr float kTimeScales[] = {1.0f, 0.5f, 0.25f, 0.1f};
 
+/// Sees each SDL event (after the HUD) before the renderer's own keys and
+/// mouse. hudWants: the HUD uses this event's device right now (typing, a
+/// slider, the pointer over a HUD window). Return true to consume the event:
+/// the renderer then does nothing with it. The app hands events to the
+/// input module this way (render never includes input).
+using EventHook = std::function<bool(const SDL_Event& event, bool hudWants)>;
+/// Builds extra Dear ImGui windows inside the HUD's frame, with the HUD's
+/// ImGui context current (the app's bindings menu). It may run twice in a
+/// frame when the HUD lays itself out first.
+using HudPanel = std::function<void()>;
+
 struct WindowConfig {
   int width = 1280, height = 720;  // pixels; also the screenshot size
   std::string title = "Tumble";
@@ -195,6 +210,10 @@ class Renderer {
   // mouse drag orbits, wheel zooms. Also feeds ImGui; keys and mouse that the
   // HUD is using (typing in a field, dragging a slider) do not reach the game.
   void processEvents(Controls& controls);
+  /// See EventHook. One hook; setting another replaces it.
+  void setEventHook(EventHook hook);
+  /// See HudPanel. Panels are built in the order added, after the HUD's own windows.
+  void addHudPanel(HudPanel panel);
 
   // Draws sky gradient, the terrain if any (chunked geomipmaps, per-block
   // textures, bump detail, fog), lit shapes (directional light + ambient,

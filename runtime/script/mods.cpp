@@ -10,6 +10,7 @@
 
 #include "script/emitter_files.h"
 #include "script/lua_vm.h"
+#include "script/mod_bindings.h"
 
 extern "C" {
 #include <lauxlib.h>
@@ -427,13 +428,23 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
   std::size_t before = problems.size();
   bool manifestOk = readManifest(dir, info, problems) && problems.size() == before;
   // Dependencies: this mod among the others in the search folders.
+  std::vector<ModInfo> bindingMods;  // base and this mod's dependencies, in load order, then this mod
   if (manifestOk) {
     std::vector<ModProblem> ignored, resolved;
     std::vector<ModInfo> mods = collect(searchDirs, ignored);
+    info.dir = dir;
     auto it = std::find_if(mods.begin(), mods.end(), [&](const ModInfo& m) { return m.name == info.name; });
     if (it != mods.end()) *it = info;
     else mods.push_back(info);
-    resolve(mods, resolved);
+    std::vector<ModInfo> ordered = resolve(mods, resolved);
+    std::set<std::string> wanted{"base"};
+    for (const ModDependency& d : info.depends) wanted.insert(d.name);
+    for (auto m = ordered.rbegin(); m != ordered.rend(); ++m)  // dependents come after their dependencies
+      if (wanted.count(m->name))
+        for (const ModDependency& d : m->depends) wanted.insert(d.name);
+    for (const ModInfo& m : ordered)
+      if (wanted.count(m.name) && m.name != info.name) bindingMods.push_back(m);
+    bindingMods.push_back(info);
     for (ModProblem& p : resolved) {
       if (p.mod != info.name) continue;
       p.file = (fs::path(dir) / "mod.lua").string();
@@ -455,6 +466,19 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
     } else if (file.parent_path().lexically_normal() == (fs::path(dir) / "emitters").lexically_normal()) {
       // Emitter definitions are data: run them and check every field.
       for (ModProblem& p : checkEmitterFile(file.string(), info.name)) problems.push_back(std::move(p));
+    }
+  }
+  // bindings.lua: every action, context and binding (a syntax error there
+  // was reported above already).
+  if (manifestOk) {
+    ModBindings bindings = loadBindings(bindingMods);
+    const fs::path own = fs::path(dir) / "bindings.lua";
+    for (ModProblem& p : bindings.problems) {
+      if (fs::path(p.file) != own) continue;  // a dependency's problems are its own check's
+      bool seen = std::any_of(problems.begin(), problems.end(), [&](const ModProblem& q) {
+        return q.line == p.line && q.message == p.message && fs::path(q.file) == fs::path(p.file);
+      });
+      if (!seen) problems.push_back(std::move(p));
     }
   }
   return problems;

@@ -381,6 +381,12 @@ ScenarioHost* ScenarioHost::from(lua_State* L) {
 
 ScenarioHost::ScenarioHost(const ModInfo& mod, physics::World& world, const ScenarioOptions& options)
     : m_vm(options.limits), m_mod(mod), m_world(world), m_options(options) {
+  if (options.input) {
+    m_input = options.input;
+  } else {
+    m_ownInput = std::make_unique<input::InputSystem>();
+    m_input = m_ownInput.get();
+  }
   lua_State* L = m_vm.state();
   lua_pushlightuserdata(L, this);
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kHostKey);
@@ -457,6 +463,7 @@ void ScenarioHost::buildEnvironment() {
   openTriggerBindings(L, env);
   openRagdollBindings(L, env);
   openEmitterBindings(L, env);
+  openInputBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));

@@ -23,6 +23,7 @@
 
 #include "core/result.h"
 #include "particles/particle_system.h"
+#include "input/input_system.h"
 #include "physics/world.h"
 #include "script/lua_vm.h"
 #include "script/mods.h"
@@ -60,6 +61,9 @@ struct ScenarioOptions {
   /// Other loadable mods, for references like "base:dust" (particles.spawn).
   /// The scenario's own mod is always searched first.
   std::vector<ModInfo> mods;
+  /// The actions scripts read (input.value, ...); not owned, must outlive
+  /// the host. Null: the host makes an empty one (no actions).
+  input::InputSystem* input = nullptr;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number
@@ -129,6 +133,8 @@ class ScenarioHost {
   /// Display colour (linear RGB 0..1) of a body made by the script.
   Eigen::Vector3f colorOf(physics::BodyId id) const;
   physics::World& world() { return m_world; }
+  /// The input actions scripts read (options.input, or the host's own empty set).
+  input::InputSystem& input() { return *m_input; }
   /// The scene's joints, created on first use (spawn_ragdoll); null before.
   physics::JointSystem* jointsIfAny() { return m_joints.get(); }
   physics::JointSystem& joints();
@@ -243,6 +249,8 @@ class ScenarioHost {
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
   std::unique_ptr<particles::ParticleSystem> m_particles;  ///< see particles()
   int m_emitterTablesRef = 0;  ///< registry table: "mod:name" -> the file's returned table
+  std::unique_ptr<input::InputSystem> m_ownInput;  ///< when options.input is null
+  input::InputSystem* m_input = nullptr;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -260,5 +268,7 @@ void openTriggerBindings(lua_State* L, int envIndex);
 void openRagdollBindings(lua_State* L, int envIndex);
 /// The `particles` table and Emitter type (bind_emitter.cpp).
 void openEmitterBindings(lua_State* L, int envIndex);
+/// The `input` table: actions by name, contexts, injection (bind_input.cpp).
+void openInputBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -322,6 +322,94 @@ function game.lose(reason) end
 ---@return string? # the reason given to game.win / game.lose
 function game.outcome() end
 
+---Named actions declared in the mods' bindings.lua files (mods/base/bindings.lua:
+---throttle, brake, steer, handbrake, gear_up, gear_down, reset, camera in context
+---"vehicle"; grab, impulse, more_links, fewer_links, dt_up, dt_down in "interact";
+---pause, screenshot, menu in "game"). Scripts read actions, never keys: the player
+---rebinds them in the bindings menu (F1). Values are sampled once at the start of
+---each fixed step. A button's value is 0..1 and it is down at >= 0.5; an axis is
+----1..1 (mouse motion: pixels during the step). An unknown action name is an
+---error that suggests close names.
+input = {}
+
+---The action's value in this step.
+---
+---```lua
+---local steer = input.value("steer")
+---```
+---@param action string an action name from bindings.lua
+---@return number # button 0..1; axis -1..1 (mouse_axis: pixels, wheel: notches)
+function input.value(action) end
+
+---Whether the action is held in this step (|value| >= 0.5).
+---
+---```lua
+---if input.down("handbrake") then car:brake(1) end
+---```
+---@param action string an action name
+---@return boolean
+function input.down(action) end
+
+---True in the one step the action went down. A tap shorter than a frame
+---still counts once.
+---
+---```lua
+---if input.pressed("reset") then reset_car() end
+---```
+---@param action string an action name
+---@return boolean
+function input.pressed(action) end
+
+---True in the one step the action came up.
+---
+---```lua
+---if input.released("grab") then drop_part() end
+---```
+---@param action string an action name
+---@return boolean
+function input.released(action) end
+
+---Switches a context (a group of actions) on or off. Off, its actions read
+---0 and its keys go to lower-priority contexts. "vehicle" and "interact"
+---start off; a scenario switches on what it uses.
+---
+---```lua
+---input.set_context("vehicle", true)
+---```
+---@param name string a context from bindings.lua ("vehicle", "interact", "game")
+---@param enabled boolean
+function input.set_context(name, enabled) end
+
+---@param name string a context name
+---@return boolean # whether it is on
+function input.context_enabled(name) end
+
+---Drives an action from the script (autopilots, tests, replays): from the
+---next step on it reads this value whatever the player does; nil gives it
+---back to the devices. Headless runs have no devices, so this is how they
+---press buttons; the same injections give the same run.
+---
+---```lua
+---input.inject("throttle", 1)  -- full throttle from the next step
+---```
+---@param action string an action name
+---@param value number|boolean|nil the value (true = 1, false = 0), nil to stop
+function input.inject(action, value) end
+
+---Every action this run knows, in declaration order.
+---
+---```lua
+---for _, a in ipairs(input.actions()) do print(a.name, a.context) end
+---```
+---@return table[] # {name = string, type = "button"|"axis", context = string, label = string}
+function input.actions() end
+
+---Where the mouse pointer is in the window, for picking (grab): x and y in
+----1..1 (x right, y up), nil without a window or before the mouse moved.
+---@return number? # x, -1 (left) .. 1 (right)
+---@return number? # y, -1 (bottom) .. 1 (top)
+function input.pointer() end
+
 ---Deterministic random numbers. `random.new(seed)` makes an independent
 ---generator; the functions random.float, random.int, random.normal,
 ---random.chance and random.pick use the scenario's own generator, seeded

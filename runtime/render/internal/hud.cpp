@@ -162,6 +162,7 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     }
     ImGui::End();
   }
+  for (const HudPanel& panel : m_panels) panel();
 }
 
 }  // namespace tumble::render

@@ -5,6 +5,7 @@
 #include <SDL.h>
 
 #include <memory>
+#include <vector>
 
 #include "core/result.h"
 #include "render/renderer.h"
@@ -29,6 +30,8 @@ class Hud {
   /// Lays out and draws the HUD into the bound framebuffer. Button and
   /// slider changes go into `controls`.
   void draw(const HudStats& stats, Controls& controls, CameraMode cameraMode);
+  /// The app's windows, built after the HUD's own (Renderer::addHudPanel).
+  void addPanel(HudPanel panel) { m_panels.push_back(std::move(panel)); }
 
  private:
   Hud() = default;
@@ -39,6 +42,7 @@ class Hud {
   bool m_sdlBackend = false, m_glBackend = false;
   bool m_primed = false;
   bool m_hadMessages = false;
+  std::vector<HudPanel> m_panels;
 };
 
 }  // namespace tumble::render

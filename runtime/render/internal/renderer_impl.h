@@ -36,6 +36,7 @@ struct Renderer::Impl {
   bool reportedTerrainError = false;
   bool reportedParticleError = false;
   bool dragging = false;         // mouse button held down on the scene
+  EventHook eventHook;           // the app's (input); may be empty
 };
 
 }  // namespace tumble::render

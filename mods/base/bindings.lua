@@ -1,0 +1,53 @@
+-- Default input actions of the base mod. Scripts read them by name
+-- (input.value("throttle"), input.pressed("reset")); players rebind them in
+-- the bindings menu (F1), which saves only their changes in
+-- ~/.config/tumble/bindings.json. Binding texts: see docs/input.md.
+--
+-- Priority: when two enabled contexts bind the same key, the higher one
+-- gets it. "game" comes first so pause, screenshot and the menu always work.
+-- "vehicle" and "interact" start off; a scenario switches on what it uses
+-- with input.set_context(name, true), so the camera keeps the left mouse
+-- button and Space where no scenario asks for them.
+return {
+  contexts = {
+    game = {
+      priority = 100,
+      actions = {
+        pause = {type = "button", label = "Pause", bindings = {"key:P", "key:Pause", "pad:start"}},
+        screenshot = {type = "button", label = "Screenshot", bindings = {"key:F12"}},
+        menu = {type = "button", label = "Bindings menu", bindings = {"key:F1", "pad:back"}},
+      },
+    },
+    vehicle = {
+      priority = 10,
+      enabled = false,
+      actions = {
+        -- Triggers give their travel (0..1), keys give 1.
+        throttle = {type = "button", label = "Throttle", bindings = {"key:W", "key:Up", "pad_axis:righttrigger"}},
+        brake = {type = "button", label = "Brake", bindings = {"key:S", "key:Down", "pad_axis:lefttrigger"}},
+        steer = {
+          type = "axis", label = "Steer (left - / right +)",
+          bindings = {"keys:A/D", "keys:Left/Right", {"pad_axis:leftx", dead_zone = 0.15, curve = 1.5}},
+        },
+        handbrake = {type = "button", label = "Handbrake", bindings = {"key:Space", "pad:a"}},
+        gear_up = {type = "button", label = "Gear up", bindings = {"key:E", "pad:rightshoulder"}},
+        gear_down = {type = "button", label = "Gear down", bindings = {"key:Q", "pad:leftshoulder"}},
+        reset = {type = "button", label = "Reset vehicle", bindings = {"key:R", "pad:y"}},
+        camera = {type = "button", label = "Camera orbit / follow", bindings = {"key:C", "pad:rightstick"}},
+      },
+    },
+    interact = {
+      priority = 5,
+      enabled = false,
+      actions = {
+        -- Hold to drag a rag-doll part or chain link under the pointer (input.pointer()).
+        grab = {type = "button", label = "Grab and drag", bindings = {"mouse:left", "pad:rightshoulder"}},
+        impulse = {type = "button", label = "Kick (impulse)", bindings = {"key:F", "pad:x"}},
+        more_links = {type = "button", label = "More chain links", bindings = {"key:]", "pad:dpup"}},
+        fewer_links = {type = "button", label = "Fewer chain links", bindings = {"key:[", "pad:dpdown"}},
+        dt_up = {type = "button", label = "Longer time step", bindings = {"key:.", "pad:dpright"}},
+        dt_down = {type = "button", label = "Shorter time step", bindings = {"key:,", "pad:dpleft"}},
+      },
+    },
+  },
+}

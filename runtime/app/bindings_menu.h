@@ -1,0 +1,53 @@
+#pragma once
+// The in-game bindings menu (F1 or the pad's Back button): every action of
+// the loaded mods with its bindings; click one to rebind it ("press a key"),
+// x removes it, + adds one, Reset restores the mod's defaults, Save writes
+// the differences to the user's bindings.json (input/overrides_file.h).
+//
+// Where it lives: render may not include input, so the menu is app code
+// that draws with Dear ImGui inside the HUD's frame (Renderer::addHudPanel)
+// and changes the InputSystem directly.
+#include <string>
+
+#include "input/input_system.h"
+#include "render/renderer.h"
+
+namespace tumble::app {
+
+class BindingsMenu {
+ public:
+  /// Applies the player's overrides from configPath. A file that cannot be
+  /// read is reported (log and the menu's status line), the defaults are
+  /// used and the file is left as it is until the player presses Save.
+  BindingsMenu(input::InputSystem& input, std::string configPath);
+
+  void toggle();
+  bool isOpen() const { return m_open; }
+  /// Builds the window (call inside an ImGui frame). Does nothing when closed.
+  void draw();
+  /// Writes the overrides now (what the Save button does).
+  Status save();
+  const std::string& status() const { return m_status; }
+
+ private:
+  void drawAction(int action);
+  void finishCapture();
+
+  input::InputSystem& m_input;
+  std::string m_path;
+  std::string m_status;
+  bool m_open = false;
+  bool m_dirty = false;
+  // Capture in progress: which action and which binding it replaces (-1: a new one).
+  int m_captureAction = -1, m_captureSlot = -1;
+  bool m_waitingPositive = false;  ///< a key pair: the negative key is in m_pairNegative
+  input::Source m_pairNegative;
+};
+
+/// The app's own actions, pressed since the last frame (they work while the
+/// simulation is paused): pause, screenshot, menu (opens the menu) and camera
+/// (orbit / follow). Actions the loaded mods do not declare are skipped.
+void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
+                     render::Camera& camera);
+
+}  // namespace tumble::app

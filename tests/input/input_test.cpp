@@ -1,0 +1,288 @@
+// The input system as a player and a script see it: keys become action
+// values, key pairs make an axis, modifiers do their maths, a higher context
+// takes a shared key, edges are never lost between fixed steps, injected
+// values drive headless runs.
+#include <cmath>
+
+#include "input_fixture.h"
+
+namespace tumble::test {
+
+using input::ActionType;
+using input::InputSystem;
+
+namespace {
+
+input::BindingSet vehicleSet() {
+  input::BindingSet s;
+  s.contexts = {{"vehicle", 10, true}};
+  s.actions = {actionDef("throttle", ActionType::Button, "vehicle", {"key:W", "pad_axis:righttrigger"}),
+               actionDef("steer", ActionType::Axis, "vehicle", {"keys:A/D", "pad_axis:leftx;dead_zone=0.2"}),
+               actionDef("reset", ActionType::Button, "vehicle", {"key:ctrl+R"})};
+  return s;
+}
+
+}  // namespace
+
+TEST(InputKeys, AKeyDrivesAButtonThroughDownPressedAndReleased) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle");
+  ASSERT_GE(throttle, 0);
+  in.step();
+  EXPECT_EQ(in.value(throttle), 0);
+  EXPECT_FALSE(in.down(throttle));
+
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.step();
+  EXPECT_EQ(in.value(throttle), 1);
+  EXPECT_TRUE(in.down(throttle));
+  EXPECT_TRUE(in.pressed(throttle));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true, /*repeat*/ true));  // auto-repeat is not a new press
+  in.step();
+  EXPECT_TRUE(in.down(throttle));
+  EXPECT_FALSE(in.pressed(throttle));
+
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, false));
+  in.step();
+  EXPECT_EQ(in.value(throttle), 0);
+  EXPECT_TRUE(in.released(throttle));
+  in.step();
+  EXPECT_FALSE(in.released(throttle));
+}
+
+TEST(InputKeys, AKeyPairMakesAnAxisFromMinusOneToOne) {
+  InputSystem in(vehicleSet());
+  const int steer = in.find("steer");
+  in.handleEvent(keyEvent(SDL_SCANCODE_A, true));
+  in.step();
+  EXPECT_EQ(in.value(steer), -1);
+  in.handleEvent(keyEvent(SDL_SCANCODE_D, true));
+  in.step();
+  EXPECT_EQ(in.value(steer), 0) << "both keys cancel";
+  in.handleEvent(keyEvent(SDL_SCANCODE_A, false));
+  in.step();
+  EXPECT_EQ(in.value(steer), 1);
+}
+
+TEST(InputKeys, AModifierBindingNeedsItsModifierHeld) {
+  InputSystem in(vehicleSet());
+  const int reset = in.find("reset");
+  in.handleEvent(keyEvent(SDL_SCANCODE_R, true));
+  in.step();
+  EXPECT_FALSE(in.down(reset)) << "R alone is not ctrl+R";
+  in.handleEvent(keyEvent(SDL_SCANCODE_R, false));
+  in.handleEvent(keyEvent(SDL_SCANCODE_LCTRL, true));
+  in.handleEvent(keyEvent(SDL_SCANCODE_R, true));
+  in.step();
+  EXPECT_TRUE(in.pressed(reset));
+}
+
+TEST(InputModifiers, DeadZoneCurveInvertAndScaleFollowTheirFormulas) {
+  input::Modifiers dz;
+  dz.deadZone = 0.2;
+  EXPECT_EQ(input::applyModifiers(0.1, dz), 0.0);
+  EXPECT_EQ(input::applyModifiers(-0.2, dz), 0.0);
+  // The rest of the travel is stretched back to 0..1: (0.6 - 0.2) / 0.8 = 0.5.
+  EXPECT_NEAR(input::applyModifiers(0.6, dz), 0.5, 1e-12);
+  EXPECT_NEAR(input::applyModifiers(-1.0, dz), -1.0, 1e-12);
+
+  input::Modifiers curve;
+  curve.curve = 2;
+  EXPECT_NEAR(input::applyModifiers(0.5, curve), 0.25, 1e-12);
+  EXPECT_NEAR(input::applyModifiers(-0.5, curve), -0.25, 1e-12) << "the sign survives the curve";
+
+  input::Modifiers all;
+  all.deadZone = 0.2;
+  all.curve = 2;
+  all.invert = true;
+  all.scale = 3;
+  // dead zone: 0.5, curve: 0.25, invert: -0.25, scale: -0.75
+  EXPECT_NEAR(input::applyModifiers(0.6, all), -0.75, 1e-12);
+}
+
+TEST(InputModifiers, AStickBelowItsDeadZoneReadsZeroAndFullTravelReadsOne) {
+  InputSystem in(vehicleSet());
+  const int steer = in.find("steer");
+  in.handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_LEFTX, 6000));  // 0.18 of travel < 0.2
+  in.step();
+  EXPECT_EQ(in.value(steer), 0);
+  in.handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_LEFTX, 19660));  // 0.6 -> (0.6 - 0.2) / 0.8
+  in.step();
+  EXPECT_NEAR(in.value(steer), 0.5, 1e-3);
+  in.handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_LEFTX, -32768));
+  in.step();
+  EXPECT_NEAR(in.value(steer), -1, 1e-6);
+}
+
+TEST(InputModifiers, ATriggerGivesItsTravelAndIsDownPastHalf) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle");
+  in.handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_TRIGGERRIGHT, 9830));  // 0.3
+  in.step();
+  EXPECT_NEAR(in.value(throttle), 0.3, 1e-3);
+  EXPECT_FALSE(in.down(throttle));
+  in.handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_TRIGGERRIGHT, 26214));  // 0.8
+  in.step();
+  EXPECT_NEAR(in.value(throttle), 0.8, 1e-3);
+  EXPECT_TRUE(in.pressed(throttle));
+}
+
+TEST(InputContexts, TheHigherPriorityContextTakesASharedKey) {
+  input::BindingSet s;
+  s.contexts = {{"menu", 50, true}, {"vehicle", 10, true}, {"camera", 10, true}};
+  s.actions = {actionDef("menu_confirm", ActionType::Button, "menu", {"key:Return"}),
+               actionDef("horn", ActionType::Button, "vehicle", {"key:Return", "key:H"}),
+               actionDef("zoom", ActionType::Button, "camera", {"key:Return"})};
+  InputSystem in(s);
+  const int confirm = in.find("menu_confirm"), horn = in.find("horn"), zoom = in.find("zoom");
+  EXPECT_TRUE(in.handleEvent(keyEvent(SDL_SCANCODE_RETURN, true))) << "a bound key is consumed";
+  in.step();
+  EXPECT_TRUE(in.down(confirm));
+  EXPECT_FALSE(in.down(horn)) << "the menu (priority 50) consumed Return";
+  EXPECT_FALSE(in.down(zoom));
+
+  ASSERT_TRUE(in.setContextEnabled("menu", false));
+  in.step();
+  EXPECT_FALSE(in.down(confirm)) << "a context switched off reads 0";
+  EXPECT_TRUE(in.down(horn)) << "with the menu off, Return reaches the vehicle";
+  EXPECT_TRUE(in.down(zoom)) << "equal priorities both see the key";
+
+  in.handleEvent(keyEvent(SDL_SCANCODE_H, true));
+  ASSERT_TRUE(in.setContextEnabled("menu", true));
+  in.step();
+  EXPECT_TRUE(in.down(horn)) << "H is not shared, so the vehicle keeps it";
+  EXPECT_FALSE(in.setContextEnabled("vehicel", true)) << "unknown context";
+  EXPECT_NE(in.setContextEnabled("vehicel", true).error().find("vehicle"), std::string::npos);
+}
+
+TEST(InputContexts, UnboundKeysAreLeftForTheCamera) {
+  InputSystem in(vehicleSet());
+  EXPECT_FALSE(in.handleEvent(keyEvent(SDL_SCANCODE_N, true)));
+  EXPECT_FALSE(in.handleEvent(mouseMotionEvent(4, 0))) << "motion always reaches the orbit camera";
+}
+
+TEST(InputEdges, ATapInsideOneFrameIsPressedOnceAndReleasedNextStep) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle");
+  in.step();
+  // Press and release between two fixed steps (a 60 Hz step, a fast tap).
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, false));
+  in.step();
+  EXPECT_TRUE(in.pressed(throttle));
+  EXPECT_TRUE(in.down(throttle));
+  EXPECT_EQ(in.value(throttle), 1);
+  in.step();
+  EXPECT_FALSE(in.pressed(throttle));
+  EXPECT_TRUE(in.released(throttle));
+  EXPECT_FALSE(in.down(throttle));
+}
+
+TEST(InputEdges, SeveralStepsInOneFrameSeeOnePress) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle");
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  int presses = 0, downs = 0;
+  for (int i = 0; i < 4; ++i) {  // a slow frame: the accumulator runs 4 steps
+    in.step();
+    presses += in.pressed(throttle);
+    downs += in.down(throttle);
+  }
+  EXPECT_EQ(presses, 1);
+  EXPECT_EQ(downs, 4);
+}
+
+TEST(InputEdges, ReleaseAndPressWhileHeldCountsAsBothEdges) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle");
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.step();
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, false));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.step();
+  EXPECT_TRUE(in.down(throttle));
+  EXPECT_TRUE(in.released(throttle));
+  EXPECT_TRUE(in.pressed(throttle)) << "the second press is not lost";
+}
+
+TEST(InputEdges, FramePressesReachTheAppEvenWithoutSteps) {
+  // Pause must unpause: while paused no fixed step runs.
+  InputSystem in(vehicleSet());
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, false));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  auto presses = in.takeFramePresses();
+  ASSERT_EQ(presses.size(), 1u);
+  EXPECT_EQ(presses[0], in.find("throttle"));
+  EXPECT_TRUE(in.takeFramePresses().empty());
+}
+
+TEST(InputEdges, MouseMotionIsThePixelsMovedDuringTheStep) {
+  input::BindingSet s;
+  s.contexts = {{"look", 0, true}};
+  s.actions = {actionDef("look_x", ActionType::Axis, "look", {"mouse_axis:x;scale=0.01"})};
+  InputSystem in(s);
+  in.handleEvent(mouseMotionEvent(30, 5));
+  in.handleEvent(mouseMotionEvent(20, 5));
+  in.step();
+  EXPECT_NEAR(in.value(0), 0.5, 1e-12);  // 50 px * 0.01
+  in.step();
+  EXPECT_EQ(in.value(0), 0) << "no motion in the next step";
+}
+
+TEST(InputInjection, InjectedValuesActFromTheNextStepAndGiveWayWhenCleared) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle"), steer = in.find("steer");
+  in.inject(steer, -0.25);
+  EXPECT_EQ(in.value(steer), 0) << "the current step's snapshot does not change";
+  in.step();
+  EXPECT_EQ(in.value(steer), -0.25);
+  EXPECT_FALSE(in.down(steer));
+  in.inject(throttle, 1);
+  in.step();
+  EXPECT_TRUE(in.pressed(throttle));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.clearInjection(throttle);
+  in.clearInjection(steer);
+  in.step();
+  EXPECT_TRUE(in.down(throttle)) << "back to the keyboard, where W is held";
+  EXPECT_FALSE(in.pressed(throttle)) << "still down: no new press";
+  EXPECT_EQ(in.value(steer), 0);
+}
+
+TEST(InputInjection, TheSameInjectionsGiveTheSameStates) {
+  auto trace = [] {
+    InputSystem in(vehicleSet());
+    std::vector<double> out;
+    for (int i = 0; i < 30; ++i) {
+      if (i % 7 == 0) in.inject(in.find("steer"), std::sin(i * 0.3));
+      if (i % 5 == 0) in.inject(in.find("throttle"), (i / 5) % 2);
+      in.step();
+      out.push_back(in.value(in.find("steer")) + 10 * in.pressed(in.find("throttle")));
+    }
+    return out;
+  };
+  EXPECT_EQ(trace(), trace());
+}
+
+TEST(InputCapture, TheMenuCapturesTheNextKeyInsteadOfActing) {
+  InputSystem in(vehicleSet());
+  in.beginCapture();
+  in.handleEvent(keyEvent(SDL_SCANCODE_LSHIFT, true));  // a modifier waits for its key
+  EXPECT_TRUE(in.capturing());
+  EXPECT_TRUE(in.handleEvent(keyEvent(SDL_SCANCODE_W, true)));
+  auto got = in.takeCaptured();
+  ASSERT_TRUE(got);
+  EXPECT_TRUE(got->first);
+  EXPECT_EQ(input::sourceLabel(got->second), "shift+W");
+  in.step();
+  EXPECT_FALSE(in.down(in.find("throttle"))) << "the captured key did not drive the game";
+
+  in.beginCapture();
+  in.handleEvent(keyEvent(SDL_SCANCODE_ESCAPE, true));
+  got = in.takeCaptured();
+  ASSERT_TRUE(got);
+  EXPECT_FALSE(got->first) << "Escape cancels";
+}
+
+}  // namespace tumble::test

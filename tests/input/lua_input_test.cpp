@@ -1,0 +1,147 @@
+// The Lua side: scripts read actions by name, never keys; unknown names are
+// errors that suggest the right one; injection drives headless runs.
+#include <fstream>
+
+#include "input_fixture.h"
+#include "physics/world.h"
+#include "script/scenario_host.h"
+
+namespace tumble::test {
+
+namespace fs = std::filesystem;
+
+class LuaInput : public ::testing::Test {
+ protected:
+  LuaInput() {
+    input::BindingSet s;
+    s.contexts = {{"vehicle", 10, true}, {"interact", 5, false}};
+    s.actions = {actionDef("throttle", input::ActionType::Button, "vehicle", {"key:W"}),
+                 actionDef("steer", input::ActionType::Axis, "vehicle", {"keys:A/D"}),
+                 actionDef("grab", input::ActionType::Button, "interact", {"mouse:left"})};
+    m_input = std::make_unique<input::InputSystem>(s);
+  }
+
+  std::unique_ptr<script::ScenarioHost> load(const std::string& source) {
+    const fs::path dir = testDir() / "m";
+    fs::create_directories(dir / "scenarios");
+    std::ofstream(dir / "mod.lua") << "return {name = \"m\", version = \"1.0.0\", api = 1}\n";
+    std::ofstream(dir / "scenarios" / "s.lua") << source;
+    script::ModInfo mod;
+    mod.name = "m";
+    mod.version = "1.0.0";
+    mod.dir = dir.string();
+    script::ScenarioOptions o;
+    o.input = m_input.get();
+    auto host = script::ScenarioHost::load(mod, "s", m_world, o);
+    EXPECT_TRUE(host) << (host ? "" : host.error());
+    return host ? std::move(host.value()) : nullptr;
+  }
+
+  /// One fixed step as the app runs it: input first, then the scripts.
+  void step(script::ScenarioHost& host) {
+    m_input->step();
+    host.update(m_time, 1.0 / 60, m_step++);
+    m_world.step(Real(1.0 / 60));
+    m_time += 1.0 / 60;
+  }
+
+  static void expectAllHeld(const script::ScenarioHost& host) {
+    EXPECT_FALSE(host.expectations().empty());
+    for (const auto& e : host.expectations()) EXPECT_TRUE(e.ok) << e.name << " = " << e.value;
+    for (const auto& e : host.errors()) ADD_FAILURE() << e.summary();
+  }
+
+  physics::World m_world;
+  std::unique_ptr<input::InputSystem> m_input;
+  double m_time = 0;
+  std::int64_t m_step = 0;
+};
+
+TEST_F(LuaInput, ScriptsReadTheKeysOnlyThroughTheirActions) {
+  auto host = load(R"(
+    local seen = {}
+    return {on_update = function(ctx)
+      seen[#seen + 1] = {input.value("throttle"), input.down("throttle"), input.pressed("throttle"),
+                         input.released("throttle"), input.value("steer")}
+    end, on_finish = function()
+      expect("step 1: pressed", seen[1][3] and seen[1][2] and seen[1][1] == 1)
+      expect("step 1: steer left", seen[1][5], {min = -1, max = -1})
+      expect("step 2: held, not pressed again", seen[2][2] and not seen[2][3])
+      expect("step 3: released", seen[3][4] and not seen[3][2] and seen[3][1] == 0)
+      expect("no raw keys in the API", input.key == nil and input.keys == nil)
+    end})");
+  ASSERT_TRUE(host);
+  host->start();
+  m_input->handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  m_input->handleEvent(keyEvent(SDL_SCANCODE_A, true));
+  step(*host);
+  step(*host);
+  m_input->handleEvent(keyEvent(SDL_SCANCODE_W, false));
+  step(*host);
+  host->finish(m_time, m_step);
+  expectAllHeld(*host);
+}
+
+TEST_F(LuaInput, AnUnknownActionIsALuaErrorThatSuggestsTheName) {
+  auto host = load(R"(return {on_update = function() local v = input.value("trottle") end})");
+  ASSERT_TRUE(host);
+  host->start();
+  step(*host);
+  ASSERT_EQ(host->errors().size(), 1u);
+  const std::string msg = host->errors()[0].message;
+  EXPECT_NE(msg.find("input.value: unknown action \"trottle\" (did you mean: throttle?)"), std::string::npos) << msg;
+  EXPECT_EQ(host->errors()[0].line, 1) << "the error points at the script line";
+}
+
+TEST_F(LuaInput, InjectedValuesDriveActionsFromTheNextStep) {
+  auto host = load(R"(
+    local n, values = 0, {}
+    return {on_update = function()
+      n = n + 1
+      values[n] = {input.value("steer"), input.pressed("throttle"), input.down("throttle")}
+      if n == 1 then input.inject("steer", 0.5); input.inject("throttle", true) end
+      if n == 3 then input.inject("throttle", nil) end
+    end, on_finish = function()
+      expect("not before the next step", values[1][1], {min = 0, max = 0})
+      expect("steer injected", values[2][1], {min = 0.5, max = 0.5})
+      expect("throttle pressed by injection", values[2][2])
+      expect("still down", values[3][3] and not values[3][2])
+      expect("back to the (idle) keyboard", not values[4][3])
+    end})");
+  ASSERT_TRUE(host);
+  host->start();
+  for (int i = 0; i < 4; ++i) step(*host);
+  host->finish(m_time, m_step);
+  expectAllHeld(*host);
+}
+
+TEST_F(LuaInput, ContextsSwitchFromLuaAndUnknownOnesAreErrors) {
+  auto host = load(R"(
+    return {on_start = function()
+      expect("interact starts off", not input.context_enabled("interact"))
+      input.set_context("interact", true)
+      expect("now on", input.context_enabled("interact"))
+      local ok, err = pcall(input.set_context, "interract", true)
+      expect("unknown context fails", not ok)
+      expect("and suggests the name", err:find("did you mean: interact", 1, true) ~= nil)
+      local names = {}
+      for _, a in ipairs(input.actions()) do names[#names + 1] = a.name .. ":" .. a.type .. ":" .. a.context end
+      expect("actions listed", table.concat(names, ",") == "throttle:button:vehicle,steer:axis:vehicle,grab:button:interact")
+    end})");
+  ASSERT_TRUE(host);
+  host->start();
+  expectAllHeld(*host);
+  EXPECT_TRUE(m_input->contextEnabled("interact"));
+}
+
+TEST_F(LuaInput, ANonStringActionNameIsAClearError) {
+  auto host = load(R"(return {on_start = function()
+      local ok, err = pcall(input.down, 3)
+      expect("rejected", not ok and err:find("expected an action name", 1, true) ~= nil)
+    end})");
+  ASSERT_TRUE(host);
+  host->start();
+  expectAllHeld(*host);
+}
+
+}  // namespace tumble::test

@@ -1,0 +1,97 @@
+// Play's wiring, with a real (offscreen) window and HUD: SDL events reach
+// the input system through the renderer's hook, bound keys are consumed so
+// the renderer does not act on them twice, unbound ones still drive the
+// camera and debug keys, and F1 opens the bindings menu inside the HUD.
+#include <SDL.h>
+
+#include "app/bindings_menu.h"
+#include "input_fixture.h"
+#include "script/mod_bindings.h"
+
+namespace tumble::test {
+
+namespace {
+
+void pushKey(SDL_Scancode sc) {
+  SDL_Event e = keyEvent(sc, true);
+  e.key.keysym.sym = SDL_GetKeyFromScancode(sc);
+  ASSERT_EQ(SDL_PushEvent(&e), 1) << SDL_GetError();
+  e.type = SDL_KEYUP;
+  ASSERT_EQ(SDL_PushEvent(&e), 1) << SDL_GetError();
+}
+
+class PlayWiring : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ::setenv("SDL_VIDEODRIVER", "offscreen", 1);
+    render::WindowConfig config;
+    config.width = 320;
+    config.height = 240;
+    config.forceOffscreen = true;
+    auto r = render::Renderer::create(config);
+    ASSERT_TRUE(r) << r.error();
+    m_renderer = std::move(*r);
+    script::ModInfo base;
+    base.name = "base";
+    base.dir = std::string(TUMBLE_SOURCE_DIR) + "/mods/base";
+    m_input = std::make_unique<input::InputSystem>(script::loadModBindings(base).set);
+    m_menu = std::make_unique<app::BindingsMenu>(*m_input, (testDir() / "bindings.json").string());
+    m_renderer->setEventHook([this](const SDL_Event& e, bool hudWants) { return m_input->handleEvent(e, hudWants); });
+    m_renderer->addHudPanel([this] { m_menu->draw(); });
+  }
+
+  void frame() {
+    m_renderer->processEvents(m_controls);
+    app::applyAppActions(*m_input, *m_menu, m_controls, m_renderer->camera());
+  }
+
+  std::unique_ptr<render::Renderer> m_renderer;
+  std::unique_ptr<input::InputSystem> m_input;
+  std::unique_ptr<app::BindingsMenu> m_menu;
+  render::Controls m_controls;
+};
+
+TEST_F(PlayWiring, PauseIsAnActionThatTogglesOncePerPress) {
+  pushKey(SDL_SCANCODE_P);
+  frame();
+  EXPECT_TRUE(m_controls.paused) << "once, not toggled back by the renderer's own P";
+  pushKey(SDL_SCANCODE_P);
+  frame();
+  EXPECT_FALSE(m_controls.paused) << "unpauses although no fixed step ran";
+}
+
+TEST_F(PlayWiring, TheCameraKeyWorksWithAndWithoutTheVehicleContext) {
+  pushKey(SDL_SCANCODE_C);
+  frame();
+  EXPECT_EQ(m_renderer->camera().mode, render::CameraMode::Follow) << "vehicle off: the renderer's C";
+  ASSERT_TRUE(m_input->setContextEnabled("vehicle", true));
+  pushKey(SDL_SCANCODE_C);
+  frame();
+  EXPECT_EQ(m_renderer->camera().mode, render::CameraMode::Orbit) << "vehicle on: the camera action, once";
+}
+
+TEST_F(PlayWiring, GameplayKeysReachTheActionsAndDebugKeysTheRenderer) {
+  ASSERT_TRUE(m_input->setContextEnabled("vehicle", true));
+  SDL_Event w = keyEvent(SDL_SCANCODE_W, true);
+  ASSERT_EQ(SDL_PushEvent(&w), 1);
+  pushKey(SDL_SCANCODE_N);  // single step stays a renderer key
+  frame();
+  m_input->step();
+  EXPECT_TRUE(m_input->pressed(m_input->find("throttle")));
+  EXPECT_TRUE(m_controls.stepOnce);
+}
+
+TEST_F(PlayWiring, F1OpensTheBindingsMenuAndTheHudDrawsIt) {
+  pushKey(SDL_SCANCODE_F1);
+  frame();
+  EXPECT_TRUE(m_menu->isOpen());
+  render::FrameSnapshot snap;
+  render::HudStats hud;
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(m_renderer->drawFrame(snap, hud, m_controls));
+  pushKey(SDL_SCANCODE_F1);
+  frame();
+  EXPECT_FALSE(m_menu->isOpen());
+}
+
+}  // namespace
+}  // namespace tumble::test
