@@ -89,7 +89,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   r.shapes.draw(frame.shapes, view, r.environment);
   r.lines.draw(frame.lines, view);
   r.targets.resolve();
-  if (r.hud) r.hud->draw(hud, controls, r.camera.mode);
+  if (r.hud) r.hud->draw(hud, controls, r.camera.mode, r.tuning);
   r.hasFrame = true;
 
   Status result = Ok{};
@@ -106,6 +106,8 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   }
   return result;
 }
+
+void Renderer::setTuningPanel(TuningPanel* panel) { m_impl->tuning = panel; }
 
 const TerrainStats& Renderer::terrainStats() const { return m_impl->terrainStats; }
 

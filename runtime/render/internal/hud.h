@@ -13,6 +13,9 @@ struct ImGuiContext;
 
 namespace tumble::render {
 
+/// The tuning panel's window (tuning_panel.cpp); edits go into `panel`.
+void buildTuningPanel(TuningPanel& panel, bool* open);
+
 class Hud {
  public:
   static Result<std::unique_ptr<Hud>> create(SDL_Window* window, SDL_GLContext context);
@@ -28,17 +31,19 @@ class Hud {
 
   /// Lays out and draws the HUD into the bound framebuffer. Button and
   /// slider changes go into `controls`.
-  void draw(const HudStats& stats, Controls& controls, CameraMode cameraMode);
+  /// tuning: the tuning panel, drawn while controls.tuningPanelVisible (null: none).
+  void draw(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning = nullptr);
 
  private:
   Hud() = default;
   void newFrame();
-  void build(const HudStats& stats, Controls& controls, CameraMode cameraMode);
+  void build(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning);
 
   ImGuiContext* m_context = nullptr;
   bool m_sdlBackend = false, m_glBackend = false;
   bool m_primed = false;
   bool m_hadMessages = false;
+  bool m_hadTuning = false;
 };
 
 }  // namespace tumble::render

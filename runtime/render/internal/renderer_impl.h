@@ -33,6 +33,7 @@ struct Renderer::Impl {
   bool reportedGlError = false;  // GL errors are logged once, not every frame
   bool reportedTerrainError = false;
   bool dragging = false;         // mouse button held down on the scene
+  TuningPanel* tuning = nullptr;  // see Renderer::setTuningPanel
 };
 
 }  // namespace tumble::render
