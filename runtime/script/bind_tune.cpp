@@ -1,6 +1,8 @@
 // Lua table `tune`: tunables a designer changes while playing (the tuning
 // panel, F2), from the command line (--set tune.NAME=VALUE) or a saved
 // overrides file. The values live in the host's Tunables (tunables.h).
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "script/internal/bind_common.h"
@@ -22,7 +24,12 @@ namespace {
 
 // Throws for any key of the options table at idx that is not in `allowed`:
 // a misspelt option must not silently do nothing.
-void checkOptionKeys(lua_State* L, int idx, const std::string& fn, std::initializer_list<const char*> allowed) {
+// `fn` names the call for the message ("tune.number" and the name at stack
+// index 1); it is only built when there is an error, keeping the common path
+// free of allocations.
+std::string callName(lua_State* L, const char* fn) { return std::string(fn) + "(\"" + lua_tostring(L, 1) + "\")"; }
+
+void checkOptionKeys(lua_State* L, int idx, const char* fn, std::initializer_list<const char*> allowed) {
   lua_pushnil(L);
   while (lua_next(L, idx) != 0) {
     lua_pop(L, 1);
@@ -36,7 +43,7 @@ void checkOptionKeys(lua_State* L, int idx, const std::string& fn, std::initiali
       for (const char* a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
       std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : luaL_typename(L, -1);
       lua_pop(L, 1);
-      throw LuaArgError(fn + ": unknown option '" + key + "' (known: " + known + ")");
+      throw LuaArgError(callName(L, fn) + ": unknown option '" + key + "' (known: " + known + ")");
     }
   }
 }
@@ -62,9 +69,10 @@ int declareAndPush(lua_State* L, Tunable spec) {
   return 1;
 }
 
-int optionsIndex(lua_State* L, const std::string& fn, int idx) {
+int optionsIndex(lua_State* L, const char* fn, int idx) {
   if (lua_isnoneornil(L, idx)) return 0;
-  if (!lua_istable(L, idx)) throw LuaArgError(fn + ": argument " + std::to_string(idx) + " must be an options table");
+  if (!lua_istable(L, idx))
+    throw LuaArgError(callName(L, fn) + ": argument " + std::to_string(idx) + " must be an options table");
   return idx;
 }
 
@@ -76,12 +84,13 @@ int optionsIndex(lua_State* L, const std::string& fn, int idx) {
 /// @return number the live value
 /// @example local g = tune.number("gravity", 9.81, {min = 0, max = 20, unit = "m/s^2"})
 int tuneNumber(lua_State* L) {
-  std::string name = checkName(L, "tune.number");
-  const std::string fn = "tune.number(\"" + name + "\")";
+  const char* fn = "tune.number";
   Tunable t;
-  t.name = name;
+  t.name = checkName(L, fn);
   t.kind = Tunable::Kind::Number;
-  t.defaultValue = checkNumber(L, 2, (fn + " default").c_str());
+  if (lua_type(L, 2) != LUA_TNUMBER || !std::isfinite(lua_tonumber(L, 2)))
+    throw LuaArgError(callName(L, fn) + ": argument 2 (the default) must be a finite number");
+  t.defaultValue = lua_tonumber(L, 2);
   if (int o = optionsIndex(L, fn, 3)) {
     checkOptionKeys(L, o, fn, {"min", "max", "step", "unit", "description"});
     t.min = optNumberField(L, o, "min", t.min);
@@ -101,11 +110,10 @@ int tuneNumber(lua_State* L) {
 /// @return boolean the live value
 /// @example if tune.bool("wind", false) then body:apply_force({5, 0, 0}) end
 int tuneBool(lua_State* L) {
-  std::string name = checkName(L, "tune.bool");
-  const std::string fn = "tune.bool(\"" + name + "\")";
-  if (!lua_isboolean(L, 2)) throw LuaArgError(fn + ": argument 2 (the default) must be true or false");
+  const char* fn = "tune.bool";
   Tunable t;
-  t.name = name;
+  t.name = checkName(L, fn);
+  if (!lua_isboolean(L, 2)) throw LuaArgError(callName(L, fn) + ": argument 2 (the default) must be true or false");
   t.kind = Tunable::Kind::Bool;
   t.defaultValue = lua_toboolean(L, 2) ? 1 : 0;
   if (int o = optionsIndex(L, fn, 3)) {
@@ -124,28 +132,31 @@ int tuneBool(lua_State* L) {
 /// @return string the live choice
 /// @example local mode = tune.choice("difficulty", "normal", {choices = {"easy", "normal", "hard"}})
 int tuneChoice(lua_State* L) {
-  std::string name = checkName(L, "tune.choice");
-  const std::string fn = "tune.choice(\"" + name + "\")";
-  if (lua_type(L, 2) != LUA_TSTRING) throw LuaArgError(fn + ": argument 2 (the default) must be a string");
+  const char* fn = "tune.choice";
+  std::string name = checkName(L, fn);
+  if (lua_type(L, 2) != LUA_TSTRING)
+    throw LuaArgError(callName(L, fn) + ": argument 2 (the default) must be a string");
   std::string def = lua_tostring(L, 2);
   int o = optionsIndex(L, fn, 3);
-  if (!o) throw LuaArgError(fn + ": argument 3 must be {choices = {\"a\", \"b\", ...}}");
+  if (!o) throw LuaArgError(callName(L, fn) + ": argument 3 must be {choices = {\"a\", \"b\", ...}}");
   checkOptionKeys(L, o, fn, {"choices", "description"});
   Tunable t;
   t.name = name;
   t.kind = Tunable::Kind::Choice;
   t.description = optStringField(L, o, "description", "");
   lua_getfield(L, o, "choices");
-  if (!lua_istable(L, -1)) throw LuaArgError(fn + ": choices must be a list of strings");
+  if (!lua_istable(L, -1)) throw LuaArgError(callName(L, fn) + ": choices must be a list of strings");
   for (lua_Integer i = 1, n = luaL_len(L, -1); i <= n; ++i) {
     lua_rawgeti(L, -1, i);
-    if (lua_type(L, -1) != LUA_TSTRING) throw LuaArgError(fn + ": choices[" + std::to_string(i) + "] must be a string");
+    if (lua_type(L, -1) != LUA_TSTRING)
+      throw LuaArgError(callName(L, fn) + ": choices[" + std::to_string(i) + "] must be a string");
     t.choices.emplace_back(lua_tostring(L, -1));
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
   auto it = std::find(t.choices.begin(), t.choices.end(), def);
-  if (it == t.choices.end()) throw LuaArgError(fn + ": the default \"" + def + "\" is not one of the choices");
+  if (it == t.choices.end())
+    throw LuaArgError(callName(L, fn) + ": the default \"" + def + "\" is not one of the choices");
   t.defaultValue = double(it - t.choices.begin());
   return declareAndPush(L, std::move(t));
 }

@@ -53,21 +53,22 @@ std::string Tunable::valueText() const {
 }
 
 Result<int> Tunables::declare(Tunable spec) {
-  const std::string what = "tune." + std::string(kindName(spec.kind)) + "(\"" + spec.name + "\")";
+  // Built only for a message: this runs for every tune.* call.
+  auto what = [&spec] { return "tune." + std::string(kindName(spec.kind)) + "(\"" + spec.name + "\")"; };
   if (spec.name.empty()) return makeError("tune: a tunable needs a name");
   if (spec.kind == Tunable::Kind::Number) {
-    if (!(spec.min <= spec.max)) return makeError(what + ": min must be <= max, got " + limitsText(spec));
+    if (!(spec.min <= spec.max)) return makeError(what() + ": min must be <= max, got " + limitsText(spec));
     if (!std::isfinite(spec.defaultValue) || spec.defaultValue < spec.min || spec.defaultValue > spec.max)
-      return makeError(what + ": default " + numberText(spec.defaultValue) + " is outside " + limitsText(spec));
-    if (!(spec.step >= 0) || !std::isfinite(spec.step)) return makeError(what + ": step must be a number >= 0");
+      return makeError(what() + ": default " + numberText(spec.defaultValue) + " is outside " + limitsText(spec));
+    if (!(spec.step >= 0) || !std::isfinite(spec.step)) return makeError(what() + ": step must be a number >= 0");
   }
   if (spec.kind == Tunable::Kind::Choice && spec.choices.empty())
-    return makeError(what + ": needs at least one choice");
+    return makeError(what() + ": needs at least one choice");
   int index = find(spec.name);
   if (index >= 0) {
     Tunable& t = m_items[std::size_t(index)];
     if (t.kind != spec.kind)
-      return makeError(what + ": \"" + spec.name + "\" is already a " + kindName(t.kind) +
+      return makeError(what() + ": \"" + spec.name + "\" is already a " + kindName(t.kind) +
                        " tunable; one name, one kind");
     // Same declaration as last time (the common case: tune.number in
     // on_update every step): nothing to do.
