@@ -50,6 +50,13 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
                {"at_s", host.outcome() != script::Outcome::None ? json(host.outcomeTime_s()) : json(nullptr)},
                {"messages", json::array()}};
   for (const auto& m : host.messages()) game["messages"].push_back({{"text", m.text}, {"time_s", m.time_s}});
+  // Tunables and the values this run used (defaults or --set tune.*).
+  json tunables = json::object();
+  for (const auto& tn : host.tunables().items()) {
+    if (tn.kind == script::Tunable::Kind::Number) tunables[tn.name] = tn.value();
+    else if (tn.kind == script::Tunable::Kind::Bool) tunables[tn.name] = tn.value() != 0;
+    else tunables[tn.name] = tn.valueText();
+  }
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(world.stateHash()));
   return json{
@@ -84,6 +91,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"expectations", expectations},
       {"script_errors", errors},
       {"game", game},
+      {"tunables", tunables},
       {"state_hash", std::string(hash)},
   };
 }

@@ -141,10 +141,17 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   so.seed = options.seed;
   so.scriptsDir = scriptsDir();
   so.mods = registry.mods();  // emitters may come from other mods ("base:dust")
+  if (options.tuneOverrides) so.tuneOverridesFile = script::tuneOverridesPath(mod->name);
   std::map<std::string, std::string> terrainSettings = options.terrainDefaults;
   for (const auto& [key, value] : options.sets) {
     if (key.rfind("terrain.", 0) == 0) {
       terrainSettings[key] = value;
+    } else if (key.rfind("tune.", 0) == 0) {
+      // tune.NAME, or tune.MOD.NAME for this mod (other mods' are not running).
+      std::string name = key.substr(5);
+      if (name.rfind(mod->name + ".", 0) == 0) name = name.substr(mod->name.size() + 1);
+      if (name.empty()) return makeError("--set " + key + ": expected tune.NAME=VALUE or tune.MOD.NAME=VALUE");
+      so.tuneSets[name] = value;
     } else if (key.rfind("physics.", 0) == 0) {
       if (auto st = applyPhysicsSetting(ws, key, value); !st) return makeError(st.error());
     } else {

@@ -28,6 +28,9 @@ struct SceneOptions {
   /// terrain.* settings a scenario asks for by default (terrain_scene.h lists
   /// the keys); --set terrain.* wins. Empty: no terrain unless --set asks.
   std::map<std::string, std::string> terrainDefaults;
+  /// Read the mod's saved tunable overrides (script/tunables.h). `play` does;
+  /// `run` does not, so a headless run depends only on its command line.
+  bool tuneOverrides = false;
 };
 
 class TerrainScene;

@@ -6,9 +6,11 @@
 
 #include "app/bindings_menu.h"
 #include "app/run_report.h"
+#include "app/tuning.h"
 #include "core/log.h"
 #include "input/overrides_file.h"
 #include "physics/joints/joint_system.h"
+#include "script/hot_reload.h"
 
 namespace tumble::app {
 
@@ -211,7 +213,9 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
 }
 
 int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
-  auto created = Scene::create(o.scene);
+  SceneOptions sceneOptions = o.scene;
+  sceneOptions.tuneOverrides = true;  // a designer's saved values apply when playing
+  auto created = Scene::create(sceneOptions);
   if (!created) {
     log::error(created.error());
     return 1;
@@ -278,6 +282,13 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   if (Status st = in.enableGamepads(); !st) log::info("input: " + st.error());
   renderer.setEventHook([&in](const SDL_Event& e, bool hudWants) { return in.handleEvent(e, hudWants); });
   renderer.addHudPanel([&menu] { menu.draw(); });
+  // Live editing: saved .lua files of the mod take effect (polled at 4 Hz),
+  // and the tuning panel (F2) edits the scenario's tunables.
+  script::HotReload hotReload(scene.host());
+  render::TuningPanel tuning;
+  tuning.title = scene.name();
+  tuning.overridesPath = script::tuneOverridesPath(scene.host().mod().name);
+  renderer.setTuningPanel(&tuning);
 
   Stopwatch clock;
   double last = clock.seconds(), fpsTime = 0;
@@ -289,6 +300,8 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     renderer.processEvents(controls);
     applyAppActions(in, menu, controls, renderer.camera());
     double now = clock.seconds();
+    for (const script::ReloadEvent& e : hotReload.poll(now, time_s, step))
+      if (e.ok) scene.host().addMessage(e.message, 3);  // failures are already on the HUD as errors
     double elapsed = std::min(now - last, 0.25);  // avoid the spiral of death after a stall
     last = now;
     if (!controls.paused) accumulator += elapsed * controls.timeScale;
@@ -314,8 +327,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     }
     Stopwatch rs;
     frame.render_s = lastRender_s;
+    if (controls.tuningPanelVisible) fillTuningPanel(scene.host().tunables(), tuning);
     Status st = renderer.drawFrame(snap, hudStats(scene, fps, frame, time_s), controls,
                                    shot.empty() ? nullptr : shot.c_str());
+    applyTuningPanel(tuning, scene.host().tunables(), scene.host().mod().name);
     lastRender_s = rs.seconds();
     if (!shot.empty()) {
       if (st) log::info("screenshot saved: " + shot);

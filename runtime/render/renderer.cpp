@@ -94,7 +94,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
     r.reportedParticleError = true;
   }
   r.targets.resolve();
-  if (r.hud) r.hud->draw(hud, controls, r.camera.mode);
+  if (r.hud) r.hud->draw(hud, controls, r.camera.mode, r.tuning);
   r.hasFrame = true;
 
   Status result = Ok{};
@@ -111,6 +111,8 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   }
   return result;
 }
+
+void Renderer::setTuningPanel(TuningPanel* panel) { m_impl->tuning = panel; }
 
 const TerrainStats& Renderer::terrainStats() const { return m_impl->terrainStats; }
 

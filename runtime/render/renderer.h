@@ -9,6 +9,7 @@
 //   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
+//   TuningItem, TuningPanel               the tuning panel (F2): tunables shown / edited
 //   WindowConfig, Renderer                window, events, drawing, screenshots
 //   EventHook, HudPanel                   the app's share of events and HUD (input, menus)
 //
@@ -159,7 +160,45 @@ struct Controls {
   float timeScale = 1.0f;             // slow motion: 1, 0.5, 0.25, 0.1
   bool screenshotRequested = false;   // screenshot key (F12); app clears it after saving
   bool quitRequested = false;         // window closed or Escape
+  bool tuningPanelVisible = false;    // F2 or the HUD's "Tune" button toggles the tuning panel
 };
+
+/// One tunable as the tuning panel shows it (plain data; the app copies it
+/// from the scenario's tunables each frame and applies edits back).
+struct TuningItem {
+  enum class Kind { Number, Bool, Choice };
+  std::string name, unit, description;  // unit: shown after the value, e.g. "m/s^2"
+  Kind kind = Kind::Number;
+  double value = 0;                     // Number: the value; Bool: 0/1; Choice: index into choices
+  double defaultValue = 0;
+  double min = 0, max = 0;              // Number: inclusive limits; non-finite means none
+  double step = 0;                      // Number: 0 = continuous
+  std::vector<std::string> choices;     // Choice
+  bool userSet = false;                 // differs from the script's default by the user's hand
+  // Written by the panel during drawFrame, read and cleared by the app:
+  bool edited = false;                  // `value` was changed in the panel
+  bool resetRequested = false;          // the item's "reset" button
+};
+
+/// What the panel shows and what it asks for. The renderer draws it while
+/// Controls::tuningPanelVisible (see Renderer::setTuningPanel).
+struct TuningPanel {
+  std::string title;            // e.g. the scenario's name
+  std::string overridesPath;    // where "Save" writes; shown in the panel
+  std::string status;           // last save / load message
+  std::vector<TuningItem> items;
+  bool saveRequested = false;   // set by the "Save" button; the app clears it
+  bool resetAllRequested = false;
+};
+
+/// How the panel edits an item: a slider between two finite limits, a drag
+/// field otherwise, a checkbox for Bool, a drop-down for Choice.
+enum class TuningWidget { Slider, Drag, Checkbox, Combo };
+TuningWidget tuningWidgetFor(const TuningItem& item);
+/// The value as the panel prints it: "9.81 m/s^2", "on", "hard".
+std::string tuningValueText(const TuningItem& item);
+/// Snaps a number to the item's step (from min, or 0) and clamps it to its limits.
+double tuningSnap(const TuningItem& item, double value);
 
 /// The slow-motion levels that '-' / '=' and the HUD slider step through.
 inline constexpr float kTimeScales[] = {1.0f, 0.5f, 0.25f, 0.1f};
@@ -206,7 +245,7 @@ class Renderer {
   Eigen::Vector2i framebufferSize() const;
 
   // Handles SDL events: close/Escape quit; P or Space pause; N single step;
-  // '-'/'=' slower/faster slow motion; F12 screenshot; C toggles orbit/follow;
+  // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; C toggles orbit/follow;
   // mouse drag orbits, wheel zooms. Also feeds ImGui; keys and mouse that the
   // HUD is using (typing in a field, dragging a slider) do not reach the game.
   void processEvents(Controls& controls);
@@ -227,6 +266,11 @@ class Renderer {
   // rows top-down, atomically (core/file_util writeFileAtomic). Reads the
   // renderer's own framebuffer, so it works without a visible window.
   Status saveScreenshot(const std::string& path);
+
+  // The tuning panel drawn (while Controls::tuningPanelVisible) by the
+  // following drawFrame calls; its edits are written into *panel. Null: none
+  // (the HUD's "Tune" button is then hidden). The app owns the panel.
+  void setTuningPanel(TuningPanel* panel);
 
   // Chunks and triangles of the terrain in the last drawFrame (all zero
   // without a terrain).

@@ -391,6 +391,16 @@ ScenarioHost::ScenarioHost(const ModInfo& mod, physics::World& world, const Scen
   lua_pushlightuserdata(L, this);
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kHostKey);
   buildEnvironment();
+  if (!options.tuneOverridesFile.empty()) {
+    if (Status st = m_tunables.loadOverrides(options.tuneOverridesFile); !st) {
+      // A corrupt settings file must not stop the game: defaults, and say so.
+      log::warn(st.error());
+      m_messages.push_back({st.error(), 0, 10});
+    }
+  }
+  for (const auto& [name, text] : options.tuneSets) {
+    if (Status st = m_tunables.setText(name, text, "--set"); !st) log::error(st.error());
+  }
 }
 
 ScenarioHost::~ScenarioHost() = default;
@@ -446,6 +456,8 @@ void ScenarioHost::buildEnvironment() {
   lua_pushcclosure(L, sandboxLoad, 2);
   lua_setfield(L, env, "load");
   lua_newtable(L);  // require cache
+  lua_pushvalue(L, -1);
+  m_requireCacheRef = luaL_ref(L, LUA_REGISTRYINDEX);
   lua_pushvalue(L, env);
   lua_pushcclosure(L, guarded<sandboxRequire>, 2);
   lua_setfield(L, env, "require");
@@ -464,12 +476,15 @@ void ScenarioHost::buildEnvironment() {
   openRagdollBindings(L, env);
   openEmitterBindings(L, env);
   openInputBindings(L, env);
+  openTuneBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
   m_envRef = luaL_ref(L, LUA_REGISTRYINDEX);  // pops env
 
+  lua_newtable(L);  // ctx, with ctx.state kept across reloads
   lua_newtable(L);
+  lua_setfield(L, -2, "state");
   m_ctxRef = luaL_ref(L, LUA_REGISTRYINDEX);
   lua_newtable(L);
   m_timerFnsRef = luaL_ref(L, LUA_REGISTRYINDEX);
@@ -485,7 +500,7 @@ void ScenarioHost::buildEnvironment() {
 /// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 /// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
 /// @field on_finish fun(ctx: Ctx) called once after the last step: the place for expect()
-/// @field on_reload fun(ctx: Ctx, state: any) called after a hot reload (reserved)
+/// @field on_reload fun(ctx: Ctx, state: table) called after a hot reload, in the new code, with state = ctx.state; re-make timers and triggers here (the old ones were dropped) and refresh locals from state
 
 /// @class Ctx
 /// The context passed to every callback (the same table each time).
@@ -493,6 +508,7 @@ void ScenarioHost::buildEnvironment() {
 /// @field dt number the fixed step, s (0 in on_start and on_finish)
 /// @field step integer index of the step
 /// @field seed integer the run's seed (--seed)
+/// @field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
 
 Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, const std::string& scenario,
                                                           physics::World& world, const ScenarioOptions& options) {
@@ -505,85 +521,221 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
   }
   std::unique_ptr<ScenarioHost> host(new ScenarioHost(mod, world, options));
   host->m_file = "scenarios/" + scenario + ".lua";
-  lua_State* L = host->m_vm.state();
-  if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) {
-    ScriptError e = LuaVm::parseError(mod.name, lua_tostring(L, -1), "");
-    lua_pop(L, 1);
-    return makeError(e.summary());
-  }
-  lua_rawgeti(L, LUA_REGISTRYINDEX, host->m_envRef);
-  lua_setupvalue(L, -2, 1);
+  host->m_defaultTitle = mod.name + ":" + scenario;
   ScriptError err;
-  if (!host->m_vm.call(0, 1, mod.name, host->m_file, "top level", &err))
-    return makeError(err.summary() + "\n" + err.traceback);
+  if (!host->runScenarioFile(&err)) return makeError(err.summary() + (err.traceback.empty() ? "" : "\n" + err.traceback));
+  if (Status st = host->adoptScenarioTable(true); !st) return makeError(st.error());
+  return host;
+}
+
+bool ScenarioHost::runScenarioFile(ScriptError* err) {
+  lua_State* L = m_vm.state();
+  const std::string path = (fs::path(m_mod.dir) / m_file).string();
+  if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
+    *err = LuaVm::parseError(m_mod.name, lua_tostring(L, -1), "");
+    if (err->file.empty()) err->file = m_file;
+    lua_pop(L, 1);
+    return false;
+  }
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_envRef);
+  lua_setupvalue(L, -2, 1);
+  if (!m_vm.call(0, 1, m_mod.name, m_file, "top level", err)) return false;
   if (!lua_istable(L, -1)) {
     lua_pop(L, 1);
-    return makeError(where + ": must return a table {on_start = function(ctx) ... end, ...}");
+    err->mod = m_mod.name;
+    err->file = m_file;
+    err->line = 0;
+    err->traceback.clear();
+    err->message = "must return a table {on_start = function(ctx) ... end, ...}";
+    return false;
   }
+  return true;
+}
+
+Status ScenarioHost::adoptScenarioTable(bool first) {
+  // The table is on top of the stack; it is popped either way.
+  lua_State* L = m_vm.state();
+  const std::string where = "mod " + m_mod.name + ": " + m_file;
+  const std::string title = m_title;
+  const double duration = m_duration_s;
+  auto fail = [&](int pop, std::string message) -> Status {
+    lua_pop(L, pop);
+    m_title = title;
+    m_duration_s = duration;
+    return makeError(std::move(message));
+  };
   lua_getfield(L, -1, "title");
-  host->m_title = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : mod.name + ":" + scenario;
+  m_title = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : m_defaultTitle;
   lua_pop(L, 1);
   lua_getfield(L, -1, "duration");
-  if (lua_type(L, -1) == LUA_TNUMBER && lua_tonumber(L, -1) > 0) host->m_duration_s = lua_tonumber(L, -1);
+  if (lua_type(L, -1) == LUA_TNUMBER && lua_tonumber(L, -1) > 0) m_duration_s = lua_tonumber(L, -1);
   else if (!lua_isnil(L, -1)) {
-    lua_pop(L, 2);
-    return makeError(where + ": field 'duration' must be a number of seconds > 0");
+    return fail(2, where + ": field 'duration' must be a number of seconds > 0");
   }
   lua_pop(L, 1);
   // terrain = {generate = 7, size = 1025, ...} or {heightmap = "assets/map.png"}
   lua_getfield(L, -1, "terrain");
-  if (lua_istable(L, -1)) {
+  if (!first) {
+    // A terrain is built once, before on_start; a reload keeps it.
+  } else if (lua_istable(L, -1)) {
     lua_pushnil(L);
     while (lua_next(L, -2) != 0) {
       bool keyOk = lua_type(L, -2) == LUA_TSTRING;
       if (keyOk && std::strcmp(lua_tostring(L, -2), "build") == 0) {
-        if (!lua_isfunction(L, -1)) {
-          lua_pop(L, 4);
-          return makeError(where + ": terrain.build must be a function(map) that shapes the height map");
-        }
-        host->m_terrainBuildRef = luaL_ref(L, LUA_REGISTRYINDEX);  // pops the function
-        host->m_terrainRequest["terrain.build"] = "lua";
+        if (!lua_isfunction(L, -1))
+          return fail(4, where + ": terrain.build must be a function(map) that shapes the height map");
+        m_terrainBuildRef = luaL_ref(L, LUA_REGISTRYINDEX);  // pops the function
+        m_terrainRequest["terrain.build"] = "lua";
         continue;
       }
       bool valueOk = lua_type(L, -1) == LUA_TSTRING || lua_type(L, -1) == LUA_TNUMBER;
       if (!keyOk || !valueOk) {
-        lua_pop(L, 4);
-        return makeError(where + ": field 'terrain' must be a table of name = number or string (and an optional "
+        return fail(4, where + ": field 'terrain' must be a table of name = number or string (and an optional "
                                  "build = function(map)), e.g. terrain = {generate = 7, size = 1025}");
       }
       std::string key = lua_tostring(L, -2);
       std::string value = lua_tostring(L, -1);  // converts numbers in place (value copy only)
       lua_pop(L, 1);
       if (key == "heightmap") {
-        fs::path path = fs::weakly_canonical(fs::path(mod.dir) / value);
-        fs::path root = fs::weakly_canonical(fs::path(mod.dir));
+        fs::path path = fs::weakly_canonical(fs::path(m_mod.dir) / value);
+        fs::path root = fs::weakly_canonical(fs::path(m_mod.dir));
         auto rel = path.lexically_relative(root);
         if (rel.empty() || *rel.begin() == "..") {
-          lua_pop(L, 3);
-          return makeError(where + ": terrain.heightmap \"" + value + "\" leaves the mod's folder; paths stay inside it");
+          return fail(3, where + ": terrain.heightmap \"" + value + "\" leaves the mod's folder; paths stay inside it");
         }
         value = path.string();
       }
-      host->m_terrainRequest["terrain." + key] = value;
+      m_terrainRequest["terrain." + key] = value;
     }
   } else if (!lua_isnil(L, -1)) {
-    lua_pop(L, 2);
-    return makeError(where + ": field 'terrain' must be a table, e.g. terrain = {generate = 7, size = 1025}");
+    return fail(2, where + ": field 'terrain' must be a table, e.g. terrain = {generate = 7, size = 1025}");
   }
   lua_pop(L, 1);
+  bool hasUpdate = false, hasContact = false;
   for (const char* cb : {"on_start", "on_update", "on_finish", "on_reload", "on_contact"}) {
     lua_getfield(L, -1, cb);
     bool bad = !lua_isnil(L, -1) && !lua_isfunction(L, -1);
-    if (std::strcmp(cb, "on_update") == 0) host->m_hasUpdate = lua_isfunction(L, -1);
-    if (std::strcmp(cb, "on_contact") == 0) host->m_hasContact = lua_isfunction(L, -1);
+    if (std::strcmp(cb, "on_update") == 0) hasUpdate = lua_isfunction(L, -1);
+    if (std::strcmp(cb, "on_contact") == 0) hasContact = lua_isfunction(L, -1);
     lua_pop(L, 1);
-    if (bad) {
+    if (bad) return fail(1, where + ": field '" + cb + "' must be a function");
+  }
+  m_hasUpdate = hasUpdate;
+  m_hasContact = hasContact;
+  if (m_scenarioRef) luaL_unref(L, LUA_REGISTRYINDEX, m_scenarioRef);
+  m_scenarioRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  return Ok{};
+}
+
+// ---- hot reload -------------------------------------------------------------------
+
+Status ScenarioHost::reload(double time_s, std::int64_t step) {
+  lua_State* L = m_vm.state();
+  const int top = lua_gettop(L);
+  // The mod's own modules are forgotten so that require loads saved files
+  // again; kept aside to be put back if the new code fails. The runtime's
+  // library (tumble.*) stays loaded.
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_requireCacheRef);
+  const int cache = lua_gettop(L);
+  lua_newtable(L);
+  const int saved = lua_gettop(L);
+  lua_pushnil(L);
+  while (lua_next(L, cache) != 0) {
+    bool own = lua_type(L, -2) == LUA_TSTRING && std::strncmp(lua_tostring(L, -2), "tumble.", 7) != 0;
+    if (own) {
+      lua_pushvalue(L, -2);
+      lua_insert(L, -2);
+      lua_rawset(L, saved);  // saved[k] = v
+      lua_pushvalue(L, -1);
+      lua_pushnil(L);
+      lua_rawset(L, cache);  // cache[k] = nil (allowed while traversing)
+    } else {
       lua_pop(L, 1);
-      return makeError(where + ": field '" + cb + "' must be a function");
     }
   }
-  host->m_scenarioRef = luaL_ref(L, LUA_REGISTRYINDEX);
-  return host;
+  ScriptError err;
+  bool ok = runScenarioFile(&err);
+  bool hasOnReload = false;
+  if (ok) {
+    lua_getfield(L, -1, "on_reload");
+    hasOnReload = lua_isfunction(L, -1);
+    lua_pop(L, 1);
+    if (Status st = adoptScenarioTable(false); !st) {
+      ok = false;
+      err = ScriptError{};
+      err.mod = m_mod.name;
+      err.file = m_file;
+      err.message = st.error().substr(st.error().find(m_file) + m_file.size() + 2);
+    }
+  }
+  if (!ok) {
+    lua_pushnil(L);
+    while (lua_next(L, saved) != 0) {
+      lua_pushvalue(L, -2);
+      lua_insert(L, -2);
+      lua_rawset(L, cache);
+    }
+    lua_settop(L, top);
+    err.message = "reload failed, the previous code keeps running: " + err.message;
+    recordError(err);
+    return makeError(err.summary());
+  }
+  lua_settop(L, top);
+  ++m_reloadCount;
+  m_updatePaused = m_contactPaused = false;  // the fix may be in this save
+  m_updateErrors = m_contactErrors = 0;
+  if (hasOnReload) dropTimersAndTriggers();
+  log::info("mod " + m_mod.name + ": " + m_file + " reloaded");
+  Status result = Ok{};
+  if (hasOnReload) {
+    pushCtx(time_s, 0, step);
+    lua_getfield(L, -1, "state");
+    std::size_t before = m_errors.size();
+    if (!callLifecycle("on_reload", 2, nullptr, nullptr) && m_errors.size() > before)
+      result = makeError(m_errors.back().summary());
+  }
+  // The old chunk, its closures and modules are garbage now; collect them so
+  // the memory a mod uses does not grow with each save.
+  lua_gc(L, LUA_GCCOLLECT, 0);
+  return result;
+}
+
+void ScenarioHost::dropTimersAndTriggers() {
+  lua_State* L = m_vm.state();
+  luaL_unref(L, LUA_REGISTRYINDEX, m_timerFnsRef);
+  lua_newtable(L);
+  m_timerFnsRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  m_timers.clear();
+  for (Trigger& t : m_triggers)
+    if (t.id != 0) removeTrigger(t.id);
+}
+
+std::size_t ScenarioHost::activeTimerCount() const {
+  lua_State* L = m_vm.state();
+  lua_rawgeti(L, LUA_REGISTRYINDEX, m_timerFnsRef);
+  std::size_t n = 0;
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    lua_pop(L, 1);
+    ++n;
+  }
+  lua_pop(L, 1);
+  return n;
+}
+
+void ScenarioHost::recordError(ScriptError error) {
+  log::error(error.summary());
+  m_errors.push_back(std::move(error));
+}
+
+void ScenarioHost::reportTuneProblems() {
+  for (std::string& p : m_tunables.takeProblems()) {
+    ScriptError e;
+    e.mod = m_mod.name;
+    e.file = m_file;
+    e.message = std::move(p);
+    recordError(std::move(e));
+  }
 }
 
 void ScenarioHost::pushCtx(double time_s, double dt_s, std::int64_t step) {

@@ -10,6 +10,19 @@
 // traceback) and the game goes on. A callback that fails kMaxConsecutiveErrors
 // times in a row is paused, so one broken line does not flood the log.
 //
+// Hot reload (reload(), driven by HotReload in hot_reload.h while playing):
+// the scenario file runs again in the same Lua state and environment and its
+// new table replaces the old one. Kept: the world and its bodies, globals of
+// the mod's environment, expectations, score, tunables' values, and
+// `ctx.state`, a table for the scenario's own data; then the new code's
+// on_reload(ctx, state) is called with state = ctx.state (on_start is not
+// run again). A scenario with on_reload owns its timers and triggers: those
+// the old code made are dropped before on_reload runs (they would call old
+// functions), so on_reload makes them again. Without on_reload they keep
+// running. A file that does not compile, fails at top level or returns no
+// table changes nothing: the old code keeps running and the error (file,
+// line) is recorded. require'd files of the mod are loaded afresh.
+//
 // Per frame the app calls update() before World::step and afterStep() after
 // it. Neither calls into Lua unless there is something to call: on_update,
 // a due timer, on_contact with a contact event, a trigger enter/exit.
@@ -28,6 +41,7 @@
 #include "script/lua_vm.h"
 #include "script/mods.h"
 #include "script/script_error.h"
+#include "script/tunables.h"
 
 namespace tumble::physics {
 class JointSystem;
@@ -64,6 +78,11 @@ struct ScenarioOptions {
   /// The actions scripts read (input.value, ...); not owned, must outlive
   /// the host. Null: the host makes an empty one (no actions).
   input::InputSystem* input = nullptr;
+  /// --set tune.NAME=VALUE (NAME without "tune."), applied over the file's.
+  std::map<std::string, std::string> tuneSets;
+  /// The mod's tunable overrides file to read at start (tunables.h); empty:
+  /// none (headless runs: only --set, so a run depends on its command line).
+  std::string tuneOverridesFile;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number
@@ -95,6 +114,23 @@ class ScenarioHost {
   /// no work beyond two size checks, when the scenario has neither.
   void afterStep(double time_s, std::int64_t step);
   void finish(double time_s, std::int64_t step);
+  /// Runs the (saved) scenario file again and switches to its code, as the
+  /// header says. time_s/step: the current simulated time, for ctx. On an
+  /// error the old code stays, the error is recorded in errors() and
+  /// returned. reloadCount() counts the reloads that took effect.
+  Status reload(double time_s, std::int64_t step);
+  int reloadCount() const { return m_reloadCount; }
+  /// Timers still to fire (not cancelled, not finished) and live triggers.
+  std::size_t activeTimerCount() const;
+  int triggerCount() const { return m_liveTriggers; }
+  /// Records an error that did not come from a Lua call (a reload hook, an
+  /// overrides file); it shows on the HUD and in the report like the others.
+  void recordError(ScriptError error);
+  /// Tunables the scenario declared (tune.*), their live values.
+  Tunables& tunables() { return m_tunables; }
+  const Tunables& tunables() const { return m_tunables; }
+  /// Turns problems the tunables found (a bad --set value) into errors.
+  void reportTuneProblems();
 
   bool hasUpdate() const { return m_hasUpdate && !m_updatePaused; }
   bool hasContact() const { return m_hasContact && !m_contactPaused; }
@@ -201,6 +237,12 @@ class ScenarioHost {
 
   ScenarioHost(const ModInfo& mod, physics::World& world, const ScenarioOptions& options);
   void buildEnvironment();
+  /// Loads and runs m_file's top level; leaves its table on the stack.
+  bool runScenarioFile(ScriptError* err);
+  /// Reads title, duration, terrain (first load only) and callbacks from the
+  /// table on top of the stack and makes it the scenario; pops it.
+  Status adoptScenarioTable(bool first);
+  void dropTimersAndTriggers();
   bool callLifecycle(const char* name, int nargs, bool* paused, int* consecutive);
   /// Calls the function below nargs args; records an error under `what`.
   bool callRecorded(int nargs, const std::string& what);
@@ -214,11 +256,14 @@ class ScenarioHost {
   physics::World& m_world;
   ScenarioOptions m_options;
   std::string m_file;
-  std::string m_title;
+  std::string m_title, m_defaultTitle;
   double m_duration_s = 10;
   std::map<std::string, std::string> m_terrainRequest;
   int m_terrainBuildRef = 0;  ///< registry ref of terrain.build, 0 = none
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
+  int m_requireCacheRef = 0;  ///< require's loaded-modules table
+  int m_reloadCount = 0;
+  Tunables m_tunables;
   bool m_hasUpdate = false, m_updatePaused = false;
   bool m_hasContact = false, m_contactPaused = false;
   int m_updateErrors = 0, m_contactErrors = 0;
@@ -270,5 +315,7 @@ void openRagdollBindings(lua_State* L, int envIndex);
 void openEmitterBindings(lua_State* L, int envIndex);
 /// The `input` table: actions by name, contexts, injection (bind_input.cpp).
 void openInputBindings(lua_State* L, int envIndex);
+/// The tune table (bind_tune.cpp).
+void openTuneBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

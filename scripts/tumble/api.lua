@@ -259,7 +259,7 @@ function Trigger:count() end
 ---@field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 ---@field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
 ---@field on_finish fun(ctx: Ctx) called once after the last step: the place for expect()
----@field on_reload fun(ctx: Ctx, state: any) called after a hot reload (reserved)
+---@field on_reload fun(ctx: Ctx, state: table) called after a hot reload, in the new code, with state = ctx.state; re-make timers and triggers here (the old ones were dropped) and refresh locals from state
 
 ---The context passed to every callback (the same table each time).
 ---@class Ctx
@@ -267,6 +267,7 @@ function Trigger:count() end
 ---@field dt number the fixed step, s (0 in on_start and on_finish)
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
+---@field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
 
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
@@ -569,6 +570,60 @@ trigger = {}
 ---@param def TriggerBoxDef centre, size and callbacks
 ---@return Trigger # the trigger
 function trigger.box(def) end
+
+---Values a designer can change while the scenario runs, without a restart:
+---the tuning panel (F2, or the HUD's "Tune" button) shows every declared
+---tunable; `--set tune.NAME=VALUE` sets one for a headless run; the panel's
+---"Save" writes them to the mod's overrides file (in ~/.config/tumble/tune/,
+---or $TUMBLE_CONFIG_DIR/tune/), which is loaded the next time the mod runs.
+---Each call returns the *live* value, so read it where you use it (e.g. in
+---on_update) and a change applies at the next step. Calling it again with
+---the same arguments is cheap; a hot reload with a new default applies the
+---new default unless the user has set a value.
+tune = {}
+
+---Declares a number tunable (first call) and returns its live value.
+---
+---```lua
+---local g = tune.number("gravity", 9.81, {min = 0, max = 20, unit = "m/s^2"})
+---```
+---@param name string unique within the mod; also the key for --set tune.NAME
+---@param default number the value until someone changes it
+---@param opts? table {min = number, max = number, step = number, unit = string, description = string}; the panel's slider spans min..max
+---@return number # the live value
+function tune.number(name, default, opts) end
+
+---Declares an on/off tunable (first call) and returns its live value.
+---
+---```lua
+---if tune.bool("wind", false) then body:apply_force({5, 0, 0}) end
+---```
+---@param name string unique within the mod
+---@param default boolean
+---@param opts? table {description = string}
+---@return boolean # the live value
+function tune.bool(name, default, opts) end
+
+---Declares a tunable that is one of a few strings (first call) and returns
+---the chosen one.
+---
+---```lua
+---local mode = tune.choice("difficulty", "normal", {choices = {"easy", "normal", "hard"}})
+---```
+---@param name string unique within the mod
+---@param default string one of the choices
+---@param opts table {choices = {string, ...}, description = string}
+---@return string # the live choice
+function tune.choice(name, default, opts) end
+
+---The live value of a tunable declared earlier (by any scenario code).
+---
+---```lua
+---local g = tune.get("gravity")
+---```
+---@param name string
+---@return number|boolean|string # the live value
+function tune.get(name) end
 
 ---The physics world of the scenario: create and remove bodies, set gravity,
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.

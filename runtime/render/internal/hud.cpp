@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <iterator>
+#include <optional>
 
 #include "render/internal/time_scale.h"
 
@@ -83,7 +84,7 @@ void Hud::newFrame() {
   ImGui::NewFrame();
 }
 
-void Hud::draw(const HudStats& stats, Controls& controls, CameraMode cameraMode) {
+void Hud::draw(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning) {
   ImGui::SetCurrentContext(m_context);
   // ImGui hides an auto-sized window on the frame it appears while it
   // measures the contents. A `run --screenshot` may render only one frame,
@@ -91,21 +92,25 @@ void Hud::draw(const HudStats& stats, Controls& controls, CameraMode cameraMode)
   // so when a window appears lay the HUD out once without drawing it (and
   // without applying its button presses). Layout costs microseconds.
   const bool hasMessages = !stats.messages.empty();
-  if (!m_primed || (hasMessages && !m_hadMessages)) {
+  const bool hasTuning = tuning && controls.tuningPanelVisible;
+  if (!m_primed || (hasMessages && !m_hadMessages) || (hasTuning && !m_hadTuning)) {
     Controls scratch = controls;
+    std::optional<TuningPanel> panelScratch;
+    if (tuning) panelScratch = *tuning;
     newFrame();
-    build(stats, scratch, cameraMode);
+    build(stats, scratch, cameraMode, panelScratch ? &*panelScratch : nullptr);
     ImGui::EndFrame();
     m_primed = true;
   }
   m_hadMessages = hasMessages;
+  m_hadTuning = hasTuning;
   newFrame();
-  build(stats, controls, cameraMode);
+  build(stats, controls, cameraMode, tuning);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode) {
+void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
 
   ImGui::SetNextWindowPos(ImVec2(kMargin_px, kMargin_px), ImGuiCond_Always);
@@ -145,8 +150,14 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     ImGui::TextColored(kDimColor, "camera: %s (C)",
                        cameraMode == CameraMode::Orbit ? "orbit" : "follow");
     ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot");
+    if (tuning) {
+      if (ImGui::Button(controls.tuningPanelVisible ? "Hide tuning (F2)" : "Tune (F2)", ImVec2(132, 0)))
+        controls.tuningPanelVisible = !controls.tuningPanelVisible;
+    }
   }
   ImGui::End();
+
+  if (tuning && controls.tuningPanelVisible) buildTuningPanel(*tuning, &controls.tuningPanelVisible);
 
   if (!stats.messages.empty()) {
     ImGui::SetNextWindowPos(ImVec2(kMargin_px, display.y - kMargin_px), ImGuiCond_Always,

@@ -14,6 +14,9 @@ struct ImGuiContext;
 
 namespace tumble::render {
 
+/// The tuning panel's window (tuning_panel.cpp); edits go into `panel`.
+void buildTuningPanel(TuningPanel& panel, bool* open);
+
 class Hud {
  public:
   static Result<std::unique_ptr<Hud>> create(SDL_Window* window, SDL_GLContext context);
@@ -27,22 +30,24 @@ class Hud {
   bool wantsKeyboard() const;
   bool wantsMouse() const;
 
-  /// Lays out and draws the HUD into the bound framebuffer. Button and
-  /// slider changes go into `controls`.
-  void draw(const HudStats& stats, Controls& controls, CameraMode cameraMode);
   /// The app's windows, built after the HUD's own (Renderer::addHudPanel).
   void addPanel(HudPanel panel) { m_panels.push_back(std::move(panel)); }
+  /// Lays out and draws the HUD into the bound framebuffer. Button and
+  /// slider changes go into `controls`. tuning: the tuning panel, drawn
+  /// while controls.tuningPanelVisible (null: none).
+  void draw(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning = nullptr);
 
  private:
   Hud() = default;
   void newFrame();
-  void build(const HudStats& stats, Controls& controls, CameraMode cameraMode);
+  void build(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning);
 
   ImGuiContext* m_context = nullptr;
   bool m_sdlBackend = false, m_glBackend = false;
   bool m_primed = false;
   bool m_hadMessages = false;
   std::vector<HudPanel> m_panels;
+  bool m_hadTuning = false;
 };
 
 }  // namespace tumble::render

@@ -37,6 +37,7 @@ struct Renderer::Impl {
   bool reportedParticleError = false;
   bool dragging = false;         // mouse button held down on the scene
   EventHook eventHook;           // the app's (input); may be empty
+  TuningPanel* tuning = nullptr;  // see Renderer::setTuningPanel
 };
 
 }  // namespace tumble::render

@@ -1,0 +1,149 @@
+// Lua scripting costs (issue #6): one Lua -> C++ binding call, and the
+// per-frame cost of 100 bodies each driven from Lua in on_update.
+//
+//   build/bin/tumble_bench_script
+//
+// Binding calls are timed in a Lua loop of kCalls calls inside one
+// on_update; BM_LuaCall_EmptyLuaFunction is the same loop calling an empty
+// Lua function, so (binding - empty) is what crossing into C++ adds. The
+// counter ns_per_call is seconds per call (printed with an n suffix: ns).
+#include <benchmark/benchmark.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "physics/world.h"
+#include "script/mods.h"
+#include "script/scenario_host.h"
+
+namespace tumble {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kCalls = 10000;
+
+// A throw-away mod with one scenario, loaded against `world`.
+std::unique_ptr<script::ScenarioHost> loadScenario(physics::World& world, const std::string& source) {
+  fs::path dir = fs::temp_directory_path() / ("tumble_bench_script_" + std::to_string(::getpid())) / "bench";
+  fs::create_directories(dir / "scenarios");
+  std::ofstream(dir / "mod.lua") << "return {name = \"bench\", version = \"1.0.0\", api = 1}\n";
+  std::ofstream(dir / "scenarios" / "s.lua") << source;
+  auto mod = script::loadManifest(dir.string());
+  if (!mod) return nullptr;
+  script::ScenarioOptions options;
+  options.scriptsDir = TUMBLE_SOURCE_DIR "/scripts";
+  auto host = script::ScenarioHost::load(*mod, "s", world, options);
+  return host ? std::move(host.value()) : nullptr;
+}
+
+// on_update calls `call` kCalls times; `setup` runs in on_start.
+void callLoop(benchmark::State& state, const std::string& setup, const std::string& call) {
+  physics::World world;
+  const std::string source = "local ball, f\nreturn {\n  on_start = function(ctx)\n" + setup +
+                             "\n  end,\n  on_update = function(ctx, dt)\n    for i = 1, " + std::to_string(kCalls) +
+                             " do " + call + " end\n  end,\n}\n";
+  auto host = loadScenario(world, source);
+  if (!host) {
+    state.SkipWithError("scenario did not load");
+    return;
+  }
+  host->start();
+  std::int64_t step = 0;
+  for (auto _ : state) host->update(double(step) / 60, 1.0 / 60, step), ++step;
+  if (!host->errors().empty()) state.SkipWithError(host->errors().front().summary().c_str());
+  state.counters["ns_per_call"] =
+      benchmark::Counter(kCalls, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_LuaCall_EmptyLuaFunction(benchmark::State& state) { callLoop(state, "f = function() end", "f()"); }
+// A trivial binding: no argument, returns one integer.
+void BM_LuaCall_WorldBodyCount(benchmark::State& state) { callLoop(state, "", "world.body_count()"); }
+// body:position(): checks the handle, reads the body, returns a new {x, y, z} table.
+void BM_LuaCall_BodyPosition(benchmark::State& state) {
+  callLoop(state, "ball = world.sphere{radius = 0.5, position = {0, 5, 0}}", "ball:position()");
+}
+// body:apply_force(f): parses a vector argument, no allocation.
+void BM_LuaCall_BodyApplyForce(benchmark::State& state) {
+  callLoop(state, "ball = world.sphere{radius = 0.5, position = {0, 5, 0}}", "ball:apply_force{0, 1, 0}");
+}
+// tune.number read every call, as the docs suggest doing in on_update.
+void BM_LuaCall_TuneNumber(benchmark::State& state) {
+  callLoop(state, "", "tune.number(\"speed\", 2, {min = 0, max = 10, unit = \"m/s\"})");
+}
+// tune.get: the live value of a declared tunable, without the declaration.
+void BM_LuaCall_TuneGet(benchmark::State& state) {
+  callLoop(state, "tune.number(\"speed\", 2, {min = 0, max = 10})", "tune.get(\"speed\")");
+}
+
+// 100 bodies on a plane, each steered from Lua every step: read position
+// and velocity, push towards its own target with a damped spring.
+const char* kEntities = R"(
+local bodies, targets = {}, {}
+return {
+  on_start = function(ctx)
+    world.plane{}
+    for i = 1, 100 do
+      local x, z = (i - 1) % 10 * 2.0, (i - 1) // 10 * 2.0
+      bodies[i] = world.sphere{radius = 0.4, position = {x, 0.4, z}, mass = 1}
+      targets[i] = {x = x + 1, z = z + 1}
+    end
+  end,
+  on_update = function(ctx, dt)
+    for i = 1, #bodies do
+      local b, t = bodies[i], targets[i]
+      local p, v = b:position(), b:velocity()
+      b:apply_force{(t.x - p.x) * 20 - v.x * 4, 0, (t.z - p.z) * 20 - v.z * 4}
+    end
+  end,
+}
+)";
+
+// The script part of a frame: on_update for the 100 entities.
+void BM_Entities100_ScriptPerFrame(benchmark::State& state) {
+  physics::World world;
+  auto host = loadScenario(world, kEntities);
+  if (!host) return state.SkipWithError("scenario did not load");
+  host->start();
+  std::int64_t step = 0;
+  for (auto _ : state) {
+    host->update(double(step) / 60, 1.0 / 60, step);
+    state.PauseTiming();  // physics is not what this measures, but it keeps the state realistic
+    world.step(Real(1.0 / 60));
+    state.ResumeTiming();
+    ++step;
+  }
+  if (!host->errors().empty()) state.SkipWithError(host->errors().front().summary().c_str());
+}
+
+// A whole fixed step (script + physics), for scale.
+void BM_Entities100_WholeStep(benchmark::State& state) {
+  physics::World world;
+  auto host = loadScenario(world, kEntities);
+  if (!host) return state.SkipWithError("scenario did not load");
+  host->start();
+  std::int64_t step = 0;
+  for (auto _ : state) {
+    host->update(double(step) / 60, 1.0 / 60, step);
+    world.step(Real(1.0 / 60));
+    host->afterStep(double(step + 1) / 60, step);
+    ++step;
+  }
+}
+
+BENCHMARK(BM_LuaCall_EmptyLuaFunction);
+BENCHMARK(BM_LuaCall_WorldBodyCount);
+BENCHMARK(BM_LuaCall_BodyPosition);
+BENCHMARK(BM_LuaCall_BodyApplyForce);
+BENCHMARK(BM_LuaCall_TuneNumber);
+BENCHMARK(BM_LuaCall_TuneGet);
+BENCHMARK(BM_Entities100_ScriptPerFrame)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Entities100_WholeStep)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace tumble
+
+BENCHMARK_MAIN();
