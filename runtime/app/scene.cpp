@@ -5,6 +5,7 @@
 
 #include "app/paths.h"
 #include "script/mods.h"
+#include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
 #endif
@@ -112,6 +113,7 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   script::ScenarioOptions so;
   so.seed = options.seed;
   so.scriptsDir = scriptsDir();
+  so.mods = registry.mods();
   std::map<std::string, std::string> terrainSettings = options.terrainDefaults;
   for (const auto& [key, value] : options.sets) {
     if (key.rfind("terrain.", 0) == 0) {
@@ -211,6 +213,20 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     }
     out.shapes.push_back(s);
   });
+  // Vehicle wheels are ray casts, not bodies: drawn as spheres at their hubs
+  // until meshes land (render::DrawShape has no cylinder).
+  if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny())
+    vehicles->forEach([&](vehicle::VehicleId id) {
+      for (int i = 0; i < vehicles->wheelCount(id); ++i) {
+        const vehicle::WheelTelemetry& w = vehicles->wheel(id, i);
+        render::DrawShape s;
+        s.kind = render::ShapeKind::Sphere;
+        s.position = w.hub_m.cast<float>();
+        s.radius_m = float(w.radius_m);
+        s.color = Eigen::Vector3f(0.12f, 0.12f, 0.13f);
+        out.shapes.push_back(s);
+      }
+    });
 }
 
 }  // namespace tumble::app

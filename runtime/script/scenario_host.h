@@ -25,9 +25,13 @@
 #include "script/lua_vm.h"
 #include "script/mods.h"
 #include "script/script_error.h"
+#include "vehicle/vehicle_def.h"
 
 namespace tumble::physics {
 class JointSystem;
+}
+namespace tumble::vehicle {
+class VehicleSystem;
 }
 
 namespace tumble::script {
@@ -55,6 +59,8 @@ struct ScenarioOptions {
   std::uint64_t seed = 1;
   std::string scriptsDir;  ///< the runtime's Lua library (require "tumble.x")
   VmLimits limits;
+  /// The loadable mods (vehicle.spawn("mod:name") finds vehicles in them).
+  std::vector<ModInfo> mods;
 };
 
 class ScenarioHost {
@@ -110,6 +116,12 @@ class ScenarioHost {
   /// The scene's joints, created on first use (spawn_ragdoll); null before.
   physics::JointSystem* jointsIfAny() { return m_joints.get(); }
   physics::JointSystem& joints();
+  /// The scene's vehicles, created on first use (vehicle.spawn); null before.
+  vehicle::VehicleSystem* vehiclesIfAny() { return m_vehicles.get(); }
+  const vehicle::VehicleSystem* vehiclesIfAny() const { return m_vehicles.get(); }
+  vehicle::VehicleSystem& vehicles();
+  /// Vehicle definitions loaded so far, by "mod:name" (bind_vehicle.cpp).
+  std::map<std::string, vehicle::VehicleDef>& vehicleDefCache() { return m_vehicleDefs; }
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
@@ -210,6 +222,8 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first
+  std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -225,5 +239,8 @@ void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
 /// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
 void openRagdollBindings(lua_State* L, int envIndex);
+/// vehicle (bind_vehicle.cpp) and save (bind_save.cpp) tables.
+void openVehicleBindings(lua_State* L, int envIndex);
+void openSaveBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script
