@@ -140,7 +140,11 @@ void VehicleSystem::place(Vehicle& v, const Vec3& ground, Real heading) {
   m_world.setOrientation(v.chassis, q);
   m_world.setLinearVelocity(v.chassis, Vec3::Zero());
   m_world.setAngularVelocity(v.chassis, Vec3::Zero());
-  for (Wheel& wh : v.wheels) wh.t.spin_radps = 0, wh.locked = false;
+  const Vec3 com = m_world.body(v.chassis).position_m;
+  for (Wheel& wh : v.wheels) {
+    wh.t.spin_radps = 0, wh.locked = false;
+    wh.t.hub_m = com + q * (wh.mount_local - Vec3::UnitY() * wh.t.springLength_m);
+  }
   v.engine_radps = v.def.engine.idleRpm / kRpmPerRadps;
   v.steer_rad = 0;
   v.shiftTimer_s = 0;
