@@ -1,8 +1,9 @@
 // Lua module `save`: small per-mod save data (best times, unlocked cars) as
 // JSON files in the user's data folder, written atomically (a crash never
-// leaves half a file). The folder is $TUMBLE_DATA_DIR if set (tests use
-// it), else $XDG_DATA_HOME/tumble, else ~/.local/share/tumble; each mod has
-// its own subfolder, so mods cannot read or overwrite each other's saves.
+// leaves half a file). The folder is $TUMBLE_SAVE_DIR if set (tests use it;
+// TUMBLE_DATA_DIR already names where mods and scripts are found), else
+// $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves; each mod
+// has its own subfolder, so mods cannot read or overwrite each other's saves.
 //
 //   local best = (save.read("time_trial") or {}).best
 //   save.write("time_trial", {best = 61.4})
@@ -25,10 +26,10 @@ using nlohmann::json;
 constexpr std::size_t kMaxSaveBytes = 1u << 20;
 
 fs::path dataDir() {
-  if (const char* d = std::getenv("TUMBLE_DATA_DIR"); d && *d) return d;
-  if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return fs::path(x) / "tumble";
-  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".local" / "share" / "tumble";
-  return fs::current_path() / "tumble-data";
+  if (const char* d = std::getenv("TUMBLE_SAVE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return fs::path(x) / "tumble" / "saves";
+  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".local" / "share" / "tumble" / "saves";
+  return fs::current_path() / "tumble-saves";
 }
 
 fs::path savePath(lua_State* L, const char* fn) {
@@ -106,9 +107,9 @@ void pushJson(lua_State* L, const json& j) {
 }
 
 /// @module save
-/// Per-mod save data as JSON in the user's data folder ($TUMBLE_DATA_DIR,
-/// else $XDG_DATA_HOME/tumble, else ~/.local/share/tumble), one folder per
-/// mod, written atomically.
+/// Per-mod save data as JSON in the user's data folder ($TUMBLE_SAVE_DIR,
+/// else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves), one
+/// folder per mod, written atomically.
 
 /// @function save.read
 /// @param name string 1 to 64 letters, digits, '_' or '-'

@@ -17,7 +17,7 @@
 // 2. Suspension. A ray from the hub's full-bump point along chassis -Y finds
 //    the ground (height field and the bodies near the vehicle). Spring length
 //    l = hit distance - radius; force k (rest - l) plus bump or rebound
-//    damping on dl/dt (from the velocity along the contact normal, so a
+//    damping (implicit) on dl/dt (from the velocity along the contact normal, so a
 //    slope under a moving wheel compresses it) plus the anti-roll bar
 //    k_arb (compression - other side's compression); never pulling. Applied
 //    along the contact normal at the contact point; a body under the wheel
@@ -474,21 +474,24 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
     const Vec3 rel = pointVelocity(m_world, v.chassis, mount) - pointVelocity(m_world, c.ground, c.point);
     const Real lengthRate = rel.dot(c.normal) / std::max<Real>(c.normal.dot(up), Real(0.2));
     const Real l = w.t.springLength_m;
-    Real force = da.stiffness_Npm * std::max<Real>(a.suspension.restLength_m - l, 0);
-    force -= (lengthRate < 0 ? da.bump_Nspm : da.rebound_Nspm) * lengthRate;
     const Wheel& other = v.wheels[i ^ 1];
     const Real otherLength = other.t.contact ? other.t.springLength_m : a.suspension.travel_m;
-    force += a.suspension.antiRoll_Npm * (otherLength - l);
-    force = std::max<Real>(force, 0);
-    Real impulse = force * h;
+    const Real spring = da.stiffness_Npm * std::max<Real>(a.suspension.restLength_m - l, 0) +
+                        a.suspension.antiRoll_Npm * (otherLength - l);
+    // The damper is implicit (c h k / (1 + c h k) of the relative normal
+    // velocity at most): explicit, it would blow up a light body under the
+    // wheel (c h / m > 2 for a rag-doll's forearm).
+    const Real kn = invMassAlong(body, c.point, c.normal) +
+                    (c.ground.isNull() ? 0 : invMassAlong(m_world.body(c.ground), c.point, c.normal));
+    const Real damping = lengthRate < 0 ? da.bump_Nspm : da.rebound_Nspm;
+    const Real damper = -damping * lengthRate * h / (1 + damping * h * kn);
+    Real impulse = std::max<Real>(spring * h + damper, 0);
     if (l < 0) {
       // Bump stop: the hub is above full bump; stop the approach along the
       // normal and push out a fifth of the overlap per substep.
       const Vec3 vc = pointVelocity(m_world, v.chassis, c.point) - pointVelocity(m_world, c.ground, c.point);
-      const Real k = invMassAlong(body, c.point, c.normal) +
-                     (c.ground.isNull() ? 0 : invMassAlong(m_world.body(c.ground), c.point, c.normal));
       const Real target = -Real(0.2) * l / h;
-      const Real extra = k > 0 ? std::max<Real>((target - vc.dot(c.normal)) / k - impulse, 0) : 0;
+      const Real extra = kn > 0 ? std::max<Real>((target - vc.dot(c.normal)) / kn - impulse, 0) : 0;
       impulse += extra;
     }
     m_world.applyImpulseNow(v.chassis, impulse * c.normal, c.point);
