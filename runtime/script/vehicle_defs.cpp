@@ -391,7 +391,12 @@ std::vector<ModProblem> checkVehicles(const ModInfo& mod) {
   std::vector<ModProblem> problems;
   for (const std::string& name : ModRegistry::listLua(mod, "vehicles")) {
     auto def = loadVehicleFile(mod, name);
-    if (!def) problems.push_back({mod.dir + "/vehicles/" + name + ".lua", 0, def.error(), mod.name});
+    if (def) continue;
+    // The message starts "mod M: vehicles/N.lua: "; the problem names the file itself.
+    const std::string prefix = "mod " + mod.name + ": vehicles/" + name + ".lua: ";
+    std::string message = def.error();
+    if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+    problems.push_back({mod.dir + "/vehicles/" + name + ".lua", 0, message, mod.name});
   }
   return problems;
 }

@@ -148,6 +148,8 @@ void VehicleSystem::place(Vehicle& v, const Vec3& ground, Real heading) {
   v.engine_radps = v.def.engine.idleRpm / kRpmPerRadps;
   v.steer_rad = 0;
   v.shiftTimer_s = 0;
+  v.telemetry.speed_mps = 0;
+  v.telemetry.rpm = v.def.engine.idleRpm;
 }
 
 Result<VehicleId> VehicleSystem::spawn(const VehicleDef& def, const Vec3& ground, Real heading,

@@ -196,6 +196,106 @@ function Trigger:contains(body) end
 ---@return integer # the number of bodies inside after the last step
 function Trigger:count() end
 
+---@class VehicleSpawn
+---@field position? Vec3Arg the ground point under the vehicle's centre, m (default {0, 0, 0}); the vehicle is placed resting on its springs
+---@field heading? number yaw, rad: 0 faces +Z, positive turns towards +X (default 0)
+
+---A handle to a vehicle made by vehicle.spawn. Methods refuse a removed
+---vehicle with a clear error.
+---@class Vehicle
+local Vehicle = {}
+
+---Sets what the driver asks for; absent fields keep their value.
+---
+---```lua
+---car:set_controls{throttle = 0.8, steer = 0.2}
+---```
+---@param controls VehicleControls
+function Vehicle:set_controls(controls) end
+
+---@return VehicleControls # what the driver asks for now (clamped)
+function Vehicle:controls() end
+
+---@return number # speed along the vehicle's forward axis, m/s (negative backwards)
+function Vehicle:speed() end
+
+---@return number # engine speed, rpm
+function Vehicle:rpm() end
+
+---@return integer # the gear engaged (-1 reverse, 0 neutral, 1..N)
+---@return integer # the number of forward gears
+function Vehicle:gear() end
+
+---@return VehicleTelemetry # the state after the last step
+function Vehicle:telemetry() end
+
+---@return Body # the chassis (position, velocity, contacts like any body)
+function Vehicle:body() end
+
+---@return Vec3 # the chassis' centre of mass, m
+function Vehicle:position() end
+
+---@return Vec3 # the unit forward axis of the chassis, world
+function Vehicle:forward() end
+
+---Puts the vehicle upright, at rest, on the ground point given (default:
+---where it was spawned), engine idling.
+---@param opts? VehicleSpawn where and which way
+function Vehicle:reset(opts) end
+
+---@return table # the vehicle's current definition, in the file's format
+function Vehicle:definition() end
+
+---Changes parameters while running (for tunables): the table is merged
+---into the current definition (records merged field by field; lists such
+---as curves, gear ratios and `axles` entries by index), then validated
+---and applied without a restart. A bad value is an error naming the field;
+---the vehicle keeps its old parameters then.
+---
+---```lua
+---car:tune{engine = {max_rpm = 7200}, axles = {[2] = {suspension = {frequency = 2.0}}}}
+---```
+---@param changes table part of a definition
+function Vehicle:tune(changes) end
+
+---@return string # "mod:vehicle" it was spawned from
+function Vehicle:name() end
+
+---@return boolean # false once removed
+function Vehicle:is_valid() end
+
+---Removes the vehicle and its chassis body.
+function Vehicle:remove() end
+
+---@class VehicleControls
+---@field throttle? number 0..1
+---@field brake? number 0..1
+---@field steer? number -1 full left .. +1 full right
+---@field handbrake? number 0..1
+---@field gear? integer -1 reverse, 0 neutral, 1..N (clamped to the gearbox)
+
+---@class WheelTelemetry
+---@field contact boolean the tyre touches something
+---@field load number suspension force on the tyre, N
+---@field slip_ratio number (w r - v) / max(|v|, 0.5 m/s); > 0 spinning, < 0 locking
+---@field slip_angle number rad, signed
+---@field slip_speed number speed of the contact patch over the ground, m/s (dust)
+---@field surface_friction number friction of what the tyre touches (terrain drag map or body)
+---@field spin number wheel angular velocity, rad/s (+ rolling forward)
+---@field steer number steering angle, rad (+ to the left)
+---@field spring_length number hub below full bump, m (0..travel)
+---@field position Vec3 hub, world, m
+---@field radius number m
+
+---@class VehicleTelemetry
+---@field speed number m/s along the forward axis
+---@field rpm number engine, rpm
+---@field gear integer engaged gear
+---@field shifting boolean clutch open for a gear change
+---@field engine_torque number at the crank, N m (negative: engine braking)
+---@field drive_torque number at the wheels, N m, total
+---@field wheels WheelTelemetry[] axle by axle, left then right
+
 ---Fields shared by world.box, world.sphere, world.capsule and world.plane.
 ---Unknown fields are refused, so a typo is an error, not a silent default.
 ---@class BodyDef
@@ -369,6 +469,29 @@ function random.chance(p) end
 ---@return any
 function random.pick(list) end
 
+---Per-mod save data as JSON in the user's data folder ($TUMBLE_SAVE_DIR,
+---else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves), one
+---folder per mod, written atomically.
+save = {}
+
+---
+---```lua
+---local best = (save.read("time_trial") or {}).best_s
+---```
+---@param name string 1 to 64 letters, digits, '_' or '-'
+---@return table? # the saved table, or nil when nothing was saved yet
+---@return string? # why it could not be read (a broken file), else nil
+function save.read(name) end
+
+---Saves a table (strings, numbers, booleans, nested tables) atomically.
+---
+---```lua
+---save.write("time_trial", {best_s = 61.4, car = "base:buggy"})
+---```
+---@param name string 1 to 64 letters, digits, '_' or '-'
+---@param data table what to save (at most 1 MB as JSON)
+function save.write(name, data) end
+
 ---Calls a function after a delay or every period, in simulated time. Timers
 ---are checked before on_update each step: a timer due at t fires in the
 ---first step that starts at or after t, at most once per step, in order of
@@ -415,6 +538,37 @@ trigger = {}
 ---@param def TriggerBoxDef centre, size and callbacks
 ---@return Trigger # the trigger
 function trigger.box(def) end
+
+---Wheeled vehicles. Definitions live in mods/<mod>/vehicles/<name>.lua
+---(docs/vehicles.md lists every field with its unit); controllers (an
+---automatic gearbox, traction control, an autopilot, the player) are Lua
+---in scripts/tumble/drive.lua and run at the fixed rate; suspension, tyres
+---and drivetrain run in C++ in every physics substep.
+vehicle = {}
+
+---Creates a vehicle from a definition file.
+---
+---```lua
+---local car = vehicle.spawn("base:buggy", {position = {0, 0, 10}, heading = math.pi / 2})
+---```
+---@param name string "mod:vehicle", e.g. "base:hatchback"
+---@param opts? VehicleSpawn where and which way
+---@return Vehicle # the new vehicle
+function vehicle.spawn(name, opts) end
+
+---The definition of a vehicle as a table in the file's format (every
+---field filled in), e.g. to read its parameters or to tune a copy.
+---@param name string "mod:vehicle"
+---@return table # the definition
+function vehicle.definition(name) end
+
+---The terrain under (x, z): its height and its friction (the drag map:
+---mud 0.3, grass 0.6, rock 0.8). Nothing when there is no terrain there.
+---@param x number m
+---@param z number m
+---@return number? # height, m
+---@return number? # friction coefficient
+function vehicle.surface(x, z) end
 
 ---The physics world of the scenario: create and remove bodies, set gravity,
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.
