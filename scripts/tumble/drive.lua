@@ -37,10 +37,12 @@ function drive.gearbox(car)
 end
 
 -- Picks the gear for the current rpm; call once per step. `wanted` is the
--- direction the driver wants: 1 forward, -1 reverse.
-function Gearbox:update(dt, wanted)
-  local car, t = self.car, self.car:telemetry()
-  local gear = car:controls().gear
+-- direction the driver wants: 1 forward, -1 reverse. `t` is this step's
+-- car:telemetry() when the caller has it already.
+function Gearbox:update(dt, wanted, t)
+  local car = self.car
+  t = t or car:telemetry()
+  local gear = t.gear
   self.hold = math.max(0, self.hold - dt)
   if wanted == -1 then
     if t.speed < 1 then gear = -1 end
@@ -53,7 +55,7 @@ function Gearbox:update(dt, wanted)
       gear, self.hold = gear - 1, 0.8
     end
   end
-  car:set_controls{gear = gear}
+  if gear ~= t.gear then car:set_controls{gear = gear} end
   return gear
 end
 
@@ -71,9 +73,10 @@ function drive.traction(car, opts)
   return setmetatable({car = car, slip = opts.slip or 0.15, factor = 1, driven = driven}, Traction)
 end
 
--- Returns the throttle to use instead of `throttle`.
-function Traction:filter(dt, throttle)
-  local t = self.car:telemetry()
+-- Returns the throttle to use instead of `throttle`. `t`: this step's
+-- car:telemetry() when the caller has it already.
+function Traction:filter(dt, throttle, t)
+  t = t or self.car:telemetry()
   local spinning = false
   for _, i in ipairs(self.driven) do
     local w = t.wheels[i]
@@ -131,12 +134,13 @@ function Autopilot:update(dt)
   -- Slow down for sharp turns and for the last waypoint.
   local target = self.speed / (1 + 2.5 * math.abs(err))
   if not self.loop and self.index == #self.waypoints then target = math.min(target, 0.5 * dist + 2) end
-  local v = car:speed()
+  local t = car:telemetry()
+  local v = t.speed
   local throttle, brake = clamp((target - v) * 0.4, 0, 1), 0
   if v > target + 2 then throttle, brake = 0, clamp((v - target) * 0.15, 0, 1) end
-  if self.traction then throttle = self.traction:filter(dt, throttle) end
+  if self.traction then throttle = self.traction:filter(dt, throttle, t) end
   car:set_controls{throttle = throttle, brake = brake, steer = steer, handbrake = 0}
-  self.gearbox:update(dt, 1)
+  self.gearbox:update(dt, 1, t)
 end
 
 -- Player --------------------------------------------------------------------------
