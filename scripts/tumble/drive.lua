@@ -19,6 +19,8 @@
 --                                 does nothing until the input module exists
 --   drive.effects(car)            tyre dust and exhaust smoke rates from slip and throttle;
 --                                 feeds particle emitters when the particles module exists
+--   drive.show(car)               the chase camera on the car and its chassis mesh, when the
+--                                 camera and model APIs exist (nothing before)
 -- Each returns an object with :update(dt).
 
 local drive = {}
@@ -221,6 +223,26 @@ function Effects:update(dt)
     for i = 1, #t.wheels do self.emitters[i]:set_rate(self.dust[i]) end
     self.emitters.exhaust:set_rate(self.smoke)
   end
+end
+
+-- Presentation ------------------------------------------------------------------------
+
+-- Puts the chase camera on the car (camera.set_mode) and its definition's
+-- chassis mesh on the chassis body (Body:set_model), each only when that API
+-- exists; returns how many of the two it could do.
+function drive.show(car)
+  local done = 0
+  if type(camera) == "table" and camera.set_mode then
+    camera.set_mode("chase", {target = car:body()})
+    done = done + 1
+  end
+  local mesh = car:definition().chassis.mesh
+  local body = car:body()
+  if mesh and body.set_model then
+    body:set_model(mesh)
+    done = done + 1
+  end
+  return done
 end
 
 return drive

@@ -33,6 +33,7 @@ return {
     local speed = param("speed", 10)
     car:body():set_velocity({0, 0, speed})
     pilot = drive.autopilot(car, {waypoints = {{0, 200}}, speed = speed, traction = false})
+    drive.show(car)
   end,
 
   on_update = function(ctx, dt)

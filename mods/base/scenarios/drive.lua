@@ -56,6 +56,7 @@ return {
       player = drive.player(car)
     end
     effects = drive.effects(car)
+    drive.show(car)
     start = car:position()
     last = start
   end,

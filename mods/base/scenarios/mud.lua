@@ -62,6 +62,7 @@ return {
     if not (m and g) then return end
     launch(mud, m)
     launch(grass, g)
+    drive.show(mud.car)
   end,
 
   on_update = function(ctx, dt)

@@ -51,6 +51,7 @@ return {
       end}
     end
     car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -12}, heading = 0})
+    drive.show(car)
     if param("autopilot", 1) ~= 0 then
       pilot = drive.autopilot(car, {waypoints = gates, speed = param("speed", 22), loop = false, radius = 4})
     else
