@@ -230,9 +230,10 @@ Status VehicleSystem::setDef(VehicleId id, const VehicleDef& def, const std::str
   if (auto s = validateVehicleDef(def, where); !s) return s;
   Vehicle& v = get(id);
   const bool reshape = def.chassis.size_m != v.def.chassis.size_m || def.chassis.mass_kg != v.def.chassis.mass_kg;
-  if (reshape || def.chassis.friction != v.def.chassis.friction ||
-      def.chassis.restitution != v.def.chassis.restitution) {
-    // The chassis body is remade with the same pose and velocities.
+  if (!reshape) m_world.setMaterial(v.chassis, def.chassis.friction, def.chassis.restitution);
+  if (reshape) {
+    // A new size or mass: the chassis body is remade with the same pose and
+    // velocities (a new BodyId: Vehicle::chassis() gives it).
     const physics::Body& old = m_world.body(v.chassis);
     physics::BodyDef bd;
     bd.shape = physics::Shape::box(def.chassis.size_m / 2);

@@ -80,7 +80,8 @@ class VehicleSystem {
   void setControls(VehicleId id, const VehicleControls& controls);
   const VehicleControls& controls(VehicleId id) const;
   /// Replaces the definition while running (tunables): validated; the
-  /// chassis keeps its pose and velocity, the wheels their spin.
+  /// chassis keeps its pose and velocity, the wheels their spin. A new
+  /// chassis size or mass remakes the chassis body (a new chassis() id).
   Status setDef(VehicleId id, const VehicleDef& def, const std::string& where = "vehicle");
   const VehicleDef& def(VehicleId id) const;
   /// Upright at groundPoint_m facing heading_rad, at rest, engine idling.
