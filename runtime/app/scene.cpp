@@ -217,11 +217,20 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
   // until meshes land (render::DrawShape has no cylinder).
   if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny())
     vehicles->forEach([&](vehicle::VehicleId id) {
+      // Hubs ride with the chassis' interpolated pose, so they do not lag it.
+      const physics::BodyId c = vehicles->chassis(id);
+      const physics::Body& b = m_world->body(c);
+      Vec3 p = b.position_m;
+      Quat q = b.orientation;
+      if (c.index < m_prevPosition.size()) {
+        p = m_prevPosition[c.index] + Real(alpha) * (b.position_m - m_prevPosition[c.index]);
+        q = m_prevOrientation[c.index].slerp(Real(alpha), b.orientation);
+      }
       for (int i = 0; i < vehicles->wheelCount(id); ++i) {
         const vehicle::WheelTelemetry& w = vehicles->wheel(id, i);
         render::DrawShape s;
         s.kind = render::ShapeKind::Sphere;
-        s.position = w.hub_m.cast<float>();
+        s.position = (p + q * (b.orientation.conjugate() * (w.hub_m - b.position_m))).cast<float>();
         s.radius_m = float(w.radius_m);
         s.color = Eigen::Vector3f(0.12f, 0.12f, 0.13f);
         out.shapes.push_back(s);

@@ -178,6 +178,12 @@ void readDef(lua_State* L, VehicleDef& d) {
     c.number("friction", &d.chassis.friction, "Coulomb coefficient");
     c.number("restitution", &d.chassis.restitution, "0..1");
     c.string("mesh", &d.chassis.mesh);
+    const fs::path mesh(d.chassis.mesh);
+    if (!d.chassis.mesh.empty() && (mesh.is_absolute() || std::any_of(mesh.begin(), mesh.end(), [](const fs::path& part) {
+                                      return part == "..";
+                                    })))
+      throw DefError("chassis.mesh: \"" + d.chassis.mesh + "\" leaves the mod's folder; give a path inside it, e.g. "
+                     "\"assets/car.glb\"");
   });
   if (f.get("axles")) {
     if (!lua_istable(L, -1)) throw DefError("axles: expected a list of axle tables, front first");

@@ -121,9 +121,10 @@ void VehicleSystem::configure(Vehicle& v) {
       w.t.radius_m = d.axles[i].wheelRadius_m;
       w.t.width_m = d.axles[i].wheelWidth_m;
       w.t.springLength_m = v.derived[i].staticLength_m;
-      if (v.wheels.size() < old.size()) {  // keep spin and pose across a change of parameters
-        w.t.spin_radps = old[v.wheels.size()].t.spin_radps;
-        w.t.rotation_rad = old[v.wheels.size()].t.rotation_rad;
+      if (v.wheels.size() < old.size()) {  // keep the wheel's state across a change of parameters
+        const Real radius = w.t.radius_m, width = w.t.width_m;
+        w.t = old[v.wheels.size()].t;
+        w.t.radius_m = radius, w.t.width_m = width;
       }
       v.wheels.push_back(w);
     }
