@@ -311,12 +311,52 @@ void VehicleSystem::step(Real dt) {
   }
 }
 
+namespace {
+
+enum class FastRay { Hit, Miss, Unknown };
+
+/// A short ray against a height field through surfaceAt (O(1) on a grid)
+/// instead of a tree walk: intersect the plane of the triangle under the
+/// current point, move there, repeat. When the point lands on the plane of
+/// the triangle under it, it is on the surface: an exact hit. Rays that start
+/// below the surface, run nearly parallel to it or do not settle in four
+/// rounds return Unknown (the caller casts the full ray). Wheel rays are at
+/// most a metre or so long, so a second crossing within one is not a concern.
+FastRay surfaceRay(const physics::HeightField& f, const Vec3& o, const Vec3& d, Real length,
+                   physics::HeightFieldHit* hit) {
+  Real h;
+  Vec3 n;
+  if (!f.surfaceAt(o.x(), o.z(), &h, &n) || o.y() < h) return FastRay::Unknown;
+  Vec3 p = o;
+  for (int it = 0; it < 4; ++it) {
+    const Real denom = n.dot(d);
+    if (denom > Real(-0.2)) return FastRay::Unknown;  // grazing
+    const Real t = n.dot(Vec3(p.x(), h, p.z()) - o) / denom;
+    const Vec3 q = o + d * t;
+    Real hq;
+    Vec3 nq;
+    if (!f.surfaceAt(q.x(), q.z(), &hq, &nq)) return FastRay::Unknown;
+    if (std::abs(q.y() - hq) < Real(1e-4)) {
+      if (t < 0) return FastRay::Unknown;
+      if (t > length) return FastRay::Miss;
+      hit->distance_m = t, hit->point_m = q, hit->normal = nq;
+      return FastRay::Hit;
+    }
+    p = q, h = hq, n = nq;
+  }
+  return FastRay::Unknown;
+}
+
+}  // namespace
+
 bool VehicleSystem::castWheel(const Vehicle& v, const Vec3& origin, const Vec3& down, Real length,
                               physics::RayHit* best, Real* friction) const {
   bool found = false;
   if (const physics::HeightField* field = m_world.heightField()) {
     physics::HeightFieldHit h;
-    if (field->rayCast(origin, down, length, &h)) {
+    FastRay fast = surfaceRay(*field, origin, down, length, &h);
+    if (fast == FastRay::Unknown) fast = field->rayCast(origin, down, length, &h) ? FastRay::Hit : FastRay::Miss;
+    if (fast == FastRay::Hit) {
       *best = physics::RayHit{physics::BodyId{}, h.distance_m, h.point_m, h.normal};
       *friction = field->frictionAt(h.point_m.x(), h.point_m.z());
       length = h.distance_m;
