@@ -162,6 +162,7 @@ void Scene::registerStaticObjects() {
 std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
   if (m_terrain) names.push_back("terrain");
+  if (m_host && m_host->vehiclesIfAny()) names.push_back("vehicle");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
