@@ -106,11 +106,87 @@ int vehicleSpawn(lua_State* L) {
   return 1;
 }
 
+/// @class VehicleDefinition
+/// What mods/<mod>/vehicles/<name>.lua returns (docs/vehicles.md explains
+/// each field). Every field is optional; a misspelt one is an error.
+/// Chassis frame: origin at the box centre, +Z forward, +Y up, +X left.
+/// @field name? string shown to the player
+/// @field description? string the feel, in a sentence
+/// @field chassis? VehicleChassis body, mass, drag
+/// @field axles? VehicleAxle[] 2 to 8 axles, front first; an axle copies the fields it leaves out from the one before (except steered, driven, handbrake, drive_share)
+/// @field tyre? VehicleTyre slip curves and rolling resistance
+/// @field engine? VehicleEngine torque curve and speeds
+/// @field gearbox? VehicleGearbox ratios and shift points
+/// @field steering? VehicleSteering angles and rate
+
+/// @class VehicleChassis
+/// @field mass? number kg, whole vehicle (default 1200)
+/// @field size? number[] {width, height, length} of the collision box, m (default {1.7, 0.6, 4.0})
+/// @field com? number[] centre of mass from the box centre, m (default {0, 0, 0})
+/// @field drag_area? number drag coefficient times frontal area, m^2 (default 0.7)
+/// @field air_density? number kg/m^3 (default 1.2)
+/// @field friction? number chassis contact friction (default 0.4)
+/// @field restitution? number 0..1 (default 0.1)
+/// @field mesh? string visual mesh, a path inside the mod
+
+/// @class VehicleAxle
+/// @field position? number[] left hub at full bump {x, y, z}, m; x is half the track (default {0.75, -0.2, 1.3})
+/// @field radius? number wheel radius, m (default 0.31)
+/// @field width? number wheel width, m (default 0.2)
+/// @field inertia? number one wheel, kg m^2 (default 1.0)
+/// @field steered? boolean (default false)
+/// @field driven? boolean (default false)
+/// @field brake? number N m per wheel at full brake (default 1500)
+/// @field handbrake? number N m per wheel at full handbrake (default 0)
+/// @field drive_share? number fraction of the drive torque, 0..1 (default: equal among driven axles)
+/// @field differential? string "open" or "limited_slip" (default "open")
+/// @field lsd_bias? number limited slip: largest torque ratio between the wheels, >= 1 (default 2)
+/// @field suspension? VehicleSuspension springs and dampers
+
+/// @class VehicleSuspension
+/// @field travel? number hub travel from full bump to full droop, m (default 0.2)
+/// @field rest_length? number spring length at zero force, m (default 0.3)
+/// @field stiffness? number N/m per wheel (default: from frequency)
+/// @field frequency? number natural frequency with the static load, Hz (default 1.5)
+/// @field bump? number compression damping, N s/m (default: from bump_ratio)
+/// @field rebound? number extension damping, N s/m (default: from rebound_ratio)
+/// @field bump_ratio? number fraction of critical damping (default 0.3)
+/// @field rebound_ratio? number fraction of critical damping (default 0.5)
+/// @field anti_roll? number anti-roll bar, N per m of compression difference (default 0)
+
+/// @class VehicleTyre
+/// @field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
+/// @field lateral? number[][] {{slip angle rad, friction}, ...}
+/// @field rolling_resistance? number C_rr (default 0.012)
+/// @field soft_ground_drag? number extra C_rr per unit of (1 - surface friction) (default 0.08)
+
+/// @class VehicleEngine
+/// @field torque? number[][] {{rpm, N m}, ...} at full throttle
+/// @field idle_rpm? number rpm (default 900)
+/// @field max_rpm? number rev limiter, rpm (default 6800)
+/// @field launch_rpm? number the automatic clutch holds about this pulling away, rpm (default 2500)
+/// @field inertia? number kg m^2 (default 0.2)
+/// @field braking_torque? number engine braking at max rpm, N m (default 30)
+
+/// @class VehicleGearbox
+/// @field ratios? number[] forward gear ratios (default {3.5, 2.1, 1.4, 1.05, 0.85})
+/// @field reverse? number ratio (default 3.3)
+/// @field final_drive? number ratio (default 4.0)
+/// @field efficiency? number 0..1 (default 0.9)
+/// @field shift_up_rpm? number for the automatic gearbox, rpm (default 6200)
+/// @field shift_down_rpm? number rpm (default 2600)
+/// @field shift_time? number clutch open during a shift, s (default 0.25)
+
+/// @class VehicleSteering
+/// @field max_angle? number at standstill, rad (default 0.55)
+/// @field speed_sensitivity? number the largest angle is max / (1 + this * v), s/m (default 0.02)
+/// @field rate? number how fast the wheels turn, rad/s (default 2.5)
+
 /// @function vehicle.definition
 /// The definition of a vehicle as a table in the file's format (every
 /// field filled in), e.g. to read its parameters or to tune a copy.
 /// @param name string "mod:vehicle"
-/// @return table the definition
+/// @return VehicleDefinition the definition
 int vehicleDefinition(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw LuaArgError("vehicle.definition: expected a name like \"base:hatchback\"");
   pushVehicleDef(L, definition(L, lua_tostring(L, 1)));
@@ -320,7 +396,7 @@ int vReset(lua_State* L) {
 }
 
 /// @function Vehicle:definition
-/// @return table the vehicle's current definition, in the file's format
+/// @return VehicleDefinition the vehicle's current definition, in the file's format
 int vDefinition(lua_State* L) {
   pushVehicleDef(L, systemOf(L).def(checkVehicle(L, 1)));
   return 1;
@@ -362,7 +438,7 @@ void mergeInto(lua_State* L, int dst, int src, int depth) {
 /// as curves, gear ratios and `axles` entries by index), then validated
 /// and applied without a restart. A bad value is an error naming the field;
 /// the vehicle keeps its old parameters then.
-/// @param changes table part of a definition
+/// @param changes VehicleDefinition part of a definition
 /// @example car:tune{engine = {max_rpm = 7200}, axles = {[2] = {suspension = {frequency = 2.0}}}}
 int vTune(lua_State* L) {
   const vehicle::VehicleId id = checkVehicle(L, 1);
