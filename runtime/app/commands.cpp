@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "script/mod_bindings.h"
 #include "script/mods.h"
+#include "script/vehicle_defs.h"
 
 #ifdef TUMBLE_HAVE_TERRAIN_COMMAND
 #include "app/cmd_terrain.h"
@@ -84,6 +85,16 @@ int listMods(const std::vector<std::string>& modDirs) {
       std::printf("  %-10s %s\n", folder, line.empty() ? "-" : line.c_str());
     }
     listActions(m);
+    for (const auto& n : script::ModRegistry::listLua(m, "vehicles")) {
+      auto def = script::loadVehicleFile(m, n);
+      if (!def) {
+        std::printf("    %s:%s  problem: %s\n", m.name.c_str(), n.c_str(), def.error().c_str());
+        continue;
+      }
+      const vehicle::VehicleDef& d = def.value();
+      std::printf("    %s:%s  %s, %.0f kg, %.0f kW: %s\n", m.name.c_str(), n.c_str(), d.name.c_str(),
+                  double(d.chassis.mass_kg), double(vehicle::peakPower_W(d.engine)) / 1000, d.description.c_str());
+    }
   }
   for (const auto& p : reg.problems()) std::printf("problem: %s\n", p.text().c_str());
   return reg.problems().empty() ? 0 : 1;
@@ -92,6 +103,11 @@ int listMods(const std::vector<std::string>& modDirs) {
 int checkModDir(const std::string& dir, const std::vector<std::string>& modDirs) {
   // Dependencies resolve against every mod folder, as when playing.
   auto problems = script::checkMod(dir, modSearchDirs(modDirs));
+  // Vehicle files are data: each is run and every field checked.
+  if (auto mod = script::loadManifest(dir); mod) {
+    auto vehicles = script::checkVehicles(mod.value());
+    problems.insert(problems.end(), vehicles.begin(), vehicles.end());
+  }
   if (problems.empty()) {
     std::printf("%s: no problems found\n", dir.c_str());
     return 0;

@@ -11,6 +11,7 @@
 #include "core/log.h"
 #include "script/mod_bindings.h"
 #include "script/mods.h"
+#include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
 #include "script/terrain_build.h"
@@ -219,6 +220,7 @@ std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
   if (m_terrain) names.push_back("terrain");
   if (m_host->particlesIfAny()) names.push_back("particles");  // created by the first particles.spawn
+  if (m_host && m_host->vehiclesIfAny()) names.push_back("vehicle");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -306,6 +308,29 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
       dst.push_back(q);
     }
   });
+  // Vehicle wheels are ray casts, not bodies: drawn as spheres at their hubs
+  // until meshes land (render::DrawShape has no cylinder).
+  if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny())
+    vehicles->forEach([&](vehicle::VehicleId id) {
+      // Hubs ride with the chassis' interpolated pose, so they do not lag it.
+      const physics::BodyId c = vehicles->chassis(id);
+      const physics::Body& b = m_world->body(c);
+      Vec3 p = b.position_m;
+      Quat q = b.orientation;
+      if (c.index < m_prevPosition.size()) {
+        p = m_prevPosition[c.index] + Real(alpha) * (b.position_m - m_prevPosition[c.index]);
+        q = m_prevOrientation[c.index].slerp(Real(alpha), b.orientation);
+      }
+      for (int i = 0; i < vehicles->wheelCount(id); ++i) {
+        const vehicle::WheelTelemetry& w = vehicles->wheel(id, i);
+        render::DrawShape s;
+        s.kind = render::ShapeKind::Sphere;
+        s.position = (p + q * (b.orientation.conjugate() * (w.hub_m - b.position_m))).cast<float>();
+        s.radius_m = float(w.radius_m);
+        s.color = Eigen::Vector3f(0.12f, 0.12f, 0.13f);
+        out.shapes.push_back(s);
+      }
+    });
 }
 
 }  // namespace tumble::app

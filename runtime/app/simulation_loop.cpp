@@ -11,6 +11,7 @@
 #include "input/overrides_file.h"
 #include "physics/joints/joint_system.h"
 #include "script/hot_reload.h"
+#include "vehicle/vehicle_system.h"
 
 namespace tumble::app {
 
@@ -63,6 +64,19 @@ int particleCount(Scene& scene) {
 
 // Orbit around the dynamic bodies, far enough to see them all.
 void frameCamera(Scene& scene, render::Camera& cam) {
+  // A scene with vehicles follows the first one from 12 m (until the chase
+  // camera of the camera modes lands).
+  if (const vehicle::VehicleSystem* vehicles = scene.host().vehiclesIfAny(); vehicles && vehicles->count() > 0) {
+    bool first = true;
+    vehicles->forEach([&](vehicle::VehicleId id) {
+      if (!first) return;
+      first = false;
+      cam.target = scene.world().body(vehicles->chassis(id)).position_m.cast<float>();
+      cam.distance_m = 12;
+      cam.mode = render::CameraMode::Follow;
+    });
+    return;
+  }
   Eigen::Vector3f lo(1e30f, 1e30f, 1e30f), hi = -lo;
   int n = 0;
   scene.world().forEachBody([&](physics::BodyId, const physics::Body& b) {
@@ -161,6 +175,7 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   Status shotStatus = Ok{};
   auto takeShot = [&](double time_s) {
     Stopwatch sw;
+    if (scene.host().vehiclesIfAny()) frameCamera(scene, renderer->camera());  // where the car is now
     render::FrameSnapshot frame;
     scene.snapshot(frame, 1.0);
     frame.simTime_s = time_s;

@@ -239,6 +239,60 @@ void World::applyImpulse(BodyId id, const Vec3& J, const Vec3& point) {
   m_externalWork += after - before;
   m_externalImpulse += J.cast<double>();
 }
+static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
+                     Real inflate = 0);
+
+int World::addSubstepHook(SubstepHook hook) {
+  m_substepHooks.emplace_back(m_nextHookId, std::move(hook));
+  return m_nextHookId++;
+}
+
+void World::removeSubstepHook(int id) {
+  std::erase_if(m_substepHooks, [id](const auto& h) { return h.first == id; });
+}
+
+Vec3 World::currentLinearVelocity(BodyId id) const {
+  const Body& b = body(id);
+  return m_inStep ? narrow(m_scratch->vel[id.index].linear) : b.linearVelocity_mps;
+}
+
+Vec3 World::currentAngularVelocity(BodyId id) const {
+  const Body& b = body(id);
+  return m_inStep ? narrow(m_scratch->vel[id.index].angular) : b.angularVelocity_radps;
+}
+
+void World::applyImpulseNow(BodyId id, const Vec3& J, const Vec3& point) {
+  if (!m_inStep) {
+    if (isValid(id) && body(id).awake) applyImpulse(id, J, point);
+    return;
+  }
+  Body& b = mutableBody(id);
+  if (!b.isDynamic() || !b.awake) return;
+  SolverVelocity& v = m_scratch->vel[id.index];
+  const Vec3 v0 = narrow(v.linear), w0 = narrow(v.angular);
+  const Vec3 dv = b.invMass_per_kg * J, dw = b.invInertiaWorld * (point - b.position_m).cross(J);
+  v.linear += wide(dv);
+  v.angular += wide(dw);
+  // Work of the impulse: J . (v0 + v1) / 2 at the point, i.e. the change of
+  // kinetic energy it causes.
+  const Vec3 r = point - b.position_m;
+  const Vec3 vp0 = v0 + w0.cross(r), vp1 = v0 + dv + (w0 + dw).cross(r);
+  m_externalWork += 0.5 * double(J.dot(vp0 + vp1));
+  m_externalImpulse += J.cast<double>();
+}
+
+bool World::rayCastBody(BodyId id, const Vec3& origin, const Vec3& dir, Real maxDistance, RayHit* hit) const {
+  if (!isValid(id)) return false;
+  const Real len = dir.norm();
+  if (!(len > 0) || !origin.allFinite() || !std::isfinite(maxDistance)) return false;
+  const Vec3 d = dir / len;
+  Real t;
+  Vec3 n;
+  if (!rayShape(m_bodies[id.index], origin, d, maxDistance, t, n)) return false;
+  if (hit) *hit = {id, t, origin + d * t, n};
+  return true;
+}
+
 void World::wake(BodyId id) {
   if (isValid(id)) wakeIsland(id.index);
 }
@@ -740,8 +794,10 @@ void World::step(Real dt) {
   ContactSolver& contacts = st.contacts;
   const Real tol2 = m_settings.solverTolerance * m_settings.solverTolerance;
   contacts.prepare(m_manifolds, m_bodies);
+  m_inStep = true;
   for (int s = 0; s < substeps; ++s) {
     integrateVelocities(ss.h);
+    for (auto& [id, hook] : m_substepHooks) hook(*this, ss.h);
     contacts.captureApproachSpeeds(st.vel);
     contacts.warmStart(st.vel);
     // Rolling and split impulses are per substep (not warm started), so
@@ -764,6 +820,7 @@ void World::step(Real dt) {
   }
   contacts.applyRestitution(st.vel, ss);
   m_externalImpulse += contacts.externalRestitutionImpulse();
+  m_inStep = false;
   // Scatter.
   for (std::uint32_t i = 0; i < n; ++i) {
     Body& b = m_bodies[i];
@@ -801,6 +858,16 @@ void World::step(Real dt) {
 
 static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
                      Real inflate = 0);
+/// Radius of the largest sphere about the centre inside the shape (m).
+static Real innerRadius(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::Sphere: return s.radius_m;
+    case ShapeType::Box: return s.halfExtents_m.minCoeff();
+    case ShapeType::Capsule: return s.radius_m;
+    case ShapeType::Plane: return 0;
+  }
+  return 0;
+}
 
 void World::clampToStatic() {
   // Continuous collision against static geometry (see WorldSettings::

@@ -168,6 +168,28 @@ class World {
 
   void step(Real dt_s);
 
+  /// Per-substep hooks (vehicles: suspension, tyres, wheel spin). Each hook
+  /// runs in every substep after gravity and forces are integrated into the
+  /// velocities and before the contacts are solved, with the substep length
+  /// h (s); body positions are those of the substep. Inside a hook read
+  /// velocities with currentLinearVelocity / currentAngularVelocity and
+  /// change them with applyImpulseNow (World::applyImpulse would be
+  /// overwritten at the end of the step). Hooks run in the order added.
+  using SubstepHook = std::function<void(World& world, Real h_s)>;
+  int addSubstepHook(SubstepHook hook);  ///< returns an id for removeSubstepHook
+  void removeSubstepHook(int id);
+  /// Velocity of a body now: inside a step the solver's working copy,
+  /// outside it the stored one (m/s, rad/s).
+  Vec3 currentLinearVelocity(BodyId id) const;
+  Vec3 currentAngularVelocity(BodyId id) const;
+  /// Impulse (N s) at a world point applied to the current velocities at
+  /// once; inside a hook it acts in this substep. Counted as external work
+  /// and momentum in the error figures. Does nothing to a body that is not
+  /// dynamic or is asleep (wake it first, outside the step).
+  void applyImpulseNow(BodyId id, const Vec3& impulse_Ns, const Vec3& point_m);
+  /// Ray against one body's shape (dir need not be unit); false if missed.
+  bool rayCastBody(BodyId id, const Vec3& origin_m, const Vec3& dir, Real maxDistance_m, RayHit* hit) const;
+
   /// Static terrain the bodies collide with (see height_field.h), or null.
   /// Owned by the caller and must outlive the world or be reset to null;
   /// the world keeps only the pointer (no terrain memory in physics).
@@ -267,6 +289,9 @@ class World {
   Eigen::Vector3d m_momentum0 = Eigen::Vector3d::Zero(), m_externalImpulse = Eigen::Vector3d::Zero();
   double m_momentumScale = 0;
   bool m_trackingStarted = false;
+  bool m_inStep = false;  ///< between gather and scatter: velocities live in m_scratch->vel
+  std::vector<std::pair<int, SubstepHook>> m_substepHooks;
+  int m_nextHookId = 1;
 };
 
 }  // namespace tumble::physics

@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "physics/joints/joint_system.h"
 #include "script/internal/emitter_table.h"
+#include "vehicle/vehicle_system.h"
 #include "script/internal/lua_util.h"
 
 extern "C" {
@@ -477,6 +478,8 @@ void ScenarioHost::buildEnvironment() {
   openEmitterBindings(L, env);
   openInputBindings(L, env);
   openTuneBindings(L, env);
+  openVehicleBindings(L, env);
+  openSaveBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
@@ -810,6 +813,12 @@ void ScenarioHost::update(double time_s, double dt_s, std::int64_t step) {
   // Last, so that every force of the step (scripts included) is in the
   // joints' Q; the app calls World::step right after this.
   if (m_joints) m_joints->beforeWorldStep();
+  if (m_vehicles) m_vehicles->beforeStep(Real(dt_s));
+}
+
+vehicle::VehicleSystem& ScenarioHost::vehicles() {
+  if (!m_vehicles) m_vehicles = std::make_unique<vehicle::VehicleSystem>(m_world);
+  return *m_vehicles;
 }
 
 physics::JointSystem& ScenarioHost::joints() {

@@ -42,9 +42,13 @@
 #include "script/mods.h"
 #include "script/script_error.h"
 #include "script/tunables.h"
+#include "vehicle/vehicle_def.h"
 
 namespace tumble::physics {
 class JointSystem;
+}
+namespace tumble::vehicle {
+class VehicleSystem;
 }
 
 namespace tumble::script {
@@ -72,8 +76,8 @@ struct ScenarioOptions {
   std::uint64_t seed = 1;
   std::string scriptsDir;  ///< the runtime's Lua library (require "tumble.x")
   VmLimits limits;
-  /// Other loadable mods, for references like "base:dust" (particles.spawn).
-  /// The scenario's own mod is always searched first.
+  /// Other loadable mods, for references like "base:dust" (particles.spawn,
+  /// vehicle.spawn). The scenario's own mod is always searched first.
   std::vector<ModInfo> mods;
   /// The actions scripts read (input.value, ...); not owned, must outlive
   /// the host. Null: the host makes an empty one (no actions).
@@ -182,6 +186,12 @@ class ScenarioHost {
   /// the fields of the table at overridesIdx (0: none) on top. The file is
   /// read once and cached. Error: file, field and what is expected.
   Result<particles::EmitterDef> emitterDef(const std::string& ref, int overridesIdx);
+  /// The scene's vehicles, created on first use (vehicle.spawn); null before.
+  vehicle::VehicleSystem* vehiclesIfAny() { return m_vehicles.get(); }
+  const vehicle::VehicleSystem* vehiclesIfAny() const { return m_vehicles.get(); }
+  vehicle::VehicleSystem& vehicles();
+  /// Vehicle definitions loaded so far, by "mod:name" (bind_vehicle.cpp).
+  std::map<std::string, vehicle::VehicleDef>& vehicleDefCache() { return m_vehicleDefs; }
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
@@ -296,6 +306,8 @@ class ScenarioHost {
   int m_emitterTablesRef = 0;  ///< registry table: "mod:name" -> the file's returned table
   std::unique_ptr<input::InputSystem> m_ownInput;  ///< when options.input is null
   input::InputSystem* m_input = nullptr;
+  std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first
+  std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -317,5 +329,8 @@ void openEmitterBindings(lua_State* L, int envIndex);
 void openInputBindings(lua_State* L, int envIndex);
 /// The tune table (bind_tune.cpp).
 void openTuneBindings(lua_State* L, int envIndex);
+/// vehicle (bind_vehicle.cpp) and save (bind_save.cpp) tables.
+void openVehicleBindings(lua_State* L, int envIndex);
+void openSaveBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

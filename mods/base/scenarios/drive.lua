@@ -1,0 +1,99 @@
+-- Drive: free roam on generated hills among scattered static rocks. With
+-- the autopilot (the default until the input module lands; --set
+-- autopilot=0 hands the car to drive.player) the car drives a loop of
+-- waypoints over the hills.
+-- Expectations: the car covers ground, stays upright, keeps its wheels on
+-- the terrain (never below it), and nothing in the vehicle goes non-finite.
+--
+--   tumble run base:drive
+--   tumble play base:drive --set car=base:truck
+local drive = require "tumble.drive"
+
+local car, pilot, player, effects
+local start, travelled, lowest_gap, min_up, contact_steps, steps, max_speed = nil, 0, math.huge, 1, 0, 0, 0
+local last
+
+local function ground(x, z)
+  local h = vehicle.surface(x, z)
+  return h
+end
+
+return {
+  title = "Drive: free roam on generated hills",
+  duration = 40,
+  terrain = {generate = 5, size = 513, height = 14},  -- gentle 513 x 513 m hills; --set terrain.* overrides
+
+  on_start = function(ctx)
+    local h0 = ground(0, 0)
+    if not h0 then
+      expect("terrain present", false)
+      return
+    end
+    -- Static rocks scattered off the route (a ring of radius 60 m is the route).
+    local rng = random.new(ctx.seed)
+    for i = 1, param("rocks", 40) do
+      local a, r = rng:float(0, 2 * math.pi), rng:float(10, 140)
+      if math.abs(r - 60) > 12 then
+        local x, z = math.cos(a) * r, math.sin(a) * r
+        local s = rng:float(0.8, 2.2)
+        local g = ground(x, z)
+        if g then
+          world.box{type = "static", size = {s, s * 0.7, s * 1.1}, position = {x, g + s * 0.2, z},
+                    rotation = {0, rng:float(0, 3), 0}, friction = 0.8, color = {0.45, 0.43, 0.4}}
+        end
+      end
+    end
+    local name = param("car", "base:hatchback")
+    car = vehicle.spawn(name, {position = {60, ground(60, 0), 0}, heading = 0})
+    local waypoints = {}
+    for i = 1, 12 do
+      local a = i / 12 * 2 * math.pi
+      waypoints[i] = {math.cos(a) * 60, math.sin(a) * 60}
+    end
+    if param("autopilot", 1) ~= 0 then
+      pilot = drive.autopilot(car, {waypoints = waypoints, speed = param("speed", 16), loop = true, radius = 10})
+    else
+      player = drive.player(car)
+    end
+    effects = drive.effects(car)
+    drive.show(car)
+    start = car:position()
+    last = start
+  end,
+
+  on_update = function(ctx, dt)
+    if not car then return end
+    if pilot then pilot:update(dt) else player:update(dt) end
+    effects:update(dt)
+    local p = car:position()
+    travelled = travelled + math.sqrt((p.x - last.x) ^ 2 + (p.z - last.z) ^ 2)
+    last = p
+    local up = car:body():up()
+    min_up = math.min(min_up, up.y)
+    local t = car:telemetry()
+    max_speed = math.max(max_speed, t.speed)
+    local touching = 0
+    for _, w in ipairs(t.wheels) do
+      if w.contact then touching = touching + 1 end
+      local g = ground(w.position.x, w.position.z)
+      if g then lowest_gap = math.min(lowest_gap, w.position.y - g) end  -- hub above the terrain, m
+    end
+    steps = steps + 1
+    if touching >= 3 then contact_steps = contact_steps + 1 end
+    hud_text(("%s  %3.0f km/h  gear %d  %4.0f rpm"):format(car:name(), t.speed * 3.6, t.gear, t.rpm),
+             ("travelled %.0f m"):format(travelled))
+  end,
+
+  on_finish = function(ctx)
+    if not car then return end
+    local p = car:position()
+    expect("vehicle state is finite", p.x == p.x and p.y == p.y and math.abs(p.x) < 1e6)
+    if pilot then
+      expect("distance driven (m)", travelled, {min = 200})
+      expect("top speed reached (m/s)", max_speed, {min = 10})
+    end
+    expect("stayed upright (lowest chassis up.y)", min_up, {min = 0.5})
+    expect("wheel hubs never below the terrain (m)", lowest_gap, {min = 0})
+    expect("steps with 3+ wheels on the ground (fraction)", contact_steps / math.max(steps, 1), {min = 0.9})
+  end,
+}

@@ -1,0 +1,83 @@
+-- Time trial: drive through six checkpoint gates in order and back to the
+-- start; the timer runs from the first step, the HUD shows the time, the
+-- next gate and the best time, and a new best is saved (save.write: JSON in
+-- the user's data folder, written atomically). The autopilot drives the
+-- lap for headless runs (--set autopilot=0: drive.player).
+-- Expectations: every gate passed in order, the lap within a sane time,
+-- the best time read back equals the one written.
+--
+--   tumble run base:time_trial
+--   tumble play base:time_trial --set car=base:buggy
+local drive = require "tumble.drive"
+
+-- Gates on a 240 x 120 m loop, start/finish last.
+local gates = {{40, 0}, {110, 25}, {120, 90}, {60, 120}, {-10, 95}, {-20, 30}, {0, 0}}
+local car, pilot, player
+local next_gate, lap_time, finished, best, saved_best = 1, 0, false, nil, nil
+
+local function post(x, z, color)
+  world.box{type = "static", size = {0.3, 1.5, 0.3}, position = {x, 0.75, z}, color = color}
+end
+
+return {
+  title = "Time trial: six gates, beat your best",
+  duration = 60,
+
+  on_start = function(ctx)
+    world.plane{friction = 1, color = {0.35, 0.36, 0.38}}
+    best = (save.read("time_trial") or {}).best_s
+    for i, g in ipairs(gates) do
+      local color = i == #gates and {0.9, 0.9, 0.9} or {0.95, 0.6, 0.1}
+      -- Posts 6 m either side, across the line from the previous gate to the next.
+      local a, b = gates[i - 1] or {0, -12}, gates[i + 1] or {0, 12}
+      local dx, dz = b[1] - a[1], b[2] - a[2]
+      local len = math.sqrt(dx * dx + dz * dz)
+      local px, pz = -dz / len * 6, dx / len * 6
+      post(g[1] - px, g[2] - pz, color)
+      post(g[1] + px, g[2] + pz, color)
+      trigger.box{center = {g[1], 1, g[2]}, size = {9, 3, 9}, on_enter = function(body)
+        if finished or not car or body ~= car:body() or i ~= next_gate then return end
+        next_gate = next_gate + 1
+        if next_gate > #gates then
+          finished = true
+          game.message(("Lap %.2f s"):format(lap_time), 5)
+          if not best or lap_time < best then
+            best = lap_time
+            save.write("time_trial", {best_s = lap_time, car = car:name()})
+            saved_best = lap_time
+          end
+          game.win(("lap %.2f s"):format(lap_time))
+        end
+      end}
+    end
+    car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -12}, heading = 0})
+    drive.show(car)
+    if param("autopilot", 1) ~= 0 then
+      pilot = drive.autopilot(car, {waypoints = gates, speed = param("speed", 22), loop = false, radius = 4})
+    else
+      player = drive.player(car)
+    end
+  end,
+
+  on_update = function(ctx, dt)
+    if not finished then lap_time = lap_time + dt end
+    if pilot then pilot:update(dt) else player:update(dt) end
+    local t = car:telemetry()
+    hud_text(("time %6.2f s   best %s"):format(lap_time, best and ("%.2f s"):format(best) or "-"),
+             finished and "finished" or ("gate %d of %d"):format(next_gate, #gates),
+             ("%3.0f km/h  gear %d"):format(t.speed * 3.6, t.gear))
+  end,
+
+  on_finish = function(ctx)
+    expect("gates passed in order", next_gate - 1, {min = #gates, max = #gates})
+    expect("lap finished", finished)
+    if finished then
+      -- About 520 m of track: faster than 10 m/s on average would be a
+      -- shortcut, slower than 4 m/s a car that crawls.
+      expect("lap time (s)", lap_time, {min = 520 / 40, max = 520 / 4})
+      local stored = (save.read("time_trial") or {}).best_s
+      expect("best time saved and read back", stored ~= nil and stored <= lap_time + 1e-9)
+      if saved_best then expect("saved value round-trips", stored == saved_best) end
+    end
+  end,
+}

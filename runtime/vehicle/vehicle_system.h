@@ -1,0 +1,151 @@
+#pragma once
+// VehicleSystem: wheeled vehicles in a physics::World. The chassis is an
+// ordinary dynamic box body (so it collides with walls, boxes and rag-dolls
+// through the contact solver); the wheels are ray casts along the
+// suspension, integrated in every world substep (World::addSubstepHook).
+// vehicle_system.cpp derives the wheel, tyre and drivetrain model.
+//
+//   VehicleSystem vehicles(world);
+//   VehicleId car = vehicles.spawn(def, {0, 0, 0}, 0).value();
+//   vehicles.setControls(car, {.throttle = 1});
+//   vehicles.beforeStep(dt); world.step(dt);   // or vehicles.step(dt)
+//
+// Index: VehicleControls | WheelTelemetry | VehicleTelemetry | VehicleSystem
+#include <cstdint>
+#include <vector>
+
+#include "core/handle.h"
+#include "core/math.h"
+#include "core/result.h"
+#include "physics/world.h"
+#include "vehicle/vehicle_def.h"
+
+namespace tumble::vehicle {
+
+struct VehicleTag;
+using VehicleId = Handle<VehicleTag>;
+
+/// What a driver (a Lua controller) asks for.
+struct VehicleControls {
+  Real throttle = 0;   ///< 0..1
+  Real brake = 0;      ///< 0..1, all braked wheels
+  Real steer = 0;      ///< -1 full left .. +1 full right
+  Real handbrake = 0;  ///< 0..1
+  int gear = 1;        ///< -1 reverse, 0 neutral, 1..N forward
+};
+
+struct WheelTelemetry {
+  bool contact = false;
+  Real load_N = 0;            ///< suspension force pressing the tyre on the ground
+  Real slipRatio = 0;         ///< (w r - v) / max(|v|, 0.5 m/s), longitudinal
+  Real slipAngle_rad = 0;     ///< atan(v_lateral / |v_forward|), signed
+  Real slipSpeed_mps = 0;     ///< speed of the contact patch over the ground (dust)
+  Real surfaceFriction = 0;   ///< of what the tyre touches (terrain drag map or body friction)
+  Real spin_radps = 0;        ///< wheel angular velocity, + rolling forward
+  Real rotation_rad = 0;      ///< accumulated spin angle (for drawing)
+  Real steer_rad = 0;         ///< + to the left
+  Real springLength_m = 0;    ///< hub below full bump, 0..travel
+  Vec3 hub_m = Vec3::Zero();  ///< world
+  Vec3 contactPoint_m = Vec3::Zero();
+  Vec3 contactNormal = Vec3::UnitY();
+  physics::BodyId ground;     ///< body under the tyre; null for terrain or none
+  Real radius_m = 0, width_m = 0;
+};
+
+struct VehicleTelemetry {
+  Real speed_mps = 0;        ///< along the chassis forward axis, signed
+  Real rpm = 0;              ///< engine
+  int gear = 1;              ///< the gear engaged (-1 R, 0 N, 1..N)
+  bool shifting = false;     ///< clutch open for a gear change
+  Real engineTorque_Nm = 0;  ///< at the crank (negative: engine braking)
+  Real driveTorque_Nm = 0;   ///< at the wheels, total
+};
+
+class VehicleSystem {
+ public:
+  explicit VehicleSystem(physics::World& world);  ///< adds its substep hook to the world
+  ~VehicleSystem();                               ///< removes it and every vehicle's chassis
+  VehicleSystem(const VehicleSystem&) = delete;
+  VehicleSystem& operator=(const VehicleSystem&) = delete;
+
+  /// Creates a vehicle resting on its springs on the ground point
+  /// groundPoint_m (the point under its centre), facing heading_rad
+  /// (0: +Z, + turns towards +X). The definition is validated first.
+  Result<VehicleId> spawn(const VehicleDef& def, const Vec3& groundPoint_m, Real heading_rad,
+                          const std::string& where = "vehicle");
+  bool remove(VehicleId id);
+  bool isValid(VehicleId id) const;
+  int count() const { return m_alive; }
+
+  void setControls(VehicleId id, const VehicleControls& controls);
+  const VehicleControls& controls(VehicleId id) const;
+  /// Replaces the definition while running (tunables): validated; the
+  /// chassis keeps its pose and velocity, the wheels their spin. A new
+  /// chassis size or mass remakes the chassis body (a new chassis() id).
+  Status setDef(VehicleId id, const VehicleDef& def, const std::string& where = "vehicle");
+  const VehicleDef& def(VehicleId id) const;
+  /// Upright at groundPoint_m facing heading_rad, at rest, engine idling.
+  void reset(VehicleId id, const Vec3& groundPoint_m, Real heading_rad);
+
+  physics::BodyId chassis(VehicleId id) const;
+  const VehicleTelemetry& telemetry(VehicleId id) const;
+  /// Wheels in axle order, left then right on each axle.
+  int wheelCount(VehicleId id) const;
+  const WheelTelemetry& wheel(VehicleId id, int index) const;
+
+  /// Before World::step: steering, gear shifts, and the bodies near each
+  /// vehicle its wheels may touch during the step.
+  void beforeStep(Real dt_s);
+  /// beforeStep then World::step (tests, benchmarks).
+  void step(Real dt_s);
+
+  template <typename F>
+  void forEach(F&& f) const {
+    for (std::uint32_t i = 0; i < m_vehicles.size(); ++i)
+      if (m_vehicles[i].alive) f(VehicleId{i, m_vehicles[i].generation});
+  }
+
+ private:
+  struct Wheel {
+    int axle = 0;
+    Vec3 mount_local = Vec3::Zero();  ///< hub at full bump, relative to the centre of mass
+    Real driveTorque_Nm = 0;
+    Real inertia_kgm2 = 1;  ///< wheel plus its share of the engine's reflected inertia
+    bool locked = false;
+    WheelTelemetry t;
+  };
+  struct Vehicle {
+    bool alive = false;
+    std::uint32_t generation = 0;
+    VehicleDef def;
+    std::vector<DerivedAxle> derived;
+    physics::BodyId chassis;
+    std::vector<Wheel> wheels;
+    std::vector<Real> axleShare;  ///< drive share per axle (0: not driven)
+    VehicleControls controls;
+    Real steer_rad = 0;
+    Real engine_radps = 0;
+    Real shiftTimer_s = 0;
+    int gear = 1;
+    std::vector<physics::BodyId> nearby;  ///< bodies the wheel rays test this step
+    VehicleTelemetry telemetry;
+  };
+
+  Vehicle& get(VehicleId id);
+  const Vehicle& get(VehicleId id) const;
+  void configure(Vehicle& v);
+  void place(Vehicle& v, const Vec3& groundPoint_m, Real heading_rad);
+  void substep(Real h);
+  void substepVehicle(Vehicle& v, Real h);
+  void drivetrain(Vehicle& v, Real h);
+  bool castWheel(const Vehicle& v, const Vec3& origin, const Vec3& down, Real length, physics::RayHit* hit,
+                 Real* friction) const;
+
+  physics::World& m_world;
+  int m_hook = 0;
+  std::vector<Vehicle> m_vehicles;
+  std::vector<std::uint32_t> m_free;
+  int m_alive = 0;
+};
+
+}  // namespace tumble::vehicle

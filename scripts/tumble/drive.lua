@@ -1,0 +1,248 @@
+-- tumble.drive: vehicle controllers in Lua, run at the fixed rate from a
+-- scenario's on_update (the wheel physics runs in C++ in every substep).
+--
+--   local drive = require "tumble.drive"
+--   local car = vehicle.spawn("base:hatchback", {position = {0, 0, 0}})
+--   local pilot = drive.autopilot(car, {waypoints = {{0, 100}, {100, 100}}, speed = 20, loop = true})
+--   function scenario.on_update(ctx, dt) pilot:update(dt) end
+--
+-- Controllers:
+--   drive.gearbox(car)            automatic gearbox: shifts at the definition's
+--                                 shift_up_rpm / shift_down_rpm, never during a shift
+--   drive.traction(car, opts)     traction control: cuts throttle while a driven
+--                                 wheel's tread runs faster than the ground by more
+--                                 than opts.slip (default 0.15) of the speed or 1 m/s
+--   drive.autopilot(car, opts)    follows waypoints {x, z} at opts.speed (m/s);
+--                                 uses gearbox and traction control; for headless runs
+--   drive.player(car, opts)       reads the input actions throttle, brake, steer,
+--                                 handbrake, gear_up, gear_down, reset (bindings.lua);
+--                                 does nothing until the input module exists
+--   drive.effects(car)            tyre dust and exhaust smoke rates from slip and throttle;
+--                                 feeds particle emitters when the particles module exists
+--   drive.show(car)               the chase camera on the car and its chassis mesh, when the
+--                                 camera and model APIs exist (nothing before)
+-- Each returns an object with :update(dt).
+
+local drive = {}
+
+local function clamp(x, lo, hi) return math.max(lo, math.min(hi, x)) end
+
+-- Automatic gearbox --------------------------------------------------------
+
+local Gearbox = {}
+Gearbox.__index = Gearbox
+
+function drive.gearbox(car)
+  local def = car:definition()
+  return setmetatable({car = car, up = def.gearbox.shift_up_rpm, down = def.gearbox.shift_down_rpm,
+                       gears = #def.gearbox.ratios, hold = 0}, Gearbox)
+end
+
+-- Picks the gear for the current rpm; call once per step. `wanted` is the
+-- direction the driver wants: 1 forward, -1 reverse. `t` is this step's
+-- car:telemetry() when the caller has it already.
+function Gearbox:update(dt, wanted, t)
+  local car = self.car
+  t = t or car:telemetry()
+  local gear = t.gear
+  self.hold = math.max(0, self.hold - dt)
+  if wanted == -1 then
+    if t.speed < 1 then gear = -1 end
+  elseif gear < 1 then
+    if t.speed > -1 then gear = 1 end
+  elseif not t.shifting and self.hold == 0 then
+    if t.rpm > self.up and gear < self.gears then
+      gear, self.hold = gear + 1, 0.8
+    elseif t.rpm < self.down and gear > 1 then
+      gear, self.hold = gear - 1, 0.8
+    end
+  end
+  if gear ~= t.gear then car:set_controls{gear = gear} end
+  return gear
+end
+
+-- Traction control ------------------------------------------------------------
+
+local Traction = {}
+Traction.__index = Traction
+
+function drive.traction(car, opts)
+  opts = opts or {}
+  local driven = {}
+  for i, axle in ipairs(car:definition().axles) do
+    if axle.driven then driven[#driven + 1] = 2 * i - 1; driven[#driven + 1] = 2 * i end
+  end
+  return setmetatable({car = car, slip = opts.slip or 0.15, factor = 1, driven = driven}, Traction)
+end
+
+-- Returns the throttle to use instead of `throttle`. `t`: this step's
+-- car:telemetry() when the caller has it already.
+function Traction:filter(dt, throttle, t)
+  t = t or self.car:telemetry()
+  local spinning = false
+  for _, i in ipairs(self.driven) do
+    local w = t.wheels[i]
+    local excess = math.abs(w.spin * w.radius) - math.abs(t.speed)  -- tread faster than the ground, m/s
+    if w.contact and excess > math.max(self.slip * math.abs(t.speed), 1.0) then spinning = true end
+  end
+  -- Cut while spinning, give back while gripping; never below 30% so the
+  -- car still pulls away on a slope.
+  if spinning then
+    self.factor = math.max(0.3, self.factor - 3 * dt)
+  else
+    self.factor = math.min(1, self.factor + 1.5 * dt)
+  end
+  return throttle * self.factor
+end
+
+-- Waypoint autopilot ------------------------------------------------------------
+
+local Autopilot = {}
+Autopilot.__index = Autopilot
+
+-- opts: waypoints = {{x, z}, ...}, speed = m/s, loop = bool, radius = m
+-- (when a waypoint counts as reached, default 6), traction = bool (default true).
+function drive.autopilot(car, opts)
+  assert(opts and opts.waypoints and #opts.waypoints > 0, "drive.autopilot: opts.waypoints = {{x, z}, ...} needed")
+  return setmetatable({car = car, waypoints = opts.waypoints, speed = opts.speed or 15, loop = opts.loop,
+                       radius = opts.radius or 6, index = 1, laps = 0, done = false,
+                       gearbox = drive.gearbox(car),
+                       traction = opts.traction ~= false and drive.traction(car, opts) or nil}, Autopilot)
+end
+
+function Autopilot:update(dt)
+  local car = self.car
+  if self.done then
+    car:set_controls{throttle = 0, brake = 1, steer = 0}
+    return
+  end
+  local p, f = car:position(), car:forward()
+  local wp = self.waypoints[self.index]
+  local dx, dz = wp[1] - p.x, wp[2] - p.z
+  local dist = math.sqrt(dx * dx + dz * dz)
+  if dist < self.radius then
+    self.index = self.index + 1
+    if self.index > #self.waypoints then
+      if self.loop then self.index, self.laps = 1, self.laps + 1 else self.done = true end
+    end
+    return self:update(dt)
+  end
+  -- Heading error: positive when the waypoint is to the right (steer +1 = right).
+  local fx, fz = f.x, f.z
+  local right = dx * -fz + dz * fx
+  local ahead = dx * fx + dz * fz
+  local err = math.atan(right, ahead)
+  local steer = clamp(err * 2.0, -1, 1)
+  -- Slow down for sharp turns and for the last waypoint.
+  local target = self.speed / (1 + 2.5 * math.abs(err))
+  if not self.loop and self.index == #self.waypoints then target = math.min(target, 0.5 * dist + 2) end
+  local t = car:telemetry()
+  local v = t.speed
+  local throttle, brake = clamp((target - v) * 0.4, 0, 1), 0
+  if v > target + 2 then throttle, brake = 0, clamp((v - target) * 0.15, 0, 1) end
+  if self.traction then throttle = self.traction:filter(dt, throttle, t) end
+  car:set_controls{throttle = throttle, brake = brake, steer = steer, handbrake = 0}
+  self.gearbox:update(dt, 1, t)
+end
+
+-- Player --------------------------------------------------------------------------
+
+local Player = {}
+Player.__index = Player
+
+-- The player's controller: reads the input actions named in bindings.lua.
+-- Until the input module exists (no global `input`), update() leaves the
+-- controls alone and returns false.
+function drive.player(car, opts)
+  opts = opts or {}
+  return setmetatable({car = car, automatic = opts.automatic ~= false, gearbox = drive.gearbox(car),
+                       traction = drive.traction(car, opts)}, Player)
+end
+
+function Player:update(dt)
+  if type(input) ~= "table" then return false end
+  local car = self.car
+  local throttle, brake = input.value("throttle"), input.value("brake")
+  local controls = {throttle = throttle, brake = brake, steer = input.value("steer"),
+                    handbrake = input.value("handbrake")}
+  -- Brake at standstill means reverse, as in most driving games.
+  local reverse = brake > 0.1 and throttle < 0.1 and car:speed() < 0.5
+  if reverse or car:controls().gear == -1 and brake > 0.1 then
+    controls.throttle, controls.brake = brake, throttle
+  end
+  controls.throttle = self.traction:filter(dt, controls.throttle)
+  car:set_controls(controls)
+  if input.pressed("reset") then car:reset{position = car:position(), heading = 0} end
+  if self.automatic then
+    self.gearbox:update(dt, reverse and -1 or 1)
+  else
+    local g = car:controls().gear
+    if input.pressed("gear_up") then car:set_controls{gear = g + 1} end
+    if input.pressed("gear_down") then car:set_controls{gear = g - 1} end
+  end
+  return true
+end
+
+-- Effects ----------------------------------------------------------------------------
+
+local Effects = {}
+Effects.__index = Effects
+
+-- Tyre dust per wheel and exhaust smoke, in particles per second:
+--   dust  = opts.dust_per_mps (default 40) * slip speed (m/s), on soft ground
+--           (surface friction < 0.7) twice that, 0 without contact
+--   smoke = opts.smoke_idle (default 4) + opts.smoke_throttle (default 60)
+--           * throttle * rpm / max_rpm
+-- When the particles module exists (a global `particles`), update() spawns
+-- "base:dust" at each wheel and "base:exhaust" at the back once, and sets
+-- their rates every step; without it, update() only computes self.dust[i]
+-- and self.smoke (scenarios and tests read them).
+function drive.effects(car, opts)
+  opts = opts or {}
+  local def = car:definition()
+  return setmetatable({car = car, dust = {}, smoke = 0, max_rpm = def.engine.max_rpm,
+                       rear = -def.chassis.size[3] / 2, dust_per_mps = opts.dust_per_mps or 40,
+                       smoke_idle = opts.smoke_idle or 4, smoke_throttle = opts.smoke_throttle or 60}, Effects)
+end
+
+function Effects:update(dt)
+  local car = self.car
+  local t = car:telemetry()
+  for i, w in ipairs(t.wheels) do
+    local soft = w.surface_friction < 0.7 and 2 or 1
+    self.dust[i] = w.contact and self.dust_per_mps * w.slip_speed * soft or 0
+  end
+  self.smoke = self.smoke_idle + self.smoke_throttle * car:controls().throttle * t.rpm / self.max_rpm
+  if type(particles) == "table" and particles.spawn then
+    if not self.emitters then
+      self.emitters = {exhaust = particles.spawn("base:exhaust", {body = car:body(), offset = {0.3, -0.2, self.rear}})}
+      for i, w in ipairs(t.wheels) do
+        self.emitters[i] = particles.spawn("base:dust", {body = car:body(), offset = {0, 0, 0}})
+      end
+    end
+    for i = 1, #t.wheels do self.emitters[i]:set_rate(self.dust[i]) end
+    self.emitters.exhaust:set_rate(self.smoke)
+  end
+end
+
+-- Presentation ------------------------------------------------------------------------
+
+-- Puts the chase camera on the car (camera.set_mode) and its definition's
+-- chassis mesh on the chassis body (Body:set_model), each only when that API
+-- exists; returns how many of the two it could do.
+function drive.show(car)
+  local done = 0
+  if type(camera) == "table" and camera.set_mode then
+    camera.set_mode("chase", {target = car:body()})
+    done = done + 1
+  end
+  local mesh = car:definition().chassis.mesh
+  local body = car:body()
+  if mesh and body.set_model then
+    body:set_model(mesh)
+    done = done + 1
+  end
+  return done
+end
+
+return drive

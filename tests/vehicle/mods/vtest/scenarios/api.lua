@@ -1,0 +1,68 @@
+-- The Lua vehicle API as a user sees it: spawning, bad input with clear
+-- errors, controls, telemetry, tuning while running, reset, remove, saves.
+local drive = require "tumble.drive"
+local car, effects, gain_before, v30
+local function fails_with(pattern, fn, ...)
+  local ok, err = pcall(fn, ...)
+  return not ok and tostring(err):find(pattern, 1, true) ~= nil, err
+end
+
+return {
+  duration = 3,
+  on_start = function(ctx)
+    world.plane{friction = 1}
+    expect("misspelt field named with its path", (fails_with("axles[1].suspension.frequncy: unknown field",
+      vehicle.spawn, "vtest:broken")))
+    expect("unknown vehicle lists the mod's vehicles", (fails_with("this mod has: broken, kart", vehicle.spawn, "vtest:nope")))
+    expect("unknown mod is named", (fails_with("no mod named \"nomod\"", vehicle.spawn, "nomod:car")))
+    car = vehicle.spawn("vtest:kart", {position = {0, 0, 0}})
+    expect("unknown control is an error", (fails_with("unknown field 'throtle'", car.set_controls, car, {throtle = 1})))
+    expect("bad tune value names the field", (fails_with("engine.max_rpm", car.tune, car, {engine = {max_rpm = -5}})))
+    expect("mesh path may not leave the mod", (fails_with("leaves the mod's folder", car.tune, car, {chassis = {mesh = "../x.glb"}})))
+    local def = vehicle.definition("base:hatchback")
+    expect("definition has every field", math.abs(def.axles[2].suspension.frequency - 1.6) < 1e-6 and def.engine.max_rpm == 6800)
+    -- Part throttle: the kart pulls without wheelspin (a spinning tyre keeps
+    -- pushing at sliding friction whatever the engine does).
+    car:set_controls{throttle = 0.15}
+    effects = drive.effects(car)
+    expect("player controller waits for the input module", drive.player(car):update(1 / 60) == false)
+  end,
+  on_update = function(ctx, dt)
+    effects:update(dt)
+    if ctx.step == 30 then v30 = car:speed() end
+    if ctx.step == 45 then
+      expect("exhaust smoke rises with throttle (particles/s)", effects.smoke, {min = 5})
+    end
+    if ctx.step == 60 then
+      gain_before = car:speed() - v30
+      local t = car:telemetry()
+      expect("moving forward after 1 s of throttle (m/s)", t.speed, {min = 1.5})
+      expect("four wheels report contact", #t.wheels == 4 and t.wheels[1].contact and t.wheels[4].contact)
+      expect("loads carry the weight (N)", t.wheels[1].load + t.wheels[2].load + t.wheels[3].load + t.wheels[4].load,
+             {min = 300 * 9.81 * 0.8, max = 300 * 9.81 * 1.2})
+      -- Tuning while running: a tenth of the torque.
+      car:tune{engine = {torque = {{1000, 12}, {4000, 16}, {6500, 12}}}}
+      expect("tuned value visible", car:definition().engine.torque[2][2] == 16)
+    end
+    if ctx.step == 90 then
+      -- The same half second with a tenth of the torque gains much less speed.
+      expect("tuned car accelerates less (speed gain ratio after/before)", (car:speed() - (v30 + gain_before)) / gain_before,
+             {max = 0.5})
+    end
+    if ctx.step == 120 then
+      car:reset()
+      expect("reset puts the car back at rest (m/s)", math.abs(car:speed()), {max = 1e-6})
+      local p = car:position()
+      expect("reset puts the car back at its spawn point (m)", math.abs(p.x) + math.abs(p.z), {max = 0.5})
+    end
+  end,
+  on_finish = function(ctx)
+    save.write("api_test", {best_s = 12.5, laps = {1, 2, 3}, name = "kart", ok = true})
+    local back = save.read("api_test")
+    expect("save round-trips", back.best_s == 12.5 and back.laps[3] == 3 and back.name == "kart" and back.ok == true)
+    expect("bad save name refused", (fails_with("must be 1 to 64 letters", save.write, "../escape", {})))
+    car:remove()
+    expect("removed vehicle is invalid", not car:is_valid())
+    expect("removed vehicle refuses use", (fails_with("was removed", car.speed, car)))
+  end,
+}
