@@ -5,6 +5,7 @@
 //
 // Index
 //   DrawShape, DebugLine, FrameSnapshot   what the renderer reads (plain data)
+//   ModelInstance, MeshStats              models (model.h) placed in the frame; what was drawn
 //   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
@@ -72,12 +73,38 @@ struct TerrainSurface {
 /// Number of built-in procedural terrain textures (see TerrainSurface).
 inline constexpr int kTerrainTextureCount = 8;
 
+struct Model;  // render/model.h
+
+/// One model drawn this frame: model space -> world is
+/// translate(position) * rotate(orientation) * scale(scale). The renderer
+/// uploads a model the first time it sees it and frees it once no snapshot
+/// and nobody else holds the shared_ptr any more.
+struct ModelInstance {
+  std::shared_ptr<const Model> model;
+  Eigen::Vector3f position{0, 0, 0};  // m, world
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  Eigen::Vector3f scale{1, 1, 1};     // per model axis, unitless
+  Eigen::Vector3f tint{1, 1, 1};      // linear RGB factor on every material colour
+};
+
 /// Everything the renderer reads of the simulation.
 struct FrameSnapshot {
   std::vector<DrawShape> shapes;
   std::vector<DebugLine> lines;
   double simTime_s = 0;
   const TerrainSurface* terrain = nullptr;  // optional; null: no terrain, no terrain GPU memory
+  std::vector<ModelInstance> models;        // textured meshes (mesh pass); empty: no mesh GPU memory
+};
+
+/// What the mesh pass did in the last drawFrame (Renderer::meshStats).
+struct MeshStats {
+  int instances = 0;          // ModelInstances handed over
+  int nodesTested = 0;        // tree nodes looked at by view culling
+  int nodesCulled = 0;        // nodes with meshes left out (outside the view)
+  int drawCalls = 0;          // one per visible (node, mesh)
+  int materialSwitches = 0;   // times the bound material (colour, texture) changed, the first bind included
+  std::int64_t triangles = 0;
+  int modelsResident = 0;     // models whose meshes and textures are on the GPU
 };
 
 /// What the terrain pass did in the last drawFrame (Renderer::terrainStats).
@@ -193,6 +220,9 @@ class Renderer {
   // Chunks and triangles of the terrain in the last drawFrame (all zero
   // without a terrain).
   const TerrainStats& terrainStats() const;
+  // Instances, culled nodes, draw calls and material switches of the mesh
+  // pass in the last drawFrame.
+  const MeshStats& meshStats() const;
 
   struct Impl;  // SDL, GL and ImGui state; kept out of this header
 

@@ -9,6 +9,7 @@
 #include "render/internal/gl_context.h"
 #include "render/internal/hud.h"
 #include "render/internal/line_pass.h"
+#include "render/internal/mesh_pass.h"
 #include "render/internal/render_targets.h"
 #include "render/internal/shape_pass.h"
 #include "render/internal/sky_pass.h"
@@ -26,6 +27,9 @@ struct Renderer::Impl {
   LinePass lines;
   TerrainPass terrain;       // creates nothing until the first frame with a terrain
   TerrainStats terrainStats;
+  MeshPass meshes;           // creates nothing until the first frame with a model
+  MeshStats meshStats;
+  bool reportedMeshError = false;
   std::unique_ptr<Hud> hud;  // null when config.hud is false
   Environment environment;
   Camera camera;
