@@ -9,22 +9,19 @@
 #include "render/internal/camera_math.h"
 #include "render/internal/mesh_draw_list.h"
 #include "render/model.h"
+#include "shared_assets.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
 
 namespace tumble::render {
 namespace {
 
+using tumble::test::sharedAsset;
 using test::countPixels;
 using test::Image;
 using test::loadPng;
 
 constexpr int kWidth = 320, kHeight = 240;
-
-std::string sharedAsset(const std::string& relative) {
-  const char* shared = std::getenv("TUMBLE_SHARED_DIR");
-  return (std::filesystem::path(shared ? shared : "../shared") / "assets/third_party" / relative).string();
-}
 
 std::shared_ptr<const Model> mustLoad(const std::string& path) {
   auto model = loadModel(path);

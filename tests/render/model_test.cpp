@@ -12,16 +12,13 @@
 
 #include "render/internal/camera_math.h"
 #include "render/model.h"
+#include "shared_assets.h"
 
 namespace tumble::render {
 namespace {
 
+using tumble::test::sharedAsset;
 namespace fs = std::filesystem;
-
-std::string sharedAsset(const std::string& relative) {
-  const char* shared = std::getenv("TUMBLE_SHARED_DIR");
-  return (fs::path(shared ? shared : "../shared") / "assets/third_party" / relative).string();
-}
 
 fs::path scratchDir(const std::string& name) {
   fs::path dir = fs::temp_directory_path() / ("tumble_model_" + name + "_" + std::to_string(::getpid()));
