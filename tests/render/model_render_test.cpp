@@ -227,3 +227,51 @@ TEST_F(ModelRender, DroppedModelsLeaveTheGpu) {
 
 }  // namespace
 }  // namespace tumble::render
+
+namespace tumble::render {
+namespace {
+
+// Every model the project ships (mods/base/assets/models, made by `tumble
+// meshgen`) loads without a warning, and all of them drawn side by side
+// fill the frame with more than sky.
+TEST_F(ModelRender, ShippedModelsLoadAndDraw) {
+  const char* source = std::getenv("TUMBLE_SOURCE_DIR");
+  ASSERT_NE(source, nullptr);
+  const std::filesystem::path dir = std::filesystem::path(source) / "mods/base/assets/models";
+  const char* names[] = {"hatchback", "truck", "buggy", "wheel", "cockpit", "rock", "tree", "building", "barrier",
+                         "checkpoint_arch"};
+  FrameSnapshot frame;
+  DrawShape ground;
+  ground.kind = ShapeKind::Plane;
+  ground.color = {0.45f, 0.5f, 0.42f};
+  frame.shapes.push_back(ground);
+  float x = -14;
+  for (const char* name : names) {
+    auto model = loadModel((dir / (std::string(name) + ".obj")).string());
+    ASSERT_TRUE(model.ok()) << model.error();
+    EXPECT_TRUE((*model)->warnings.empty()) << name << ": " << (*model)->warnings[0];
+    const BoundingBox& box = (*model)->nodes[0].coverBox;
+    const float width = box.max.x() - box.min.x();
+    ModelInstance instance;
+    instance.model = *model;
+    instance.position = {x + width / 2 - box.center().x(), std::string(name) == "wheel" ? 0.35f : 0.0f, 0};
+    if (std::string(name) == "building") instance.position.z() = -9;
+    x += width + 0.6f;
+    frame.models.push_back(instance);
+  }
+  Camera& camera = m_renderer->camera();
+  camera.target = {0, 1.5f, 0};
+  camera.yaw_rad = 0.35f;
+  camera.pitch_rad = 0.35f;
+  camera.distance_m = 26;
+  const Image shot = render(frame, "shipped_models.png");
+  EXPECT_EQ(m_renderer->meshStats().instances, 10);
+  EXPECT_GE(m_renderer->meshStats().drawCalls, 10);
+  // Red hatchback paint, yellow buggy tubes, green leaves are all in view.
+  EXPECT_GT(countPixels(shot, test::isReddish), 100);
+  EXPECT_GT(countPixels(shot, test::isYellowish), 20);
+  EXPECT_GT(countPixels(shot, test::isGreenish), 100);
+}
+
+}  // namespace
+}  // namespace tumble::render
