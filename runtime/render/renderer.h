@@ -128,12 +128,14 @@ struct TerrainStats {
 };
 inline constexpr int kTerrainChunkBlocks = 64;
 
-enum class CameraMode { Orbit, Follow };
+// Chase, Hood and Cockpit follow a body (render/camera_rig.h).
+enum class CameraMode { Orbit, Follow, Chase, Hood, Cockpit };
 
-/// The eye sits at target + distance_m * (cos(pitch) sin(yaw), sin(pitch),
-/// cos(pitch) cos(yaw)) and looks at target, Y up. Both modes use this; in
+/// Orbit and Follow: the eye sits at target + distance_m * (cos(pitch)
+/// sin(yaw), sin(pitch), cos(pitch) cos(yaw)) and looks at target, Y up; in
 /// Follow the app moves target to the followed body every frame, so the
-/// mouse still orbits around the moving body.
+/// mouse still orbits around the moving body. Chase, Hood and Cockpit: the
+/// app (CameraRig) sets eye_m, target and up every frame.
 struct Camera {
   CameraMode mode = CameraMode::Orbit;
   Eigen::Vector3f target{0, 1, 0};  // m; orbit centre, or the followed point
@@ -141,6 +143,11 @@ struct Camera {
   float pitch_rad = 0.35f;          // positive looks down from above
   float distance_m = 14.0f;
   float fovY_rad = 1.0f;            // vertical field of view
+  Eigen::Vector3f eye_m{0, 3, 10};  // m; Chase / Hood / Cockpit only
+  Eigen::Vector3f up{0, 1, 0};      // Chase / Hood / Cockpit: the view's up direction
+  // The camera key (C) steps into Chase, Hood and Cockpit too; the app sets
+  // it when the scenario names a body to follow (camera.set_mode).
+  bool vehicleModes = false;
 };
 
 /// Shown by the Dear ImGui HUD.
@@ -199,7 +206,8 @@ class Renderer {
   Eigen::Vector2i framebufferSize() const;
 
   // Handles SDL events: close/Escape quit; P or Space pause; N single step;
-  // '-'/'=' slower/faster slow motion; F12 screenshot; C toggles orbit/follow;
+  // '-'/'=' slower/faster slow motion; F12 screenshot; C steps through the
+  // camera modes (orbit, follow, and with Camera::vehicleModes chase, hood, cockpit);
   // mouse drag orbits, wheel zooms. Also feeds ImGui; keys and mouse that the
   // HUD is using (typing in a field, dragging a slider) do not reach the game.
   void processEvents(Controls& controls);

@@ -455,6 +455,8 @@ void ScenarioHost::buildEnvironment() {
   openRandomBindings(L, env);
   openTriggerBindings(L, env);
   openRagdollBindings(L, env);
+  openModelBindings(L, env);
+  openCameraBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));

@@ -24,6 +24,7 @@
 #include "physics/world.h"
 #include "script/lua_vm.h"
 #include "script/mods.h"
+#include "script/presentation.h"
 #include "script/script_error.h"
 
 namespace tumble::physics {
@@ -55,6 +56,11 @@ struct ScenarioOptions {
   std::uint64_t seed = 1;
   std::string scriptsDir;  ///< the runtime's Lua library (require "tumble.x")
   VmLimits limits;
+  /// Every known mod's folder by name, for "MOD:path" asset references.
+  std::map<std::string, std::string> modDirs;
+  /// Bounds of a model file (world.add_static_model's collision box); the
+  /// app provides it. Unset: static models cannot have collision = "box".
+  ModelBoundsFn modelBounds;
 };
 
 class ScenarioHost {
@@ -143,6 +149,10 @@ class ScenarioHost {
   /// Seed for random.new() without a seed: the run's seed mixed with a count.
   std::uint64_t nextRandomSeed();
   static ScenarioHost* from(lua_State* L);
+  /// Models on bodies, static scenery models and the camera request
+  /// (bind_model.cpp, bind_camera.cpp); the app draws from it.
+  Presentation& presentation() { return m_presentation; }
+  const Presentation& presentation() const { return m_presentation; }
 
  private:
   struct Timer {
@@ -210,6 +220,7 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  Presentation m_presentation;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -225,5 +236,9 @@ void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
 /// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
 void openRagdollBindings(lua_State* L, int envIndex);
+/// body:set_model and world.add_static_model (bind_model.cpp; after
+/// openWorldBindings and openBodyType), and the camera table (bind_camera.cpp).
+void openModelBindings(lua_State* L, int envIndex);
+void openCameraBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iterator>
 
+#include "render/camera_rig.h"
 #include "render/internal/time_scale.h"
 
 namespace tumble::render {
@@ -142,8 +143,7 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
                          ImGuiSliderFlags_AlwaysClamp)) {
       controls.timeScale = kTimeScales[level];
     }
-    ImGui::TextColored(kDimColor, "camera: %s (C)",
-                       cameraMode == CameraMode::Orbit ? "orbit" : "follow");
+    ImGui::TextColored(kDimColor, "camera: %s (C)", cameraModeName(cameraMode));
     ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot");
   }
   ImGui::End();
