@@ -147,6 +147,46 @@ void cullModel(const Model& model, const Eigen::Matrix4f& modelToWorld, const Ei
   if (nodesTested != nullptr) *nodesTested = tested;
 }
 
+namespace {
+
+// Squared distance from a point to a box (0 inside).
+float distanceSquared(const BoundingBox& box, const Eigen::Vector3f& p) {
+  const Eigen::Vector3f d = (box.min - p).cwiseMax(p - box.max).cwiseMax(Eigen::Vector3f::Zero());
+  return d.squaredNorm();
+}
+
+}  // namespace
+
+void overlapModel(const Model& model, const Eigen::Matrix4f& modelToWorld, const BoundingBox& worldBox,
+                  std::vector<int>& nodes, int* nodesTested) {
+  nodes.clear();
+  int tested = 0;
+  if (!model.nodes.empty() && !worldBox.empty) {
+    // Spheres go to world space whole: centre transformed, radius scaled by
+    // the largest axis scale (exact for rigid and uniform-scale placements,
+    // conservative otherwise).
+    const Eigen::Matrix3f linear = modelToWorld.topLeftCorner<3, 3>();
+    const float scale = std::max({linear.col(0).norm(), linear.col(1).norm(), linear.col(2).norm()});
+    auto misses = [&](const BoundingSphere& sphere) {
+      if (sphere.empty()) return true;
+      const Eigen::Vector3f c = transformPoint(modelToWorld, sphere.center);
+      const float r = sphere.radius_m * scale;
+      return distanceSquared(worldBox, c) > r * r;
+    };
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const int index = stack.back();
+      stack.pop_back();
+      const ModelNode& node = model.nodes[index];
+      ++tested;
+      if (misses(node.coverSphere)) continue;
+      if (!node.meshes.empty() && !misses(node.tightSphere)) nodes.push_back(index);
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
+    }
+  }
+  if (nodesTested != nullptr) *nodesTested = tested;
+}
+
 FlatMesh flattenModel(const Model& model) {
   FlatMesh flat;
   for (const ModelNode& node : model.nodes) {

@@ -12,6 +12,7 @@
 //   ModelNode, Model                        the object tree (as in the driving paper)
 //   loadModel                               assimp -> Model, with clear errors
 //   computeBounds, cullModel                tree bounds; view culling with them
+//   overlapModel                            nodes near a world box (early-out for collision tests)
 //   flattenModel                            every triangle in model space (mass properties)
 //
 // "Model space" is the frame of the root node's parent: a node's toModel
@@ -118,6 +119,14 @@ void computeBounds(Model& model);
 /// without visiting it. `nodesTested` (optional) counts nodes looked at.
 void cullModel(const Model& model, const Eigen::Matrix4f& modelToWorld, const Eigen::Matrix4f& viewProjection,
                std::vector<int>& visibleNodes, int* nodesTested = nullptr);
+
+/// Nodes with meshes whose tight bounds may overlap `worldBox` when the
+/// model is placed by `modelToWorld` (rigid or uniformly scaled), in tree
+/// order: the broad test before any triangle test. A subtree whose covering
+/// sphere misses the box is skipped without visiting it. `nodesTested`
+/// (optional) counts nodes looked at.
+void overlapModel(const Model& model, const Eigen::Matrix4f& modelToWorld, const BoundingBox& worldBox,
+                  std::vector<int>& nodes, int* nodesTested = nullptr);
 
 /// Every triangle of the model in model space, vertices shared within each
 /// mesh: what massPropertiesOfMesh and collision boxes need.

@@ -253,5 +253,36 @@ TEST(ModelTree, NodesBehindTheCameraAreCulled) {
   EXPECT_EQ(tested, 1);
 }
 
+TEST(ModelTree, OverlapQuerySkipsSubtreesEarly) {
+  const Model model = makeTree();
+  std::vector<int> nodes;
+  int tested = 0;
+  BoundingBox box;
+  // A box around the grandchild (model z = -30), model placed 100 m up X.
+  const Eigen::Matrix4f place = Eigen::Affine3f(Eigen::Translation3f(100, 0, 0)).matrix();
+  box.add(Eigen::Vector3f(97.5f, -0.2f, -30.2f));
+  box.add(Eigen::Vector3f(98.5f, 0.2f, -29.8f));
+  overlapModel(model, place, box, nodes, &tested);
+  EXPECT_EQ(nodes, (std::vector<int>{3}));
+  // Node 1 (x = +2) is looked at and dropped; nothing below it exists.
+  EXPECT_EQ(tested, 4);
+
+  // Far from everything: only the root's covering sphere is tested.
+  BoundingBox far;
+  far.add(Eigen::Vector3f(0, 50, 0));
+  far.add(Eigen::Vector3f(1, 51, 1));
+  overlapModel(model, place, far, nodes, &tested);
+  EXPECT_TRUE(nodes.empty());
+  EXPECT_EQ(tested, 1);
+
+  // Scaled by 2: the grandchild moves to z = -60 and grows to 2 m.
+  const Eigen::Matrix4f scaled = Eigen::Affine3f(Eigen::Scaling(2.0f)).matrix();
+  BoundingBox nearScaled;
+  nearScaled.add(Eigen::Vector3f(-4.9f, 0, -60));
+  nearScaled.add(Eigen::Vector3f(-4.8f, 0.1f, -59.9f));
+  overlapModel(model, scaled, nearScaled, nodes, &tested);
+  EXPECT_EQ(nodes, (std::vector<int>{3}));
+}
+
 }  // namespace
 }  // namespace tumble::render
