@@ -165,6 +165,7 @@ void Scene::registerStaticObjects() {
 std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
   if (m_terrain) names.push_back("terrain");
+  if (m_models && m_models->size() > 0) names.push_back("models");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }

@@ -6,6 +6,10 @@
 
 #include <stb/stb_image.h>
 
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "tumble_process.h"
 
 namespace tumble::test {
@@ -41,8 +45,6 @@ Picture loadPicture(const std::string& path) {
   return pic;
 }
 
-std::string modelMods() { return testMods(); }
-
 }  // namespace
 
 TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
@@ -56,7 +58,7 @@ TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
       {"chase_no_target", "mode \"chase\" needs a body to follow"},
   };
   for (const Case& c : cases) {
-    auto r = runTumble(modelMods() + " run models:" + c.scenario);
+    auto r = runTumble(testMods() + " run models:" + c.scenario);
     EXPECT_EQ(r.exitCode, 3) << c.scenario << ": a script error, the run still finishes\n" << r.output;
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.scenario << ":\n" << r.output;
     EXPECT_NE(r.output.find(std::string("scenarios/") + c.scenario + ".lua:"), std::string::npos)
@@ -64,9 +66,27 @@ TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
   }
 }
 
+TEST(ModelsCli, MistakesInOptionsSayWhatIsValid) {
+  auto r = runTumble(testMods() + " run models:bad_options");
+  EXPECT_EQ(r.exitCode, 0) << "every mistake refused with the right words:\n" << r.output;
+}
+
 TEST(ModelsCli, StaticModelsCollideThroughTheirBoxes) {
-  auto r = runTumble(modelMods() + " run models:static_scenery");
+  const std::string dir = outDir("models_static");
+  auto r = runTumble(testMods() + " run models:static_scenery --report " + dir + "/r.json");
   EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const auto& subsystems = report["subsystems"];
+  EXPECT_NE(std::find(subsystems.begin(), subsystems.end(), "models"), subsystems.end()) << subsystems;
+  EXPECT_EQ(std::find(subsystems.begin(), subsystems.end(), "render"), subsystems.end()) << "headless: " << subsystems;
+
+  // A scene without models creates no model cache.
+  auto plain = runTumble(testMods() + " run good:boxes --report " + dir + "/plain.json");
+  std::ifstream plainIn(dir + "/plain.json");
+  const nlohmann::json plainReport = nlohmann::json::parse(plainIn);
+  const auto& plainSubsystems = plainReport["subsystems"];
+  EXPECT_EQ(std::find(plainSubsystems.begin(), plainSubsystems.end(), "models"), plainSubsystems.end());
 }
 
 TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
