@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/meshgen.h"
 #include "app/paths.h"
 #include "app/simulation_loop.h"
 #include "core/log.h"
@@ -168,6 +169,7 @@ void addCommands(CLI::App& cli, int* exitCode) {
   CLI::App* list = cli.add_subcommand("list", "list mods, scenarios, vehicles and emitters");
   list->callback([st, exitCode] { *exitCode = listMods(st->modDirs); });
 
+  addMeshgenCommand(cli, *exitCode);
 #ifdef TUMBLE_HAVE_TERRAIN_COMMAND
   addTerrainCommand(cli, *exitCode);
 #endif

@@ -10,6 +10,7 @@
 #include "app/paths.h"
 #include "core/log.h"
 #include "script/mod_bindings.h"
+#include "app/scene_models.h"
 #include "script/mods.h"
 #include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
@@ -162,6 +163,10 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   scene->m_world = std::make_unique<physics::World>(ws);
   scene->m_input = loadInput(registry, *mod);
   so.input = scene->m_input.get();
+  // Models: "MOD:path" references and collision boxes from model bounds.
+  for (const script::ModInfo& m : registry.mods()) so.modDirs[m.name] = m.dir;
+  scene->m_models = std::make_unique<ModelCache>();
+  so.modelBounds = [models = scene->m_models.get()](const std::string& file) { return models->bounds(file); };
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
@@ -221,6 +226,7 @@ std::vector<std::string> Scene::subsystems() const {
   if (m_terrain) names.push_back("terrain");
   if (m_host->particlesIfAny()) names.push_back("particles");  // created by the first particles.spawn
   if (m_host && m_host->vehiclesIfAny()) names.push_back("vehicle");
+  if (m_models && m_models->size() > 0) names.push_back("models");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -237,12 +243,38 @@ void Scene::savePreviousState() {
   });
 }
 
+std::optional<render::BodyPose> Scene::bodyPose(physics::BodyId id, double alpha) const {
+  if (!m_world->isValid(id)) return std::nullopt;
+  const physics::Body& b = m_world->body(id);
+  Vec3 p = b.position_m;
+  Quat q = b.orientation;
+  if (id.index < m_prevPosition.size() && b.type != physics::BodyType::Static) {
+    p = m_prevPosition[id.index] + Real(alpha) * (b.position_m - m_prevPosition[id.index]);
+    q = m_prevOrientation[id.index].slerp(Real(alpha), b.orientation);
+  }
+  return render::BodyPose{p.cast<float>(), q.cast<float>()};
+}
+
 void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
   out.shapes.clear();
+  out.models.clear();
+  // Bodies drawn with a model (body:set_model, static models' collision
+  // boxes) are not also drawn as their plain shape.
+  std::vector<bool> hasModel;
+  const script::Presentation& presentation = m_host->presentation();
+  auto mark = [&](physics::BodyId id) {
+    if (id.isNull() || !m_world->isValid(id)) return;
+    if (hasModel.size() <= id.index) hasModel.resize(id.index + 1, false);
+    hasModel[id.index] = true;
+  };
+  for (const auto& a : presentation.attachments) mark(a.body);
+  for (const auto& s : presentation.statics) mark(s.body);
+  appendModelInstances(*this, alpha, out.models);
 #if TUMBLE_HAVE_TERRAIN
   out.terrain = m_terrain ? &m_terrain->surface() : nullptr;
 #endif
   m_world->forEachBody([&](physics::BodyId id, const physics::Body& b) {
+    if (id.index < hasModel.size() && hasModel[id.index]) return;
     render::DrawShape s;
     Vec3 p = b.position_m;
     Quat q = b.orientation;

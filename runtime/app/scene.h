@@ -6,12 +6,14 @@
 // spawns an emitter. `subsystems()` lists what exists, for the report.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/result.h"
 #include "input/input_system.h"
 #include "physics/world.h"
+#include "render/camera_rig.h"
 #include "render/renderer.h"
 #include "script/scenario_host.h"
 
@@ -34,6 +36,7 @@ struct SceneOptions {
 };
 
 class TerrainScene;
+class ModelCache;
 
 /// Integrators the rigid-body world offers (more come with the numerics lab).
 const std::vector<std::string>& rigidBodyIntegrators();
@@ -67,10 +70,16 @@ class Scene {
   void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
   /// Remembers the current state as "previous" (call before each step).
   void savePreviousState();
+  /// A body's pose interpolated like the snapshot; nullopt for a removed body.
+  std::optional<render::BodyPose> bodyPose(physics::BodyId id, double alpha) const;
+  /// Model files scripts named (body:set_model, world.add_static_model);
+  /// loading on first use does not change the scene, so const may load.
+  ModelCache& models() const { return *m_models; }
 
  private:
   SceneOptions m_options;
   std::string m_modName, m_scenarioName;
+  std::unique_ptr<ModelCache> m_models;     ///< before m_host: the host's modelBounds uses it
   std::unique_ptr<TerrainScene> m_terrain;  ///< before m_world: the world points at its height field
   std::unique_ptr<physics::World> m_world;
   std::unique_ptr<input::InputSystem> m_input;  ///< before m_host, which reads it

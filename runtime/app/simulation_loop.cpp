@@ -7,6 +7,7 @@
 #include "app/bindings_menu.h"
 #include "app/run_report.h"
 #include "app/tuning.h"
+#include "app/scene_models.h"
 #include "core/log.h"
 #include "input/overrides_file.h"
 #include "physics/joints/joint_system.h"
@@ -173,11 +174,13 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   const double shotAt = o.screenshotAt_s >= 0 ? o.screenshotAt_s : double(steps) * dt;
   bool shotTaken = false;
   Status shotStatus = Ok{};
+  CameraDirector director;  // camera.set_mode from the scenario
   auto takeShot = [&](double time_s) {
     Stopwatch sw;
     if (scene.host().vehiclesIfAny()) frameCamera(scene, renderer->camera());  // where the car is now
     render::FrameSnapshot frame;
     scene.snapshot(frame, 1.0);
+    director.update(scene, 1.0, 0.0f, renderer->camera(), frame);
     frame.simTime_s = time_s;
     render::Controls controls;
     shotStatus = renderer->drawFrame(frame, hudStats(scene, 0, RunTimings{}, time_s), controls,
@@ -268,6 +271,8 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     double simWall = wall.seconds();
     frameCamera(scene, renderer.camera());
     scene.snapshot(snap, 1.0);
+    CameraDirector director;
+    director.update(scene, 1.0, 0.0f, renderer.camera(), snap);
     snap.simTime_s = time_s;
     RunTimings perStep = total;
     perStep.physics_s /= double(std::max(1LL, steps));
@@ -305,6 +310,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   tuning.overridesPath = script::tuneOverridesPath(scene.host().mod().name);
   renderer.setTuningPanel(&tuning);
 
+  CameraDirector director;
   Stopwatch clock;
   double last = clock.seconds(), fpsTime = 0;
   int fpsFrames = 0;
@@ -332,8 +338,11 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
       time_s = double(step) * dt;
       accumulator -= dt;
     }
-    if (renderer.camera().mode == render::CameraMode::Follow) renderer.camera().target = dynamicCentroid(scene);
     scene.snapshot(snap, accumulator / dt);
+    director.update(scene, accumulator / dt, float(elapsed), renderer.camera(), snap);
+    if (!director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
+      renderer.camera().target = dynamicCentroid(scene);
+    }
     snap.simTime_s = time_s;
     std::string shot;
     if (controls.screenshotRequested) {

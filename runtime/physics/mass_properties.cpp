@@ -1,5 +1,10 @@
 #include "physics/mass_properties.h"
 
+#include <cmath>
+#include <map>
+#include <tuple>
+#include <vector>
+
 #include <Eigen/Eigenvalues>
 
 namespace tumble::physics {
@@ -25,6 +30,9 @@ Sub subexpressions(double w0, double w1, double w2) {
 }
 
 }  // namespace
+
+static MassProperties finishMassProperties(MassProperties out, const double* in, const Eigen::Vector3d& origin,
+                                           Real density);
 
 MassProperties massPropertiesOfMesh(std::span<const Vec3> vertices, std::span<const std::array<std::uint32_t, 3>> triangles,
                                     Real density) {
@@ -62,7 +70,20 @@ MassProperties massPropertiesOfMesh(std::span<const Vec3> vertices, std::span<co
   for (int i = 0; i < 10; ++i) in[i] *= kMult[i];
   const double volume = in[0];
   out.volume_m3 = Real(volume);
-  if (volume == 0) return out;
+  bool finite = std::isfinite(double(density)) && density > 0;
+  for (const Vec3& v : vertices) finite = finite && v.allFinite();
+  if (!finite || !(std::abs(volume) >= 1e-12)) return out;
+  out.valid = out.skippedTriangles == 0;
+  // Inside out (clockwise seen from outside): every integral changes sign;
+  // turn them around so mass and inertia are the solid's.
+  if (volume < 0)
+    for (double& v : in) v = -v;
+  return finishMassProperties(out, in, origin, density);
+}
+
+static MassProperties finishMassProperties(MassProperties out, const double* in, const Eigen::Vector3d& origin,
+                                           Real density) {
+  const double volume = in[0];
   const double rho = density;
   const double mass = rho * volume;
   const Eigen::Vector3d c(in[1] / volume, in[2] / volume, in[3] / volume);
@@ -123,6 +144,30 @@ PrincipalFrame principalFrame(const Mat3& inertia) {
 Mat3 shiftedInertia(const Vec3& moments, const Quat& q, Real mass, const Vec3& d) {
   const Mat3 R = q.toRotationMatrix();
   return R * moments.asDiagonal() * R.transpose() + mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+}
+
+bool isClosedMesh(std::span<const Vec3> vertices_m, std::span<const std::array<std::uint32_t, 3>> triangles) {
+  if (triangles.empty()) return false;
+  // Weld vertices at identical positions.
+  std::map<std::tuple<Real, Real, Real>, std::uint32_t> ids;
+  std::vector<std::uint32_t> weld(vertices_m.size());
+  for (std::size_t i = 0; i < vertices_m.size(); ++i) {
+    const Vec3& p = vertices_m[i];
+    weld[i] = ids.emplace(std::make_tuple(p.x(), p.y(), p.z()), std::uint32_t(ids.size())).first->second;
+  }
+  // Each directed edge once, and its reverse exactly as often.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] >= vertices_m.size() || t[(k + 1) % 3] >= vertices_m.size()) return false;
+      const std::uint32_t a = weld[t[k]], b = weld[t[(k + 1) % 3]];
+      if (a == b) return false;  // degenerate triangle
+      if (++edges[{a, b}] > 1) return false;
+    }
+  }
+  for (const auto& [edge, count] : edges)
+    if (edges.find({edge.second, edge.first}) == edges.end()) return false;
+  return true;
 }
 
 }  // namespace tumble::physics

@@ -27,6 +27,11 @@ struct MassProperties {
   Vec3 centreOfMass_m = Vec3::Zero();       ///< in the frame of the vertices
   Mat3 inertia_kgm2 = Mat3::Zero();         ///< about the centre of mass, axes of the vertex frame
   int skippedTriangles = 0;  ///< triangles with an index past the vertex array (left out)
+  /// False for an empty or flat mesh (|volume| < 1e-12 m^3), a triangle index
+  /// out of range, a non-finite vertex or a density that is not positive and
+  /// finite. An inside-out mesh is valid: its volume is negative but its mass
+  /// and inertia are those of the solid (the winding is turned around).
+  bool valid = false;
 };
 
 /// Mass properties of the solid bounded by `triangles` (indices into
@@ -37,6 +42,11 @@ MassProperties massPropertiesOfMesh(std::span<const Vec3> vertices_m,
                                     std::span<const std::array<std::uint32_t, 3>> triangles, Real density_kgpm3);
 
 /// A symmetric inertia tensor I = R diag(moments) R^T.
+/// True if every edge of the mesh (vertices at identical positions welded)
+/// is used exactly once in each direction: a closed, consistently wound
+/// surface, the condition for massPropertiesOfMesh to mean a solid.
+bool isClosedMesh(std::span<const Vec3> vertices_m, std::span<const std::array<std::uint32_t, 3>> triangles);
+
 struct PrincipalFrame {
   Vec3 moments_kgm2 = Vec3::Zero();  ///< principal moments about the axes R e_x, R e_y, R e_z
   Quat rotation = Quat::Identity();  ///< columns of R: the principal axes (right-handed)

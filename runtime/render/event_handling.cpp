@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "render/camera_rig.h"
 #include "render/internal/camera_math.h"
 #include "render/internal/renderer_impl.h"
 #include "render/internal/time_scale.h"
@@ -34,9 +35,7 @@ void applyKey(SDL_Keycode key, Controls& controls, Camera& camera) {
     case SDLK_KP_PLUS: controls.timeScale = fasterTimeScale(controls.timeScale); break;
     case SDLK_F12: controls.screenshotRequested = true; break;
     case SDLK_F2: controls.tuningPanelVisible = !controls.tuningPanelVisible; break;
-    case SDLK_c:
-      camera.mode = camera.mode == CameraMode::Orbit ? CameraMode::Follow : CameraMode::Orbit;
-      break;
+    case SDLK_c: camera.mode = nextCameraMode(camera.mode, camera.vehicleModes); break;
     default: break;
   }
 }

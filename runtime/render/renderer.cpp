@@ -87,6 +87,11 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   r.sky.draw(view, r.environment);
   drawTerrain(r, frame, view);
   r.shapes.draw(frame.shapes, view, r.environment);
+  r.meshes.draw(frame.models, view, r.environment, r.meshStats);
+  if (!r.meshes.lastError().empty() && !r.reportedMeshError) {
+    log::warn("render: models not drawn: " + r.meshes.lastError() + " (reported once)");
+    r.reportedMeshError = true;
+  }
   r.lines.draw(frame.lines, view);
   // Last in the scene: transparent, depth-tested, no depth writes.
   if (Status s = r.particles.draw(frame.particles, frame.additiveParticles, view); !s && !r.reportedParticleError) {
@@ -115,6 +120,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
 void Renderer::setTuningPanel(TuningPanel* panel) { m_impl->tuning = panel; }
 
 const TerrainStats& Renderer::terrainStats() const { return m_impl->terrainStats; }
+const MeshStats& Renderer::meshStats() const { return m_impl->meshStats; }
 
 Status Renderer::saveScreenshot(const std::string& path) {
   const Impl& r = *m_impl;

@@ -6,6 +6,7 @@
 // Index
 //   DrawShape, DebugLine, FrameSnapshot   what the renderer reads (plain data)
 //   DrawParticle                          one camera-facing particle billboard
+//   ModelInstance, MeshStats              models (model.h) placed in the frame; what was drawn
 //   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
@@ -91,6 +92,20 @@ struct TerrainSurface {
 /// Number of built-in procedural terrain textures (see TerrainSurface).
 inline constexpr int kTerrainTextureCount = 8;
 
+struct Model;  // render/model.h
+
+/// One model drawn this frame: model space -> world is
+/// translate(position) * rotate(orientation) * scale(scale). The renderer
+/// uploads a model the first time it sees it and frees it once no snapshot
+/// and nobody else holds the shared_ptr any more.
+struct ModelInstance {
+  std::shared_ptr<const Model> model;
+  Eigen::Vector3f position{0, 0, 0};  // m, world
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  Eigen::Vector3f scale{1, 1, 1};     // per model axis, unitless
+  Eigen::Vector3f tint{1, 1, 1};      // linear RGB factor on every material colour
+};
+
 /// Everything the renderer reads of the simulation.
 struct FrameSnapshot {
   std::vector<DrawShape> shapes;
@@ -102,6 +117,18 @@ struct FrameSnapshot {
   // against the scene, neither writes depth. Empty: no particle GPU objects.
   std::vector<DrawParticle> particles;
   std::vector<DrawParticle> additiveParticles;
+  std::vector<ModelInstance> models;        // textured meshes (mesh pass); empty: no mesh GPU memory
+};
+
+/// What the mesh pass did in the last drawFrame (Renderer::meshStats).
+struct MeshStats {
+  int instances = 0;          // ModelInstances handed over
+  int nodesTested = 0;        // tree nodes looked at by view culling
+  int nodesCulled = 0;        // nodes with meshes left out (outside the view)
+  int drawCalls = 0;          // one per visible (node, mesh)
+  int materialSwitches = 0;   // times the bound material (colour, texture) changed, the first bind included
+  std::int64_t triangles = 0;
+  int modelsResident = 0;     // models whose meshes and textures are on the GPU
 };
 
 /// What the terrain pass did in the last drawFrame (Renderer::terrainStats).
@@ -125,12 +152,14 @@ struct TerrainStats {
 };
 inline constexpr int kTerrainChunkBlocks = 64;
 
-enum class CameraMode { Orbit, Follow };
+// Chase, Hood and Cockpit follow a body (render/camera_rig.h).
+enum class CameraMode { Orbit, Follow, Chase, Hood, Cockpit };
 
-/// The eye sits at target + distance_m * (cos(pitch) sin(yaw), sin(pitch),
-/// cos(pitch) cos(yaw)) and looks at target, Y up. Both modes use this; in
+/// Orbit and Follow: the eye sits at target + distance_m * (cos(pitch)
+/// sin(yaw), sin(pitch), cos(pitch) cos(yaw)) and looks at target, Y up; in
 /// Follow the app moves target to the followed body every frame, so the
-/// mouse still orbits around the moving body.
+/// mouse still orbits around the moving body. Chase, Hood and Cockpit: the
+/// app (CameraRig) sets eye_m, target and up every frame.
 struct Camera {
   CameraMode mode = CameraMode::Orbit;
   Eigen::Vector3f target{0, 1, 0};  // m; orbit centre, or the followed point
@@ -138,6 +167,11 @@ struct Camera {
   float pitch_rad = 0.35f;          // positive looks down from above
   float distance_m = 14.0f;
   float fovY_rad = 1.0f;            // vertical field of view
+  Eigen::Vector3f eye_m{0, 3, 10};  // m; Chase / Hood / Cockpit only
+  Eigen::Vector3f up{0, 1, 0};      // Chase / Hood / Cockpit: the view's up direction
+  // The camera key (C) steps into Chase, Hood and Cockpit too; the app sets
+  // it when the scenario names a body to follow (camera.set_mode).
+  bool vehicleModes = false;
 };
 
 /// Shown by the Dear ImGui HUD.
@@ -245,7 +279,8 @@ class Renderer {
   Eigen::Vector2i framebufferSize() const;
 
   // Handles SDL events: close/Escape quit; P or Space pause; N single step;
-  // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; C toggles orbit/follow;
+  // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; C steps through the
+  // camera modes (orbit, follow, and with Camera::vehicleModes chase, hood, cockpit);
   // mouse drag orbits, wheel zooms. Also feeds ImGui; keys and mouse that the
   // HUD is using (typing in a field, dragging a slider) do not reach the game.
   void processEvents(Controls& controls);
@@ -275,6 +310,9 @@ class Renderer {
   // Chunks and triangles of the terrain in the last drawFrame (all zero
   // without a terrain).
   const TerrainStats& terrainStats() const;
+  // Instances, culled nodes, draw calls and material switches of the mesh
+  // pass in the last drawFrame.
+  const MeshStats& meshStats() const;
 
   struct Impl;  // SDL, GL and ImGui state; kept out of this header
 

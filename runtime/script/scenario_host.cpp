@@ -480,6 +480,8 @@ void ScenarioHost::buildEnvironment() {
   openTuneBindings(L, env);
   openVehicleBindings(L, env);
   openSaveBindings(L, env);
+  openModelBindings(L, env);
+  openCameraBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));

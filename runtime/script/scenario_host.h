@@ -40,6 +40,7 @@
 #include "physics/world.h"
 #include "script/lua_vm.h"
 #include "script/mods.h"
+#include "script/presentation.h"
 #include "script/script_error.h"
 #include "script/tunables.h"
 #include "vehicle/vehicle_def.h"
@@ -87,6 +88,11 @@ struct ScenarioOptions {
   /// The mod's tunable overrides file to read at start (tunables.h); empty:
   /// none (headless runs: only --set, so a run depends on its command line).
   std::string tuneOverridesFile;
+  /// Every known mod's folder by name, for "MOD:path" asset references.
+  std::map<std::string, std::string> modDirs;
+  /// Bounds of a model file (world.add_static_model's collision box); the
+  /// app provides it. Unset: static models cannot have collision = "box".
+  ModelBoundsFn modelBounds;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number
@@ -225,6 +231,10 @@ class ScenarioHost {
   /// Seed for random.new() without a seed: the run's seed mixed with a count.
   std::uint64_t nextRandomSeed();
   static ScenarioHost* from(lua_State* L);
+  /// Models on bodies, static scenery models and the camera request
+  /// (bind_model.cpp, bind_camera.cpp); the app draws from it.
+  Presentation& presentation() { return m_presentation; }
+  const Presentation& presentation() const { return m_presentation; }
 
  private:
   struct Timer {
@@ -308,6 +318,7 @@ class ScenarioHost {
   input::InputSystem* m_input = nullptr;
   std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
+  Presentation m_presentation;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -332,5 +343,9 @@ void openTuneBindings(lua_State* L, int envIndex);
 /// vehicle (bind_vehicle.cpp) and save (bind_save.cpp) tables.
 void openVehicleBindings(lua_State* L, int envIndex);
 void openSaveBindings(lua_State* L, int envIndex);
+/// body:set_model and world.add_static_model (bind_model.cpp; after
+/// openWorldBindings and openBodyType), and the camera table (bind_camera.cpp).
+void openModelBindings(lua_State* L, int envIndex);
+void openCameraBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -102,9 +102,48 @@ function Body:set_material(m) end
 ---@return Material # the body's {friction=, restitution=}
 function Body:material() end
 
+---Draws the body with a model instead of its plain shape. The collision
+---shape stays what it was; only the picture changes. A second call
+---replaces the model. The file is checked now: a missing or unreadable
+---model is an error naming the file.
+---
+---```lua
+---car:set_model("base:assets/models/hatchback.obj", {offset = {0, -0.6, 0}})
+---```
+---@param path string "MOD:path/in/mod" (e.g. "base:assets/models/hatchback.obj") or a path in this mod
+---@param options? ModelOptions offset, rotation and scale in the body's frame
+function Body:set_model(path, options) end
+
+---Draws the body as its plain shape again.
+---@return boolean # true if the body had a model
+function Body:clear_model() end
+
 ---@class Material
 ---@field friction? number Coulomb coefficient >= 0; a pair uses sqrt(fa*fb)
 ---@field restitution? number 0..1; a pair uses the larger
+
+---@class CameraOptions
+---@field target? Body the body followed (required for "follow", "chase", "hood" and "cockpit")
+---@field offset? Vec3Arg chase: eye position in the target's frame, m (default {0, 2.2, -6.5})
+---@field look_at? Vec3Arg chase: point looked at, target's frame, m (default {0, 1, 2})
+---@field stiffness? number chase: spring rate of the critically damped follow, 1/s (default 4; larger is stiffer)
+---@field eye? Vec3Arg hood / cockpit: eye position in the target's frame, m
+---@field distance? number orbit / follow: distance of the eye from the target, m
+---@field interior? string cockpit: interior model ("MOD:path"), drawn with the body; placed at the eye
+
+---Placement of a model on a body, in the body's frame.
+---@class ModelOptions
+---@field offset? Vec3Arg model origin relative to the body's centre, m (default {0, 0, 0})
+---@field rotation? Vec3Arg rotation vector (axis times angle, rad) from model to body axes
+---@field scale? number|Vec3Arg factor per axis, > 0 (default 1): model file units to metres
+
+---@class StaticModelDef
+---@field position? Vec3Arg where the model's origin goes, m (default {0, 0, 0})
+---@field rotation? Vec3Arg rotation vector (axis times angle, rad)
+---@field scale? number|Vec3Arg factor per axis, > 0 (default 1)
+---@field collision? string "box" (default): a static box around the model; "none": only drawn
+---@field friction? number of the collision box (default 0.6)
+---@field color? Vec3Arg colour of the collision box where models are not drawn (headless: unused)
 
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
@@ -268,6 +307,24 @@ function Trigger:count() end
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
 ---@field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
+
+---The view of the scene: free orbit, following a body, a chase camera, a
+---hood camera or a cockpit view with its interior drawn as a model. Body
+---frames are Y up with the front at +Z (as the shipped vehicle models).
+camera = {}
+
+---Switches the camera. Options not given keep the mode's defaults.
+---
+---```lua
+---camera.set_mode("chase", {target = car, stiffness = 6})
+---camera.set_mode("cockpit", {target = car, eye = {0.35, 1.15, -0.1}, interior = "base:assets/models/cockpit.obj"})
+---```
+---@param mode string "orbit", "follow", "chase", "hood" or "cockpit"
+---@param options? CameraOptions target body and placement
+function camera.set_mode(mode, options) end
+
+---@return string # the mode last set by camera.set_mode ("orbit" before any)
+function camera.mode() end
 
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
@@ -628,6 +685,19 @@ function tune.get(name) end
 ---The physics world of the scenario: create and remove bodies, set gravity,
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.
 world = {}
+
+---Places a static model: scenery such as rocks, trees, buildings and
+---barriers. With collision = "box" (the default) a static box body is made
+---around the model's bounds; static bodies are never tested against each
+---other and, over a terrain, go into its tree of static objects.
+---
+---```lua
+---world.add_static_model("base:assets/models/tree.obj", {position = {8, 0, -4}, rotation = {0, 1.2, 0}})
+---```
+---@param path string "MOD:path/in/mod" or a path in this mod
+---@param def? StaticModelDef placement and collision
+---@return Body? # the collision body, or nil with collision = "none"
+function world.add_static_model(path, def) end
 
 ---Creates a box.
 ---

@@ -5,7 +5,14 @@
 
 namespace tumble::render {
 
+bool placedByApp(const Camera& camera) {
+  return camera.mode == CameraMode::Chase || camera.mode == CameraMode::Hood || camera.mode == CameraMode::Cockpit;
+}
+
 Eigen::Vector3f eyePosition(const Camera& camera) {
+  if (placedByApp(camera) && camera.eye_m.allFinite() && (camera.eye_m - camera.target).norm() > 1e-4f) {
+    return camera.eye_m;
+  }
   const float cp = std::cos(camera.pitch_rad);
   const Eigen::Vector3f offset(cp * std::sin(camera.yaw_rad), std::sin(camera.pitch_rad),
                                cp * std::cos(camera.yaw_rad));
@@ -15,7 +22,13 @@ Eigen::Vector3f eyePosition(const Camera& camera) {
 Eigen::Matrix4f viewMatrix(const Camera& camera) {
   const Eigen::Vector3f eye = eyePosition(camera);
   const Eigen::Vector3f forward = (camera.target - eye).normalized();
-  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
+  // The app's up for body-fixed views; world Y otherwise, or when the given
+  // up is (nearly) along the view direction.
+  Eigen::Vector3f upHint = Eigen::Vector3f::UnitY();
+  if (placedByApp(camera) && camera.up.allFinite() && forward.cross(camera.up).norm() > 1e-3f * camera.up.norm()) {
+    upHint = camera.up;
+  }
+  const Eigen::Vector3f right = forward.cross(upHint).normalized();
   const Eigen::Vector3f up = right.cross(forward);
   Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
   view.block<1, 3>(0, 0) = right.transpose();

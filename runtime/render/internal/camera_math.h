@@ -16,6 +16,8 @@ inline constexpr float kMaxPitch_rad = 1.50f;
 inline constexpr float kMinDistance_m = 0.5f;
 inline constexpr float kMaxDistance_m = 500.0f;
 
+/// Chase, Hood and Cockpit: the app places the eye (Camera::eye_m, up).
+bool placedByApp(const Camera& camera);
 Eigen::Vector3f eyePosition(const Camera& camera);
 /// Right-handed look-at, camera looking down its -Z (OpenGL convention).
 Eigen::Matrix4f viewMatrix(const Camera& camera);

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <optional>
 
+#include "render/camera_rig.h"
 #include "render/internal/time_scale.h"
 
 namespace tumble::render {
@@ -147,8 +148,7 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
                          ImGuiSliderFlags_AlwaysClamp)) {
       controls.timeScale = kTimeScales[level];
     }
-    ImGui::TextColored(kDimColor, "camera: %s (C)",
-                       cameraMode == CameraMode::Orbit ? "orbit" : "follow");
+    ImGui::TextColored(kDimColor, "camera: %s (C)", cameraModeName(cameraMode));
     ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot");
     if (tuning) {
       if (ImGui::Button(controls.tuningPanelVisible ? "Hide tuning (F2)" : "Tune (F2)", ImVec2(132, 0)))

@@ -10,6 +10,7 @@
 #include "render/internal/hud.h"
 #include "render/internal/line_pass.h"
 #include "render/internal/particles_pass.h"
+#include "render/internal/mesh_pass.h"
 #include "render/internal/render_targets.h"
 #include "render/internal/shape_pass.h"
 #include "render/internal/sky_pass.h"
@@ -28,6 +29,9 @@ struct Renderer::Impl {
   TerrainPass terrain;       // creates nothing until the first frame with a terrain
   ParticlesPass particles;   // creates nothing until the first frame with particles
   TerrainStats terrainStats;
+  MeshPass meshes;           // creates nothing until the first frame with a model
+  MeshStats meshStats;
+  bool reportedMeshError = false;
   std::unique_ptr<Hud> hud;  // null when config.hud is false
   Environment environment;
   Camera camera;

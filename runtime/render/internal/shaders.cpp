@@ -270,4 +270,76 @@ void main() {
 }
 )glsl";
 
+// Meshes of loaded models: the shapes' lighting and fog, an albedo of
+// material colour x vertex colour x texture (an sRGB texture, so the sample
+// is already linear). Two-sided: back faces turn their normal round, since
+// model files do not agree on winding. Texels with alpha below one half are
+// cut out (leaves, fences).
+const char* const kMeshVertex = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec2 aUv;
+layout(location = 3) in vec3 aColor;
+
+uniform mat4 uViewProjection;
+uniform mat4 uModel;          // node frame -> world
+uniform mat3 uNormalMatrix;   // inverse transpose of uModel's 3x3
+
+out vec3 vWorldPosition;
+out vec3 vNormal;
+out vec2 vUv;
+out vec3 vColor;
+
+void main() {
+  vec4 world = uModel * vec4(aPosition, 1.0);
+  vWorldPosition = world.xyz;
+  vNormal = uNormalMatrix * aNormal;
+  vUv = aUv;
+  vColor = aColor;
+  gl_Position = uViewProjection * world;
+}
+)glsl";
+
+const char* const kMeshFragment = R"glsl(
+#version 330 core
+in vec3 vWorldPosition;
+in vec3 vNormal;
+in vec2 vUv;
+in vec3 vColor;
+
+uniform vec3 uEye;
+uniform vec3 uLightDirection;
+uniform vec3 uLightColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform vec3 uFogColor;
+uniform float uFogDensity;
+uniform vec3 uDiffuse;        // linear material colour x instance tint
+uniform int uHasTexture;
+uniform sampler2D uTexture;   // sRGB, sampled as linear
+
+out vec4 fragColor;
+
+void main() {
+  vec3 n = normalize(vNormal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 albedo = uDiffuse * vColor;
+  if (uHasTexture != 0) {
+    vec4 texel = texture(uTexture, vUv);
+    if (texel.a < 0.5) discard;
+    albedo *= texel.rgb;
+  }
+  float diffuse = max(dot(n, uLightDirection), 0.0);
+  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
+  vec3 toEye = normalize(uEye - vWorldPosition);
+  vec3 halfway = normalize(toEye + uLightDirection);
+  float specular = diffuse > 0.0 ? 0.08 * pow(max(dot(n, halfway), 0.0), 32.0) : 0.0;
+  vec3 color = albedo * (ambient + uLightColor * diffuse) + uLightColor * specular;
+  float d = length(uEye - vWorldPosition) * uFogDensity;
+  color = mix(color, uFogColor, 1.0 - exp(-d * d));
+  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+}
+)glsl";
+
 }  // namespace tumble::render::shaders

@@ -14,6 +14,8 @@ extern const char* const kLineVertex;
 extern const char* const kLineFragment;
 extern const char* const kTerrainVertex;
 extern const char* const kTerrainFragment;
+extern const char* const kMeshVertex;
+extern const char* const kMeshFragment;
 
 // Vertex attribute locations shared by the shape shader and its VAOs.
 inline constexpr unsigned kAttribPosition = 0;
@@ -28,6 +30,12 @@ inline constexpr unsigned kAttribInstanceColor = 7;
 // Terrain shader locations.
 inline constexpr unsigned kAttribTerrainPosition = 0;
 inline constexpr unsigned kAttribTerrainNormal = 1;
+
+// Mesh shader locations (mesh_pass.cpp).
+inline constexpr unsigned kAttribMeshPosition = 0;
+inline constexpr unsigned kAttribMeshNormal = 1;
+inline constexpr unsigned kAttribMeshUv = 2;
+inline constexpr unsigned kAttribMeshColor = 3;
 
 // Line shader locations.
 inline constexpr unsigned kAttribLinePosition = 0;

@@ -1,0 +1,620 @@
+// The generated model set (meshgen.h). Geometry is built from a few closed
+// primitives (box, extruded side profile, cylinder / cone frustum, torus,
+// noisy icosphere); every triangle is given an outward hint and turned to
+// face it, so each part is a closed outward-wound surface by construction.
+// Textures are 64 x 64 procedural images (integer-hash value noise).
+#include "app/meshgen.h"
+
+#include <stb_image_write.h>  // libstb provides the implementation
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <tuple>
+
+#include <CLI/CLI.hpp>
+
+#include "app/paths.h"
+#include "core/file_util.h"
+#include "core/log.h"
+#include "core/math.h"
+
+namespace tumble::app {
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+using V2 = Eigen::Vector2d;
+constexpr double kTau = 6.283185307179586;
+
+struct Vertex {
+  V3 p, n;
+  V2 uv;
+};
+struct Part {
+  std::string name, material;
+  std::vector<Vertex> v;
+  std::vector<std::array<int, 3>> t;
+
+  int add(const V3& p, const V3& n, const V2& uv) {
+    v.push_back({p, n.normalized(), uv});
+    return int(v.size()) - 1;
+  }
+  // Adds a triangle wound so that its normal points along `outward`.
+  void tri(int a, int b, int c, const V3& outward) {
+    const V3 n = (v[b].p - v[a].p).cross(v[c].p - v[a].p);
+    if (n.dot(outward) < 0) std::swap(b, c);
+    t.push_back({a, b, c});
+  }
+  void quad(int a, int b, int c, int d, const V3& outward) {
+    tri(a, b, c, outward);
+    tri(a, c, d, outward);
+  }
+};
+
+struct Material {
+  std::string name;
+  V3 kd;                // sRGB 0..1, as .mtl files store it
+  std::string texture;  // file name, empty: colour only
+};
+
+struct ObjModel {
+  std::string name;
+  std::vector<Part> parts;
+};
+
+// ---- primitives ------------------------------------------------------------
+
+Part box(const std::string& name, const std::string& material, const V3& center, const V3& half,
+         double uvPerMetre = 1.0) {
+  Part part{name, material, {}, {}};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int sign : {-1, 1}) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      V3 n = V3::Zero();
+      n[axis] = sign;
+      int idx[4];
+      int k = 0;
+      for (auto [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        V3 p = center;
+        p[axis] += sign * half[axis];
+        p[u] += a * half[u];
+        p[w] += b * half[w];
+        const V2 uv((a + 1) * half[u] * uvPerMetre, (b + 1) * half[w] * uvPerMetre);
+        idx[k++] = part.add(p, n, uv);
+      }
+      part.quad(idx[0], idx[1], idx[2], idx[3], n);
+    }
+  }
+  return part;
+}
+
+// A side profile (z, y), star-shaped around its centroid, extruded along X
+// from x0 to x1: car bodies.
+Part extrusion(const std::string& name, const std::string& material, const std::vector<V2>& profile, double x0,
+               double x1, double uvPerMetre = 0.5) {
+  Part part{name, material, {}, {}};
+  V2 c = V2::Zero();
+  for (const V2& q : profile) c += q;
+  c /= double(profile.size());
+  const std::size_t n = profile.size();
+  for (double x : {x0, x1}) {
+    const V3 normal(x > 0.5 * (x0 + x1) ? 1 : -1, 0, 0);
+    const int centre = part.add(V3(x, c.y(), c.x()), normal, c * uvPerMetre);
+    std::vector<int> ring;
+    for (const V2& q : profile) ring.push_back(part.add(V3(x, q.y(), q.x()), normal, q * uvPerMetre));
+    for (std::size_t i = 0; i < n; ++i) part.tri(centre, ring[i], ring[(i + 1) % n], normal);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const V2 a = profile[i], b = profile[(i + 1) % n];
+    const V2 edge = b - a;
+    V2 out(edge.y(), -edge.x());
+    if (out.dot(0.5 * (a + b) - c) < 0) out = -out;
+    const V3 normal(0, out.y(), out.x());
+    const double len = edge.norm() * uvPerMetre;
+    const int i0 = part.add(V3(x0, a.y(), a.x()), normal, V2(0, 0));
+    const int i1 = part.add(V3(x0, b.y(), b.x()), normal, V2(len, 0));
+    const int i2 = part.add(V3(x1, b.y(), b.x()), normal, V2(len, (x1 - x0) * uvPerMetre));
+    const int i3 = part.add(V3(x1, a.y(), a.x()), normal, V2(0, (x1 - x0) * uvPerMetre));
+    part.quad(i0, i1, i2, i3, normal);
+  }
+  return part;
+}
+
+// Basis (axis, u, w) for a cylinder along `axis` (a unit vector).
+std::pair<V3, V3> perpendiculars(const V3& axis) {
+  const V3 helper = std::abs(axis.y()) < 0.9 ? V3::UnitY() : V3::UnitX();
+  const V3 u = axis.cross(helper).normalized();
+  return {u, axis.cross(u)};
+}
+
+// A cone frustum (a cylinder when r0 == r1) from `base` along `axis` for
+// `length`; flat caps. Caps get planar uvs in [0, 1] (capUv), the side wraps.
+Part frustum(const std::string& name, const std::string& sideMaterial, const V3& base, const V3& axisDir,
+             double length, double r0, double r1, int segments, double sideUvV = 1.0) {
+  Part part{name, sideMaterial, {}, {}};
+  const V3 axis = axisDir.normalized();
+  const auto [u, w] = perpendiculars(axis);
+  const V3 top = base + axis * length;
+  const double slope = (r0 - r1) / length;  // normal tilt of the side
+  std::vector<int> bottomRing, topRing;
+  for (int i = 0; i <= segments; ++i) {
+    const double a = kTau * i / segments;
+    const V3 radial = std::cos(a) * u + std::sin(a) * w;
+    const V3 n = radial + slope * axis;
+    bottomRing.push_back(part.add(base + r0 * radial, n, V2(double(i) / segments, 0)));
+    topRing.push_back(part.add(top + r1 * radial, n, V2(double(i) / segments, sideUvV)));
+  }
+  for (int i = 0; i < segments; ++i) {
+    const double a = kTau * (i + 0.5) / segments;
+    const V3 radial = std::cos(a) * u + std::sin(a) * w;
+    part.quad(bottomRing[i], bottomRing[i + 1], topRing[i + 1], topRing[i], radial);
+  }
+  for (auto [centre, r, normal] : {std::tuple{base, r0, V3(-axis)}, std::tuple{top, r1, axis}}) {
+    const int c = part.add(centre, normal, V2(0.5, 0.5));
+    std::vector<int> ring;
+    for (int i = 0; i < segments; ++i) {
+      const double a = kTau * i / segments;
+      const V3 radial = std::cos(a) * u + std::sin(a) * w;
+      ring.push_back(part.add(centre + r * radial, normal, V2(0.5 + 0.5 * std::cos(a), 0.5 + 0.5 * std::sin(a))));
+    }
+    for (int i = 0; i < segments; ++i) part.tri(c, ring[i], ring[(i + 1) % segments], normal);
+  }
+  return part;
+}
+
+// Splits a part's triangles by a predicate into a second material (same
+// vertices, so the two parts together stay one closed surface).
+Part splitOff(Part& part, const std::string& name, const std::string& material,
+              const std::function<bool(const V3& faceNormal)>& take) {
+  Part other{name, material, part.v, {}};
+  std::vector<std::array<int, 3>> keep;
+  for (const auto& t : part.t) {
+    const V3 n = (part.v[t[1]].p - part.v[t[0]].p).cross(part.v[t[2]].p - part.v[t[0]].p);
+    (take(n.normalized()) ? other.t : keep).push_back(t);
+  }
+  part.t = keep;
+  return other;
+}
+
+Part torus(const std::string& name, const std::string& material, const V3& center, const V3& axisDir, double major,
+           double minor, int rings, int sides) {
+  Part part{name, material, {}, {}};
+  const V3 axis = axisDir.normalized();
+  const auto [u, w] = perpendiculars(axis);
+  std::vector<std::vector<int>> grid(rings + 1, std::vector<int>(sides + 1));
+  for (int i = 0; i <= rings; ++i) {
+    const double a = kTau * i / rings;
+    const V3 radial = std::cos(a) * u + std::sin(a) * w;
+    for (int j = 0; j <= sides; ++j) {
+      const double b = kTau * j / sides;
+      const V3 n = std::cos(b) * radial + std::sin(b) * axis;
+      grid[i][j] = part.add(center + major * radial + minor * n, n, V2(double(i) / rings, double(j) / sides));
+    }
+  }
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < sides; ++j) {
+      const V3 out = part.v[grid[i][j]].n + part.v[grid[i + 1][j + 1]].n;
+      part.quad(grid[i][j], grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1], out);
+    }
+  }
+  return part;
+}
+
+// ---- deterministic noise ---------------------------------------------------
+
+std::uint32_t hash3(std::int32_t x, std::int32_t y, std::uint32_t seed) {
+  std::uint32_t h = std::uint32_t(x) * 0x8da6b343u ^ std::uint32_t(y) * 0xd8163841u ^ seed * 0xcb1ab31fu;
+  h ^= h >> 13;
+  h *= 0x5bd1e995u;
+  h ^= h >> 15;
+  return h;
+}
+double hash01(std::int32_t x, std::int32_t y, std::uint32_t seed) { return (hash3(x, y, seed) >> 8) / 16777216.0; }
+
+// Value noise that tiles with period `period` cells (textures repeat).
+double tiledNoise(double x, double y, int period, std::uint32_t seed) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const int ix = int(fx), iy = int(fy);
+  const double tx = x - fx, ty = y - fy;
+  const double sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty);
+  auto at = [&](int i, int j) { return hash01(((i % period) + period) % period, ((j % period) + period) % period, seed); };
+  const double a = at(ix, iy), b = at(ix + 1, iy), c = at(ix, iy + 1), d = at(ix + 1, iy + 1);
+  return a + (b - a) * sx + (c - a) * sy + (a - b - c + d) * sx * sy;
+}
+
+// Fractal sum of three octaves, 0..1, tiling over a 64-pixel texture.
+double fractal(int px, int py, int baseCells, std::uint32_t seed) {
+  double sum = 0, amp = 0.5, norm = 0;
+  for (int o = 0, cells = baseCells; o < 3; ++o, cells *= 2, amp *= 0.5) {
+    sum += amp * tiledNoise(px * cells / 64.0, py * cells / 64.0, cells, seed + o);
+    norm += amp;
+  }
+  return sum / norm;
+}
+
+Part icosphere(const std::string& name, const std::string& material, const V3& center, const V3& radii,
+               int subdivisions, double roughness, std::uint32_t seed) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::vector<V3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                       {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<int, 3>> faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+                                           {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                           {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+                                           {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (V3& q : p) q.normalize();
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      auto key = std::minmax(a, b);
+      auto [it, fresh] = mid.try_emplace({key.first, key.second}, int(p.size()));
+      if (fresh) p.push_back((p[a] + p[b]).normalized());
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& f : faces) {
+      const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      next.insert(next.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
+    }
+    faces = next;
+  }
+  // Displace each (shared) vertex by noise on its direction, then flat-shade.
+  std::vector<V3> displaced;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double bump = 1 + roughness * (2 * hash01(int(i), int(i * 7 + 3), seed) - 1);
+    displaced.push_back(center + (p[i] * bump).cwiseProduct(radii));
+  }
+  Part part{name, material, {}, {}};
+  for (const auto& f : faces) {
+    const V3 a = displaced[f[0]], b = displaced[f[1]], c = displaced[f[2]];
+    const V3 n = (b - a).cross(c - a).normalized();
+    const V3 out = (a + b + c) / 3 - center;
+    auto uv = [&](const V3& q) { return V2(0.7 * (q.x() + q.z()), 0.7 * q.y()); };
+    const int ia = part.add(a, n, uv(a)), ib = part.add(b, n, uv(b)), ic = part.add(c, n, uv(c));
+    part.tri(ia, ib, ic, out);
+  }
+  for (const auto& tri : part.t) {
+    const V3 n = (part.v[tri[1]].p - part.v[tri[0]].p).cross(part.v[tri[2]].p - part.v[tri[0]].p).normalized();
+    for (int k : tri) part.v[k].n = n;
+  }
+  return part;
+}
+
+// ---- textures --------------------------------------------------------------
+
+constexpr int kTex = 64;
+using Pixel = std::array<std::uint8_t, 3>;
+
+std::uint8_t clampByte(double v) { return std::uint8_t(std::clamp(std::lround(v), 0L, 255L)); }
+Pixel rgb(double r, double g, double b) { return {clampByte(r), clampByte(g), clampByte(b)}; }
+
+std::string encodePng(const std::function<Pixel(int x, int y)>& shade) {
+  std::vector<std::uint8_t> pixels;
+  pixels.reserve(kTex * kTex * 3);
+  for (int y = 0; y < kTex; ++y) {
+    for (int x = 0; x < kTex; ++x) {
+      const Pixel p = shade(x, y);
+      pixels.insert(pixels.end(), p.begin(), p.end());
+    }
+  }
+  std::string out;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+      },
+      &out, kTex, kTex, 3, pixels.data(), kTex * 3);
+  return out;
+}
+
+std::vector<GeneratedFile> textures() {
+  std::vector<GeneratedFile> out;
+  // Tyre tread: dark rubber, grooves across the tread every 8 pixels.
+  out.push_back({"tyre.png", encodePng([](int x, int y) {
+                   const double n = fractal(x, y, 8, 11);
+                   const bool groove = (y % 8) < 2 || ((x / 16 + y / 8) % 2 == 0 && (x % 16) < 2);
+                   const double v = (groove ? 12 : 38) + 14 * n;
+                   return rgb(v, v, v * 1.05);
+                 })});
+  // Wheel side (planar on the caps): black sidewall ring, silver rim, five
+  // dark holes between the spokes, dark hub.
+  out.push_back({"rim.png", encodePng([](int x, int y) {
+                   const double dx = (x + 0.5) / 32.0 - 1, dy = (y + 0.5) / 32.0 - 1;
+                   const double r = std::sqrt(dx * dx + dy * dy);
+                   const double a = std::atan2(dy, dx);
+                   if (r > 0.68) return rgb(28, 28, 30);
+                   if (r < 0.12) return rgb(60, 60, 64);
+                   const double spoke = std::cos(5 * a);
+                   if (r > 0.25 && r < 0.58 && spoke < -0.3) return rgb(20, 20, 22);
+                   const double v = 175 + 40 * (1 - r) + 10 * fractal(x, y, 8, 12);
+                   return rgb(v, v, v + 6);
+                 })});
+  out.push_back({"rock.png", encodePng([](int x, int y) {
+                   const double n = fractal(x, y, 4, 21), m = fractal(x, y, 16, 22);
+                   const double v = 85 + 80 * n + 25 * (m - 0.5);
+                   return rgb(v * 1.04, v, v * 0.9);
+                 })});
+  out.push_back({"bark.png", encodePng([](int x, int y) {
+                   const double n = tiledNoise(x / 4.0, y / 32.0, 16, 31) * 0.7 + 0.3 * fractal(x, y, 16, 32);
+                   return rgb(70 + 60 * n, 45 + 40 * n, 25 + 20 * n);
+                 })});
+  out.push_back({"leaves.png", encodePng([](int x, int y) {
+                   const double n = fractal(x, y, 8, 41), m = fractal(x, y, 32, 42);
+                   return rgb(30 + 40 * m, 80 + 90 * n, 25 + 30 * m);
+                 })});
+  // Building wall: plaster with a 2 x 2 grid of windows per repeat (3 m).
+  out.push_back({"building.png", encodePng([](int x, int y) {
+                   const int cx = x % 32, cy = y % 32;
+                   const bool window = cx >= 8 && cx < 24 && cy >= 6 && cy < 22;
+                   const double n = fractal(x, y, 16, 51);
+                   if (window) {
+                     const bool frame = cx == 8 || cx == 23 || cy == 6 || cy == 21 || cx == 16;
+                     return frame ? rgb(220, 220, 215) : rgb(40 + 30 * n, 60 + 30 * n, 90 + 40 * n);
+                   }
+                   return rgb(190 + 25 * n, 170 + 25 * n, 140 + 20 * n);
+                 })});
+  out.push_back({"stripes.png", encodePng([](int x, int y) {
+                   const bool red = ((x + y) / 16) % 2 == 0;
+                   const double n = 12 * fractal(x, y, 16, 61);
+                   return red ? rgb(200 + n, 30 + n, 25 + n) : rgb(230 + n, 230 + n, 225 + n);
+                 })});
+  out.push_back({"checker.png", encodePng([](int x, int y) {
+                   const bool dark = ((x / 16) + (y / 16)) % 2 == 0;
+                   return dark ? rgb(20, 20, 20) : rgb(240, 240, 240);
+                 })});
+  return out;
+}
+
+// ---- models ----------------------------------------------------------------
+
+const std::vector<Material>& materials() {
+  static const std::vector<Material> list = {
+      {"paint_red", {0.75, 0.08, 0.06}, ""},   {"paint_green", {0.22, 0.32, 0.16}, ""},
+      {"paint_yellow", {0.95, 0.75, 0.10}, ""}, {"glass", {0.10, 0.13, 0.16}, ""},
+      {"plastic_black", {0.06, 0.06, 0.06}, ""}, {"chrome", {0.75, 0.75, 0.78}, ""},
+      {"headlight", {1.0, 0.95, 0.75}, ""},    {"taillight", {0.8, 0.05, 0.05}, ""},
+      {"tyre", {1, 1, 1}, "tyre.png"},         {"rim", {1, 1, 1}, "rim.png"},
+      {"dashboard", {0.12, 0.12, 0.13}, ""},   {"seat", {0.25, 0.22, 0.20}, ""},
+      {"trim", {0.35, 0.35, 0.36}, ""},        {"rock", {1, 1, 1}, "rock.png"},
+      {"bark", {1, 1, 1}, "bark.png"},         {"leaves", {1, 1, 1}, "leaves.png"},
+      {"building", {1, 1, 1}, "building.png"}, {"roof", {0.30, 0.28, 0.27}, ""},
+      {"stripes", {1, 1, 1}, "stripes.png"},   {"checker", {1, 1, 1}, "checker.png"},
+      {"post", {0.85, 0.85, 0.85}, ""},
+  };
+  return list;
+}
+
+// Hatchback, 4.0 m long, 1.56 m wide body (wheels outside it at x = +-0.8,
+// z = +-1.3, radius 0.32).
+ObjModel hatchback() {
+  ObjModel m{"hatchback", {}};
+  const std::vector<V2> side = {{-2.0, 0.28}, {2.0, 0.28}, {2.0, 0.78}, {1.25, 0.92},
+                                {0.45, 1.42}, {-1.55, 1.45}, {-2.0, 0.95}};
+  m.parts.push_back(extrusion("body", "paint_red", side, -0.78, 0.78));
+  m.parts.push_back(box("windscreen", "glass", {0, 1.17, 0.86}, {0.70, 0.22, 0.02}));
+  m.parts.push_back(box("side_windows_left", "glass", {0.785, 1.2, -0.5}, {0.01, 0.17, 0.85}));
+  m.parts.push_back(box("side_windows_right", "glass", {-0.785, 1.2, -0.5}, {0.01, 0.17, 0.85}));
+  m.parts.push_back(box("rear_window", "glass", {0, 1.2, -1.79}, {0.66, 0.18, 0.02}));
+  m.parts.push_back(box("front_bumper", "plastic_black", {0, 0.36, 2.02}, {0.80, 0.09, 0.05}));
+  m.parts.push_back(box("rear_bumper", "plastic_black", {0, 0.36, -2.02}, {0.80, 0.09, 0.05}));
+  for (double x : {0.55, -0.55}) {
+    m.parts.push_back(box(x > 0 ? "headlight_left" : "headlight_right", "headlight", {x, 0.68, 2.005}, {0.16, 0.06, 0.01}));
+    m.parts.push_back(box(x > 0 ? "taillight_left" : "taillight_right", "taillight", {x, 0.80, -2.005}, {0.14, 0.07, 0.01}));
+  }
+  return m;
+}
+
+// Off-road truck: a cab and a flatbed, 4.8 m long, high ground clearance
+// (wheels at x = +-0.95, z = +-1.6, radius 0.45).
+ObjModel truck() {
+  ObjModel m{"truck", {}};
+  const std::vector<V2> cab = {{0.2, 0.62}, {2.4, 0.62}, {2.4, 1.35}, {1.6, 1.50}, {1.2, 2.25}, {0.2, 2.25}};
+  m.parts.push_back(extrusion("cab", "paint_green", cab, -0.9, 0.9));
+  m.parts.push_back(box("bed_floor", "paint_green", {0, 0.80, -1.1}, {0.9, 0.18, 1.3}));
+  m.parts.push_back(box("bed_side_left", "paint_green", {0.86, 1.22, -1.1}, {0.04, 0.24, 1.3}));
+  m.parts.push_back(box("bed_side_right", "paint_green", {-0.86, 1.22, -1.1}, {0.04, 0.24, 1.3}));
+  m.parts.push_back(box("tailgate", "paint_green", {0, 1.22, -2.36}, {0.82, 0.24, 0.04}));
+  m.parts.push_back(box("windscreen", "glass", {0, 1.86, 1.41}, {0.8, 0.3, 0.02}));
+  m.parts.push_back(box("bull_bar", "chrome", {0, 0.9, 2.45}, {0.8, 0.25, 0.05}));
+  m.parts.push_back(box("rear_bumper", "plastic_black", {0, 0.7, -2.45}, {0.9, 0.08, 0.05}));
+  for (double x : {0.6, -0.6}) {
+    m.parts.push_back(box(x > 0 ? "headlight_left" : "headlight_right", "headlight", {x, 1.15, 2.405}, {0.15, 0.08, 0.01}));
+  }
+  return m;
+}
+
+// Buggy: a floor pan, a seat and a tube roll cage (wheels at x = +-0.85,
+// z = +-1.2, radius 0.38).
+ObjModel buggy() {
+  ObjModel m{"buggy", {}};
+  m.parts.push_back(box("floor_pan", "plastic_black", {0, 0.45, 0}, {0.6, 0.05, 1.5}));
+  m.parts.push_back(box("seat", "seat", {0, 0.7, -0.3}, {0.25, 0.2, 0.25}));
+  m.parts.push_back(box("seat_back", "seat", {0, 1.0, -0.52}, {0.25, 0.3, 0.05}));
+  const double r = 0.035;
+  int k = 0;
+  auto tube = [&](const V3& a, const V3& b) {
+    m.parts.push_back(frustum("tube_" + std::to_string(k++), "paint_yellow", a, b - a, (b - a).norm(), r, r, 10));
+  };
+  for (double x : {0.55, -0.55}) {
+    tube({x, 0.5, -0.9}, {x, 1.55, -0.6});   // main hoop leg
+    tube({x, 0.5, 0.6}, {x, 1.45, 0.1});     // front leg
+    tube({x, 1.55, -0.6}, {x, 1.45, 0.1});   // roof rail
+    tube({x, 0.5, 1.45}, {x, 0.5, -1.45});   // lower rail
+  }
+  tube({0.55, 1.55, -0.6}, {-0.55, 1.55, -0.6});
+  tube({0.55, 1.45, 0.1}, {-0.55, 1.45, 0.1});
+  tube({0.6, 0.5, 1.45}, {-0.6, 0.5, 1.45});
+  return m;
+}
+
+// Wheel: 0.35 m radius, 0.25 m wide, axle along X, centred at the origin.
+ObjModel wheel() {
+  ObjModel m{"wheel", {}};
+  Part tyre = frustum("tyre", "tyre", {-0.125, 0, 0}, V3::UnitX(), 0.25, 0.35, 0.35, 32, 3.0);
+  Part sides = splitOff(tyre, "rim", "rim", [](const V3& n) { return std::abs(n.x()) > 0.9; });
+  m.parts.push_back(tyre);
+  m.parts.push_back(sides);
+  return m;
+}
+
+// Cockpit interior around the driver's eye (the origin), looking along +Z:
+// dashboard, steering wheel and column, seats, pillars, roof and doors.
+ObjModel cockpit() {
+  ObjModel m{"cockpit", {}};
+  m.parts.push_back(box("dashboard", "dashboard", {-0.35, -0.33, 0.72}, {0.8, 0.12, 0.14}));
+  m.parts.push_back(box("instrument_hood", "dashboard", {0, -0.18, 0.62}, {0.2, 0.04, 0.08}));
+  const V3 wheelCentre(0, -0.32, 0.42);
+  const V3 wheelAxis = V3(0, 0.45, -1).normalized();
+  m.parts.push_back(torus("steering_wheel", "plastic_black", wheelCentre, wheelAxis, 0.18, 0.018, 32, 8));
+  m.parts.push_back(frustum("steering_column", "plastic_black", wheelCentre, -wheelAxis, 0.3, 0.025, 0.03, 10));
+  m.parts.push_back(frustum("steering_hub", "trim", wheelCentre, -wheelAxis, 0.04, 0.05, 0.05, 16));
+  m.parts.push_back(box("seat_driver", "seat", {0, -0.65, -0.15}, {0.26, 0.08, 0.26}));
+  m.parts.push_back(box("seat_driver_back", "seat", {0, -0.25, -0.45}, {0.26, 0.35, 0.06}));
+  m.parts.push_back(box("seat_passenger", "seat", {-0.7, -0.65, -0.15}, {0.26, 0.08, 0.26}));
+  m.parts.push_back(box("seat_passenger_back", "seat", {-0.7, -0.25, -0.45}, {0.26, 0.35, 0.06}));
+  auto pillar = [&](const std::string& name, const V3& a, const V3& b) {
+    m.parts.push_back(frustum(name, "trim", a, b - a, (b - a).norm(), 0.04, 0.04, 8));
+  };
+  pillar("a_pillar_left", {0.45, -0.22, 0.82}, {0.42, 0.36, 0.22});
+  pillar("a_pillar_right", {-1.15, -0.22, 0.82}, {-1.12, 0.36, 0.22});
+  m.parts.push_back(box("roof_liner", "trim", {-0.35, 0.4, -0.3}, {0.82, 0.03, 0.55}));
+  m.parts.push_back(box("door_left", "trim", {0.5, -0.42, 0.1}, {0.03, 0.24, 0.7}));
+  m.parts.push_back(box("door_right", "trim", {-1.2, -0.42, 0.1}, {0.03, 0.24, 0.7}));
+  return m;
+}
+
+ObjModel rock() {
+  ObjModel m{"rock", {}};
+  // About 1.6 x 1.0 x 1.3 m, sunk 0.15 m into the ground.
+  m.parts.push_back(icosphere("rock", "rock", {0, 0.35, 0}, {0.8, 0.5, 0.65}, 2, 0.18, 7));
+  return m;
+}
+
+ObjModel tree() {
+  ObjModel m{"tree", {}};
+  m.parts.push_back(frustum("trunk", "bark", {0, 0, 0}, V3::UnitY(), 1.6, 0.18, 0.12, 12, 2.0));
+  m.parts.push_back(frustum("crown_low", "leaves", {0, 1.2, 0}, V3::UnitY(), 2.0, 1.3, 0.15, 16, 2.0));
+  m.parts.push_back(frustum("crown_high", "leaves", {0, 2.5, 0}, V3::UnitY(), 1.8, 0.9, 0.05, 16, 2.0));
+  return m;
+}
+
+ObjModel building() {
+  ObjModel m{"building", {}};
+  m.parts.push_back(box("walls", "building", {0, 3.0, 0}, {4.0, 3.0, 5.0}, 1.0 / 3.0));
+  m.parts.push_back(box("roof", "roof", {0, 6.15, 0}, {4.2, 0.15, 5.2}));
+  return m;
+}
+
+ObjModel barrier() {
+  ObjModel m{"barrier", {}};
+  m.parts.push_back(box("barrier", "stripes", {0, 0.4, 0}, {1.0, 0.4, 0.2}, 1.0));
+  return m;
+}
+
+// Checkpoint arch: two posts 8 m apart (x = +-4), a chequered banner on top.
+ObjModel arch() {
+  ObjModel m{"checkpoint_arch", {}};
+  m.parts.push_back(box("post_left", "post", {4.0, 2.2, 0}, {0.2, 2.2, 0.2}));
+  m.parts.push_back(box("post_right", "post", {-4.0, 2.2, 0}, {0.2, 2.2, 0.2}));
+  m.parts.push_back(box("banner", "checker", {0, 4.8, 0}, {4.4, 0.4, 0.1}, 1.25));
+  return m;
+}
+
+// ---- writers ---------------------------------------------------------------
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.5f", v == 0 ? 0.0 : v);  // no "-0.00000"
+  std::string s = buf;
+  if (s == "-0.00000") s = "0.00000";
+  return s;
+}
+
+GeneratedFile writeObj(const ObjModel& model) {
+  std::string out = "# " + model.name + ": generated by `tumble meshgen` (runtime/app/meshgen.cpp); do not edit\n";
+  out += "# Y up, metres, front +Z. Every object is a closed outward-wound surface.\n";
+  out += "mtllib " + model.name + ".mtl\n";
+  std::size_t base = 1;
+  for (const Part& part : model.parts) {
+    out += "o " + part.name + "\n";
+    for (const Vertex& v : part.v) out += "v " + fmt(v.p.x()) + " " + fmt(v.p.y()) + " " + fmt(v.p.z()) + "\n";
+    for (const Vertex& v : part.v) out += "vt " + fmt(v.uv.x()) + " " + fmt(v.uv.y()) + "\n";
+    for (const Vertex& v : part.v) out += "vn " + fmt(v.n.x()) + " " + fmt(v.n.y()) + " " + fmt(v.n.z()) + "\n";
+    out += "usemtl " + part.material + "\n";
+    for (const auto& t : part.t) {
+      out += "f";
+      for (int k : t) {
+        const std::string i = std::to_string(base + std::size_t(k));
+        out += " " + i + "/" + i + "/" + i;
+      }
+      out += "\n";
+    }
+    base += part.v.size();
+  }
+  return {model.name + ".obj", out};
+}
+
+GeneratedFile writeMtl(const ObjModel& model) {
+  std::string out = "# " + model.name + ": generated by `tumble meshgen`; do not edit\n";
+  std::vector<std::string> used;
+  for (const Part& part : model.parts) {
+    if (std::find(used.begin(), used.end(), part.material) == used.end()) used.push_back(part.material);
+  }
+  for (const std::string& name : used) {
+    const auto& list = materials();
+    auto it = std::find_if(list.begin(), list.end(), [&](const Material& m) { return m.name == name; });
+    out += "\nnewmtl " + name + "\n";
+    out += "Kd " + fmt(it->kd.x()) + " " + fmt(it->kd.y()) + " " + fmt(it->kd.z()) + "\n";
+    out += "Ka 0.00000 0.00000 0.00000\nKs 0.10000 0.10000 0.10000\nNs 20\nd 1\nillum 2\n";
+    if (!it->texture.empty()) out += "map_Kd " + it->texture + "\n";
+  }
+  return {model.name + ".mtl", out};
+}
+
+}  // namespace
+
+std::vector<GeneratedFile> generateModelFiles() {
+  std::vector<GeneratedFile> files;
+  for (const ObjModel& model : {hatchback(), truck(), buggy(), wheel(), cockpit(), rock(), tree(), building(),
+                                barrier(), arch()}) {
+    files.push_back(writeObj(model));
+    files.push_back(writeMtl(model));
+  }
+  for (GeneratedFile& png : textures()) files.push_back(std::move(png));
+  return files;
+}
+
+Result<std::vector<std::string>> writeModelFiles(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return makeError(dir + ": cannot create the folder (" + ec.message() + ")");
+  std::vector<std::string> names;
+  for (const GeneratedFile& file : generateModelFiles()) {
+    const std::string path = (std::filesystem::path(dir) / file.name).string();
+    if (Status s = writeFileAtomic(path, file.bytes); !s) return makeError(s.error());
+    names.push_back(file.name);
+  }
+  return names;
+}
+
+void addMeshgenCommand(CLI::App& root, int& exitCode) {
+  auto out = std::make_shared<std::string>(dataDir() + "/mods/base/assets/models");
+  CLI::App* cmd = root.add_subcommand("meshgen", "write the project's own models (.obj, .mtl, .png) into a folder");
+  cmd->add_option("--out", *out, "folder to write into (default: mods/base/assets/models of the source tree)");
+  cmd->callback([out, &exitCode] {
+    auto written = writeModelFiles(*out);
+    if (!written) {
+      log::error("meshgen: " + written.error());
+      exitCode = 1;
+      return;
+    }
+    std::printf("meshgen: wrote %zu files to %s\n", written->size(), out->c_str());
+    exitCode = 0;
+  });
+}
+
+}  // namespace tumble::app

@@ -1,0 +1,86 @@
+#include "app/scene_models.h"
+
+#include "app/scene.h"
+#include "core/log.h"
+
+namespace tumble::app {
+
+Result<std::shared_ptr<const render::Model>> ModelCache::get(const std::string& file) {
+  auto it = m_models.find(file);
+  if (it == m_models.end()) it = m_models.emplace(file, render::loadModel(file)).first;
+  if (!it->second.ok()) return makeError(it->second.error());
+  return it->second.value();
+}
+
+Result<script::ModelBox> ModelCache::bounds(const std::string& file) {
+  auto model = get(file);
+  if (!model) return makeError(model.error());
+  const render::BoundingBox& box = (*model)->nodes[0].coverBox;
+  return script::ModelBox{box.min.cast<Real>(), box.max.cast<Real>()};
+}
+
+namespace {
+
+render::ModelInstance instanceAt(const std::shared_ptr<const render::Model>& model, const Vec3& position,
+                                 const Quat& rotation, const Vec3& scale) {
+  render::ModelInstance instance;
+  instance.model = model;
+  instance.position = position.cast<float>();
+  instance.orientation = rotation.cast<float>();
+  instance.scale = scale.cast<float>();
+  return instance;
+}
+
+}  // namespace
+
+void appendModelInstances(const Scene& scene, double alpha, std::vector<render::ModelInstance>& out) {
+  const script::Presentation& p = scene.host().presentation();
+  for (const script::ModelAttachment& a : p.attachments) {
+    const auto pose = scene.bodyPose(a.body, alpha);
+    if (!pose) continue;  // the body was removed
+    auto model = scene.models().get(a.file);
+    if (!model) continue;  // checked when the script attached it
+    const Quat q = pose->orientation.cast<Real>();
+    out.push_back(instanceAt(*model, pose->position_m.cast<Real>() + q * a.offset_m, q * a.rotation, a.scale));
+  }
+  for (const script::StaticModel& s : p.statics) {
+    auto model = scene.models().get(s.file);
+    if (!model) continue;
+    out.push_back(instanceAt(*model, s.position_m, s.rotation, s.scale));
+  }
+}
+
+void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera,
+                            render::FrameSnapshot& frame) {
+  const script::CameraRequest& request = scene.host().presentation().camera;
+  if (request.revision != m_revision) {
+    m_revision = request.revision;
+    if (auto mode = render::cameraModeFromName(request.mode)) camera.mode = *mode;
+    m_target = request.target;
+    m_interior = request.interiorFile;
+    render::CameraRigSettings s;  // defaults, then what the script gave
+    if (request.offset_m) s.chaseOffset_m = request.offset_m->cast<float>();
+    if (request.lookAt_m) s.chaseLookAt_m = request.lookAt_m->cast<float>();
+    if (request.stiffness_per_s) s.chaseStiffness_per_s = float(*request.stiffness_per_s);
+    if (request.eye_m) s.hoodEye_m = s.cockpitEye_m = request.eye_m->cast<float>();
+    if (request.distance_m) camera.distance_m = float(*request.distance_m);
+    m_rig.settings = s;
+    m_rig.reset();
+    camera.vehicleModes = m_target.has_value();
+  }
+  if (!m_target) return;
+  const auto pose = scene.bodyPose(*m_target, alpha);
+  if (!pose) return;  // the followed body is gone: the camera stays where it was
+  m_rig.update(*pose, frameDt_s, camera);
+  if (camera.mode == render::CameraMode::Cockpit && !m_interior.empty()) {
+    if (auto model = scene.models().get(m_interior)) {
+      render::ModelInstance interior;
+      interior.model = *model;
+      interior.position = pose->position_m + pose->orientation * m_rig.settings.cockpitEye_m;
+      interior.orientation = pose->orientation;
+      frame.models.push_back(interior);
+    }
+  }
+}
+
+}  // namespace tumble::app

@@ -1,0 +1,55 @@
+#pragma once
+// The app's side of models and cameras: loads the model files scripts name
+// (once each, shared), turns the scenario's Presentation (script/
+// presentation.h) into render::ModelInstances every frame, and drives the
+// renderer's camera from camera.set_mode with a CameraRig.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/result.h"
+#include "render/camera_rig.h"
+#include "render/model.h"
+#include "render/renderer.h"
+#include "script/presentation.h"
+
+namespace tumble::app {
+
+class Scene;
+
+/// Model files by absolute path, loaded on first use. A file that failed
+/// keeps its error (asked again, it is not re-read).
+class ModelCache {
+ public:
+  Result<std::shared_ptr<const render::Model>> get(const std::string& file);
+  /// Bounds of the model's root covering box, for collision boxes.
+  Result<script::ModelBox> bounds(const std::string& file);
+  std::size_t size() const { return m_models.size(); }
+
+ private:
+  std::map<std::string, Result<std::shared_ptr<const render::Model>>> m_models;
+};
+
+/// Appends what the scene's scripts asked to draw with models: bodies with
+/// body:set_model (interpolated like the shapes) and static models.
+void appendModelInstances(const Scene& scene, double alpha, std::vector<render::ModelInstance>& out);
+
+/// Applies camera.set_mode to the renderer's camera and moves it each drawn
+/// frame. Without a request the camera stays as the app framed it.
+class CameraDirector {
+ public:
+  /// frameDt_s: real time since the last drawn frame (0 for a single shot).
+  /// Adds the cockpit interior to `frame` in Cockpit mode.
+  void update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera, render::FrameSnapshot& frame);
+  /// True once a scenario named a body to follow.
+  bool hasTarget() const { return m_target.has_value(); }
+
+ private:
+  render::CameraRig m_rig;
+  std::uint64_t m_revision = 0;
+  std::optional<physics::BodyId> m_target;
+  std::string m_interior;
+};
+
+}  // namespace tumble::app

@@ -1,0 +1,280 @@
+// loadModel: assimp -> plain Model (model.h). assimp parses the formats and
+// triangulates; stb_image decodes textures. Everything assimp-specific stays
+// in this file.
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <stb_image.h>  // libstb provides the implementation
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "core/log.h"
+#include "render/model.h"
+
+namespace tumble::render {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Caps that keep a hostile or corrupt file from exhausting memory.
+constexpr std::size_t kMaxTriangles = 4'000'000;
+constexpr int kMaxTextureSide = 8192;
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+Eigen::Matrix4f toEigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4f out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out(r, c) = m[r][c];
+  return out;
+}
+
+// sRGB 0..1 (what modelling tools store) -> linear, like the shape colours.
+float srgbToLinear(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// A texture path as stored in the file ("C:\\MAPS\\JEEP1.JPG", "tex/a.png")
+// found next to the model: exact relative path first, then the bare file
+// name matched case-insensitively in the model's folder.
+std::optional<fs::path> findTextureFile(const fs::path& modelDir, std::string stored) {
+  std::replace(stored.begin(), stored.end(), '\\', '/');
+  if (stored.empty()) return std::nullopt;
+  std::error_code ec;
+  const fs::path direct = modelDir / stored;
+  if (fs::is_regular_file(direct, ec)) return direct;
+  const std::string name = lower(fs::path(stored).filename().string());
+  for (const auto& entry : fs::directory_iterator(modelDir, ec)) {
+    if (entry.is_regular_file(ec) && lower(entry.path().filename().string()) == name) return entry.path();
+  }
+  return std::nullopt;
+}
+
+Result<ModelImage> decodeImage(const std::string& label, const unsigned char* bytes, std::size_t size) {
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes, static_cast<int>(size), &w, &h, &channels)) {
+    return makeError(label + ": not a readable image (" + stbi_failure_reason() + ")");
+  }
+  if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide) {
+    return makeError(label + ": image is " + std::to_string(w) + "x" + std::to_string(h) + ", expected 1.." +
+                     std::to_string(kMaxTextureSide) + " pixels a side");
+  }
+  stbi_uc* data = stbi_load_from_memory(bytes, static_cast<int>(size), &w, &h, &channels, 4);
+  if (data == nullptr) return makeError(label + ": image data is broken (" + stbi_failure_reason() + ")");
+  ModelImage image;
+  image.source = label;
+  image.width = w;
+  image.height = h;
+  image.rgba.assign(data, data + static_cast<std::size_t>(w) * h * 4);
+  stbi_image_free(data);
+  return image;
+}
+
+Result<ModelImage> loadImageFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return makeError(file.string() + ": cannot read");
+  return decodeImage(file.string(), bytes.data(), bytes.size());
+}
+
+Result<ModelImage> embeddedImage(const std::string& label, const aiTexture& tex) {
+  if (tex.mHeight == 0) {  // compressed (png, jpg ...): mWidth is the byte count
+    return decodeImage(label, reinterpret_cast<const unsigned char*>(tex.pcData), tex.mWidth);
+  }
+  if (tex.mWidth > unsigned(kMaxTextureSide) || tex.mHeight > unsigned(kMaxTextureSide)) {
+    return makeError(label + ": embedded texture too large");
+  }
+  ModelImage image;
+  image.source = label;
+  image.width = static_cast<int>(tex.mWidth);
+  image.height = static_cast<int>(tex.mHeight);
+  image.rgba.reserve(std::size_t(tex.mWidth) * tex.mHeight * 4);
+  for (std::size_t i = 0; i < std::size_t(tex.mWidth) * tex.mHeight; ++i) {
+    const aiTexel& t = tex.pcData[i];
+    image.rgba.insert(image.rgba.end(), {t.r, t.g, t.b, t.a});
+  }
+  return image;
+}
+
+class Converter {
+ public:
+  Converter(const std::string& path, const aiScene& scene, Model& model)
+      : m_path(path), m_dir(fs::path(path).parent_path()), m_scene(scene), m_model(model) {
+    if (m_dir.empty()) m_dir = ".";
+  }
+
+  void materials() {
+    for (unsigned i = 0; i < m_scene.mNumMaterials; ++i) {
+      const aiMaterial& source = *m_scene.mMaterials[i];
+      ModelMaterial material;
+      aiString name;
+      if (source.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
+      aiColor3D diffuse(0.8f, 0.8f, 0.8f);
+      if (source.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS) {
+        material.diffuse = {srgbToLinear(diffuse.r), srgbToLinear(diffuse.g), srgbToLinear(diffuse.b)};
+      }
+      aiString texture;
+      const bool hasTexture =
+          source.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS ||
+          source.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == AI_SUCCESS;
+      if (hasTexture && texture.length > 0) {
+        material.image = image(texture.C_Str(), material.name);
+        // A texture replaces the colour; glTF's base colour factor and OBJ's
+        // Kd under a map_Kd are usually white, 3DS often stores grey.
+        if (material.image >= 0) material.diffuse = Eigen::Vector3f::Ones();
+      }
+      m_model.materials.push_back(std::move(material));
+    }
+    if (m_model.materials.empty()) m_model.materials.push_back(ModelMaterial{"default"});
+  }
+
+  Status meshes() {
+    std::size_t total = 0;
+    for (unsigned i = 0; i < m_scene.mNumMeshes; ++i) {
+      const aiMesh& source = *m_scene.mMeshes[i];
+      ModelMesh mesh;
+      mesh.material = source.mMaterialIndex < m_model.materials.size() ? int(source.mMaterialIndex) : 0;
+      mesh.positions.reserve(source.mNumVertices);
+      for (unsigned v = 0; v < source.mNumVertices; ++v) {
+        const aiVector3D& p = source.mVertices[v];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+          return makeError(m_path + ": mesh " + std::to_string(i) + " has a non-finite vertex position");
+        }
+        mesh.positions.emplace_back(p.x, p.y, p.z);
+        Eigen::Vector3f n = source.mNormals ? Eigen::Vector3f(source.mNormals[v].x, source.mNormals[v].y,
+                                                              source.mNormals[v].z)
+                                            : Eigen::Vector3f::UnitY();
+        const float len = n.norm();
+        mesh.normals.push_back(std::isfinite(len) && len > 1e-12f ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitY());
+        if (source.mColors[0]) {
+          const aiColor4D& c = source.mColors[0][v];
+          mesh.colors.emplace_back(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b));
+        }
+        if (source.mTextureCoords[0]) {
+          mesh.uvs.emplace_back(source.mTextureCoords[0][v].x, source.mTextureCoords[0][v].y);
+        }
+      }
+      for (unsigned f = 0; f < source.mNumFaces; ++f) {
+        const aiFace& face = source.mFaces[f];
+        if (face.mNumIndices != 3) continue;  // points and lines (SortByPType keeps them apart)
+        std::array<std::uint32_t, 3> t{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
+        if (t[0] >= source.mNumVertices || t[1] >= source.mNumVertices || t[2] >= source.mNumVertices) {
+          return makeError(m_path + ": mesh " + std::to_string(i) + " face " + std::to_string(f) +
+                           " indexes a vertex that does not exist");
+        }
+        mesh.triangles.push_back(t);
+      }
+      total += mesh.triangles.size();
+      if (total > kMaxTriangles) {
+        return makeError(m_path + ": more than " + std::to_string(kMaxTriangles) + " triangles");
+      }
+      m_model.meshes.push_back(std::move(mesh));
+    }
+    if (total == 0) return makeError(m_path + ": the file holds no triangles");
+    return Ok{};
+  }
+
+  void nodes(const aiNode& root, float scale) {
+    addNode(root, -1);
+    m_model.nodes[0].local = Eigen::Matrix4f(Eigen::Affine3f(Eigen::Scaling(scale)).matrix() * m_model.nodes[0].local);
+  }
+
+ private:
+  void addNode(const aiNode& source, int parent) {
+    const int index = static_cast<int>(m_model.nodes.size());
+    ModelNode node;
+    node.name = source.mName.C_Str();
+    node.parent = parent;
+    node.local = toEigen(source.mTransformation);
+    if (!node.local.allFinite()) node.local = Eigen::Matrix4f::Identity();
+    for (unsigned i = 0; i < source.mNumMeshes; ++i) {
+      const unsigned mesh = source.mMeshes[i];
+      if (mesh < m_model.meshes.size() && !m_model.meshes[mesh].triangles.empty()) node.meshes.push_back(int(mesh));
+    }
+    m_model.nodes.push_back(std::move(node));
+    if (parent >= 0) m_model.nodes[parent].children.push_back(index);
+    for (unsigned i = 0; i < source.mNumChildren; ++i) {
+      if (source.mChildren[i] != nullptr) addNode(*source.mChildren[i], index);
+    }
+  }
+
+  // Index into m_model.images of the texture `stored`, decoding it on first
+  // use; -1 (and a warning) when it cannot be had.
+  int image(const std::string& stored, const std::string& materialName) {
+    if (auto it = m_imageIndex.find(stored); it != m_imageIndex.end()) return it->second;
+    Result<ModelImage> decoded = makeError("");
+    if (const aiTexture* tex = m_scene.GetEmbeddedTexture(stored.c_str())) {
+      decoded = embeddedImage(m_path + ":" + stored, *tex);
+    } else if (auto file = findTextureFile(m_dir, stored)) {
+      decoded = loadImageFile(*file);
+    } else {
+      decoded = makeError("texture \"" + stored + "\" not found next to the model (looked in " + m_dir.string() + ")");
+    }
+    int index = -1;
+    if (decoded) {
+      index = static_cast<int>(m_model.images.size());
+      m_model.images.push_back(std::move(*decoded));
+    } else {
+      std::string warning = m_path + ": material \"" + materialName + "\": " + decoded.error() +
+                            "; drawing it in its material colour";
+      log::warn(warning);
+      m_model.warnings.push_back(std::move(warning));
+    }
+    m_imageIndex[stored] = index;
+    return index;
+  }
+
+  std::string m_path;
+  fs::path m_dir;
+  const aiScene& m_scene;
+  Model& m_model;
+  std::map<std::string, int> m_imageIndex;
+};
+
+}  // namespace
+
+Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const ModelLoadOptions& options) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return makeError(path + ": no such model file");
+  if (!(options.scale > 0) || !std::isfinite(options.scale)) {
+    return makeError(path + ": scale must be a positive number, got " + std::to_string(options.scale));
+  }
+  Assimp::Importer importer;
+  // Lines and points are dropped: models here are surfaces.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_LINE | aiPrimitiveType_POINT);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                         aiProcess_SortByPType | aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
+  const aiScene* scene = importer.ReadFile(path, flags);
+  if (scene == nullptr) {
+    std::string why = importer.GetErrorString();
+    if (why.empty()) why = "assimp could not read it";
+    return makeError(path + ": not a readable model (" + why +
+                     "); expected .3ds, .obj, .gltf/.glb, .dae or another format assimp reads");
+  }
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mRootNode == nullptr) {
+    return makeError(path + ": the model is incomplete (no scene graph or no meshes); is the file truncated?");
+  }
+  auto model = std::make_shared<Model>();
+  model->source = path;
+  Converter converter(path, *scene, *model);
+  converter.materials();
+  if (Status s = converter.meshes(); !s) return makeError(s.error());
+  converter.nodes(*scene->mRootNode, options.scale);
+  computeBounds(*model);
+  if (model->nodes[0].coverBox.empty) return makeError(path + ": no node of the scene graph uses a mesh");
+  return std::shared_ptr<const Model>(std::move(model));
+}
+
+}  // namespace tumble::render

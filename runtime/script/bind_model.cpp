@@ -1,0 +1,219 @@
+// Models from Lua: body:set_model draws a body with a model file (its
+// collision shape stays what it was); world.add_static_model places scenery
+// (rocks, trees, buildings) with an optional static box collision shape.
+//
+//   crate:set_model("base:assets/models/barrier.obj", {offset = {0, -0.4, 0}})
+//   world.add_static_model("base:assets/models/rock.obj", {position = {5, 0, 3}, scale = 1.5})
+//
+// Paths are "MOD:path/in/mod" or a path inside the calling mod. Files are
+// .obj (+ .mtl), .3ds, .gltf / .glb, .dae or anything else assimp reads.
+#include <algorithm>
+#include <optional>
+#include <set>
+
+#include "script/internal/bind_common.h"
+
+namespace tumble::script {
+
+namespace {
+
+void checkOptionFields(lua_State* L, int t, const char* fn, const std::set<std::string>& allowed) {
+  lua_pushnil(L);
+  while (lua_next(L, t) != 0) {
+    lua_pop(L, 1);
+    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
+    if (allowed.count(key) == 0) {
+      lua_pop(L, 1);
+      std::string valid;
+      for (const auto& f : allowed) valid += (valid.empty() ? "" : ", ") + f;
+      throw LuaArgError(std::string(fn) + ": unknown option '" + key + "' (valid: " + valid + ")");
+    }
+  }
+}
+
+Quat readRotation(lua_State* L, int t) {
+  Vec3 rv;
+  if (!optVec3Field(L, t, "rotation", &rv)) return Quat::Identity();
+  const Real angle = rv.norm();
+  return angle > 0 ? Quat(Eigen::AngleAxis<Real>(angle, rv / angle)) : Quat::Identity();
+}
+
+// scale = 2 or scale = {1, 2, 1}; every factor finite and > 0.
+Vec3 readScale(lua_State* L, int t) {
+  Vec3 scale = Vec3::Ones();
+  if (lua_getfield(L, t, "scale") == LUA_TNUMBER) {
+    scale = Vec3::Constant(Real(lua_tonumber(L, -1)));
+    lua_pop(L, 1);
+  } else {
+    lua_pop(L, 1);
+    optVec3Field(L, t, "scale", &scale);
+  }
+  if (!(scale.array() > 0).all() || !scale.allFinite()) {
+    throw LuaArgError("option 'scale' must be a number > 0 or {x, y, z} with each > 0");
+  }
+  return scale;
+}
+
+std::string resolve(lua_State* L, int idx, const char* fn) {
+  if (lua_type(L, idx) != LUA_TSTRING) {
+    throw LuaArgError(std::string(fn) + ": expected a model path such as \"base:assets/models/rock.obj\", got " +
+                      luaL_typename(L, idx));
+  }
+  ScenarioHost* host = ScenarioHost::from(L);
+  auto file = resolveModFile(lua_tostring(L, idx), host->mod(), host->options().modDirs);
+  if (!file) throw LuaArgError(std::string(fn) + ": " + file.error());
+  return *file;
+}
+
+/// @class ModelOptions
+/// Placement of a model on a body, in the body's frame.
+/// @field offset? Vec3Arg model origin relative to the body's centre, m (default {0, 0, 0})
+/// @field rotation? Vec3Arg rotation vector (axis times angle, rad) from model to body axes
+/// @field scale? number|Vec3Arg factor per axis, > 0 (default 1): model file units to metres
+
+/// @function Body:set_model
+/// Draws the body with a model instead of its plain shape. The collision
+/// shape stays what it was; only the picture changes. A second call
+/// replaces the model. The file is checked now: a missing or unreadable
+/// model is an error naming the file.
+/// @param path string "MOD:path/in/mod" (e.g. "base:assets/models/hatchback.obj") or a path in this mod
+/// @param options? ModelOptions offset, rotation and scale in the body's frame
+/// @example car:set_model("base:assets/models/hatchback.obj", {offset = {0, -0.6, 0}})
+int bodySetModel(lua_State* L) {
+  const physics::BodyId id = checkBody(L, 1);
+  const char* fn = "Body:set_model";
+  ModelAttachment a;
+  a.body = id;
+  a.file = resolve(L, 2, fn);
+  ScenarioHost* host = ScenarioHost::from(L);
+  if (host->options().modelBounds) {
+    if (auto box = host->options().modelBounds(a.file); !box) throw LuaArgError(std::string(fn) + ": " + box.error());
+  }
+  if (!lua_isnoneornil(L, 3)) {
+    if (!lua_istable(L, 3)) throw LuaArgError(std::string(fn) + ": options must be a table {offset=, rotation=, scale=}");
+    checkOptionFields(L, 3, fn, {"offset", "rotation", "scale"});
+    try {
+      optVec3Field(L, 3, "offset", &a.offset_m);
+      a.rotation = readRotation(L, 3);
+      a.scale = readScale(L, 3);
+    } catch (const LuaArgError& e) {
+      throw LuaArgError(std::string(fn) + ": " + e.what());
+    }
+  }
+  Presentation& p = host->presentation();
+  auto it = std::find_if(p.attachments.begin(), p.attachments.end(),
+                         [&](const ModelAttachment& m) { return m.body == id; });
+  if (it != p.attachments.end()) *it = a;
+  else p.attachments.push_back(a);
+  ++p.revision;
+  return 0;
+}
+
+/// @function Body:clear_model
+/// Draws the body as its plain shape again.
+/// @return boolean true if the body had a model
+int bodyClearModel(lua_State* L) {
+  const physics::BodyId id = checkBody(L, 1);
+  Presentation& p = ScenarioHost::from(L)->presentation();
+  const auto before = p.attachments.size();
+  std::erase_if(p.attachments, [&](const ModelAttachment& m) { return m.body == id; });
+  ++p.revision;
+  lua_pushboolean(L, p.attachments.size() != before);
+  return 1;
+}
+
+/// @class StaticModelDef
+/// @field position? Vec3Arg where the model's origin goes, m (default {0, 0, 0})
+/// @field rotation? Vec3Arg rotation vector (axis times angle, rad)
+/// @field scale? number|Vec3Arg factor per axis, > 0 (default 1)
+/// @field collision? string "box" (default): a static box around the model; "none": only drawn
+/// @field friction? number of the collision box (default 0.6)
+/// @field color? Vec3Arg colour of the collision box where models are not drawn (headless: unused)
+
+/// @function world.add_static_model
+/// Places a static model: scenery such as rocks, trees, buildings and
+/// barriers. With collision = "box" (the default) a static box body is made
+/// around the model's bounds; static bodies are never tested against each
+/// other and, over a terrain, go into its tree of static objects.
+/// @param path string "MOD:path/in/mod" or a path in this mod
+/// @param def? StaticModelDef placement and collision
+/// @return Body? the collision body, or nil with collision = "none"
+/// @example world.add_static_model("base:assets/models/tree.obj", {position = {8, 0, -4}, rotation = {0, 1.2, 0}})
+int worldAddStaticModel(lua_State* L) {
+  const char* fn = "world.add_static_model";
+  StaticModel s;
+  s.file = resolve(L, 1, fn);
+  std::string collision = "box";
+  Real friction = Real(0.6);
+  Eigen::Vector3f color(0.55f, 0.5f, 0.45f);
+  if (!lua_isnoneornil(L, 2)) {
+    if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": the second argument must be a table {position=, ...}");
+    checkOptionFields(L, 2, fn, {"position", "rotation", "scale", "collision", "friction", "color"});
+    try {
+      optVec3Field(L, 2, "position", &s.position_m);
+      s.rotation = readRotation(L, 2);
+      s.scale = readScale(L, 2);
+      collision = optStringField(L, 2, "collision", "box");
+      friction = Real(optNumberField(L, 2, "friction", friction));
+      Vec3 c;
+      if (optVec3Field(L, 2, "color", &c)) color = c.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
+    } catch (const LuaArgError& e) {
+      throw LuaArgError(std::string(fn) + ": " + e.what());
+    }
+  }
+  if (collision != "box" && collision != "none") {
+    throw LuaArgError(std::string(fn) + ": option 'collision' must be \"box\" or \"none\", got \"" + collision + "\"");
+  }
+  ScenarioHost* host = ScenarioHost::from(L);
+  const ModelBoundsFn& bounds = host->options().modelBounds;
+  std::optional<ModelBox> box;
+  if (bounds) {
+    auto b = bounds(s.file);
+    if (!b) throw LuaArgError(std::string(fn) + ": " + b.error());
+    box = *b;
+  }
+  if (collision == "box") {
+    if (!box) throw LuaArgError(std::string(fn) + ": this run cannot read model bounds; use collision = \"none\"");
+    physics::BodyDef d;
+    d.type = physics::BodyType::Static;
+    const Vec3 half = (box->max_m - box->min_m).cwiseProduct(s.scale) / 2;
+    const Vec3 centre = (box->max_m + box->min_m).cwiseProduct(s.scale) / 2;
+    d.position_m = s.position_m + s.rotation * centre;
+    d.orientation = s.rotation;
+    d.friction = friction;
+    // A flat model (a sign, a decal) still gets a box with some thickness.
+    d.shape = physics::Shape::box(half.cwiseMax(Vec3::Constant(Real(0.005))));
+    auto body = host->world().createBody(d);
+    if (!body) throw LuaArgError(std::string(fn) + ": " + body.error());
+    s.body = *body;
+    host->setColor(*body, color);
+  }
+  host->presentation().statics.push_back(s);
+  ++host->presentation().revision;
+  if (!s.body.isNull()) pushBody(L, s.body);
+  else lua_pushnil(L);
+  return 1;
+}
+
+const luaL_Reg kBodyModelMethods[] = {
+    {"set_model", guarded<bodySetModel>},
+    {"clear_model", guarded<bodyClearModel>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void openModelBindings(lua_State* L, int envIndex) {
+  // Body methods: added to the Body metatable's method table.
+  luaL_getmetatable(L, kBodyMeta);
+  lua_getfield(L, -1, "__index");
+  luaL_setfuncs(L, kBodyModelMethods, 0);
+  lua_pop(L, 2);
+  // world.add_static_model: added to the env's world table.
+  lua_getfield(L, envIndex, "world");
+  lua_pushcfunction(L, guarded<worldAddStaticModel>);
+  lua_setfield(L, -2, "add_static_model");
+  lua_pop(L, 1);
+}
+
+}  // namespace tumble::script

@@ -1,0 +1,288 @@
+// Models as plain data: loading real third-party files with assimp (the 3DS
+// jeep of the driving paper, the RC car in Collada + OBJ, a binary glTF with
+// an embedded texture), bad files, the object tree's bounds and view culling.
+// No GL context needed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render/internal/camera_math.h"
+#include "render/model.h"
+#include "shared_assets.h"
+
+namespace tumble::render {
+namespace {
+
+using tumble::test::sharedAsset;
+namespace fs = std::filesystem;
+
+fs::path scratchDir(const std::string& name) {
+  fs::path dir = fs::temp_directory_path() / ("tumble_model_" + name + "_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::shared_ptr<const Model> mustLoad(const std::string& path) {
+  auto model = loadModel(path);
+  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error());
+  return model.ok() ? *model : nullptr;
+}
+
+// Mean colour of an image, 0..255 per channel.
+Eigen::Vector3f meanColor(const ModelImage& image) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+    sum += Eigen::Vector3d(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]);
+  }
+  return (sum / double(image.rgba.size() / 4)).cast<float>();
+}
+
+void expectTreeBoundsHold(const Model& model) {
+  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    const ModelNode& node = model.nodes[i];
+    EXPECT_TRUE(node.coverBox.contains(node.tightBox)) << "node " << i;
+    EXPECT_TRUE(node.coverSphere.contains(node.tightSphere)) << "node " << i;
+    for (int child : node.children) {
+      EXPECT_GT(child, int(i)) << "children come after their parent";
+      EXPECT_TRUE(node.coverBox.contains(model.nodes[child].coverBox)) << "node " << i << " child " << child;
+      EXPECT_TRUE(node.coverSphere.contains(model.nodes[child].coverSphere)) << "node " << i << " child " << child;
+    }
+    // The tight volumes hold every vertex of the node's meshes.
+    for (int m : node.meshes) {
+      for (const Eigen::Vector3f& p : model.meshes[m].positions) {
+        const Eigen::Vector3f q = (node.toModel * p.homogeneous()).head<3>();
+        BoundingBox point;
+        point.add(q);
+        EXPECT_TRUE(node.tightBox.contains(point));
+        EXPECT_LE((q - node.tightSphere.center).norm(), node.tightSphere.radius_m * (1 + 1e-5f) + 1e-6f);
+      }
+    }
+  }
+}
+
+TEST(ModelLoad, JeepThreeDsLoadsWithItsTexture) {
+  auto jeep = mustLoad(sharedAsset("models/jeep1.3ds"));
+  ASSERT_TRUE(jeep);
+  // The author's readme: 2032 polygons with a 512x512 jpg.
+  EXPECT_NEAR(double(jeep->triangleCount()), 2032.0, 40.0);
+  ASSERT_EQ(jeep->images.size(), 1u);
+  EXPECT_EQ(jeep->images[0].width, 512);
+  EXPECT_EQ(jeep->images[0].height, 512);
+  EXPECT_NE(jeep->images[0].source.find("jeep1.jpg"), std::string::npos) << jeep->images[0].source;
+  EXPECT_TRUE(jeep->warnings.empty());
+  int textured = 0;
+  for (const ModelMesh& mesh : jeep->meshes) {
+    EXPECT_EQ(mesh.uvs.size(), mesh.positions.size());
+    EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+    textured += jeep->materials[mesh.material].image == 0;
+  }
+  EXPECT_GT(textured, 0);
+  // The jeep's skin is mostly olive-green camouflage: green channel leads blue.
+  const Eigen::Vector3f mean = meanColor(jeep->images[0]);
+  EXPECT_GT(mean.y(), mean.z()) << mean.transpose();
+  expectTreeBoundsHold(*jeep);
+}
+
+TEST(ModelLoad, RcCarChassisAndWheelsLoad) {
+  auto chassis = mustLoad(sharedAsset("racecar/meshes/chassis.dae"));
+  ASSERT_TRUE(chassis);
+  EXPECT_GT(chassis->triangleCount(), 50u);
+  // The Collada chassis is coloured per vertex, a mid blue.
+  bool blue = false;
+  for (const ModelMesh& mesh : chassis->meshes) {
+    if (!mesh.colors.empty()) blue = mesh.colors[0].z() > mesh.colors[0].x() + 0.2f;
+  }
+  EXPECT_TRUE(blue);
+  expectTreeBoundsHold(*chassis);
+
+  for (const char* wheel : {"left_front_wheel", "right_rear_wheel"}) {
+    auto model = mustLoad(sharedAsset(std::string("racecar/meshes/") + wheel + ".obj"));
+    ASSERT_TRUE(model);
+    ASSERT_EQ(model->images.size(), 1u) << wheel;
+    EXPECT_NE(model->images[0].source.find("wheel.jpg"), std::string::npos);
+    EXPECT_TRUE(model->warnings.empty());
+    // A wheel of the 1:10 car: about 11 cm across (URDF radius 0.05 m, file in metres).
+    const BoundingBox& box = model->nodes[0].coverBox;
+    const float diameter = (box.max - box.min).maxCoeff();
+    EXPECT_GT(diameter, 0.05f);
+    EXPECT_LT(diameter, 0.2f);
+  }
+}
+
+TEST(ModelLoad, EmbeddedGlbTextureIsDecoded) {
+  auto box = mustLoad(sharedAsset("models/BoxTextured.glb"));
+  ASSERT_TRUE(box);
+  ASSERT_EQ(box->images.size(), 1u);
+  EXPECT_GT(box->images[0].width, 0);
+  EXPECT_EQ(box->images[0].rgba.size(), std::size_t(box->images[0].width) * box->images[0].height * 4);
+  EXPECT_EQ(box->triangleCount(), 12u);
+  expectTreeBoundsHold(*box);
+}
+
+TEST(ModelLoad, TruncatedJeepIsAClearErrorNotACrash) {
+  const fs::path dir = scratchDir("truncated");
+  std::ifstream in(sharedAsset("models/jeep1.3ds"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 10000u);
+  for (std::size_t keep : {std::size_t(5), std::size_t(200), bytes.size() / 3, bytes.size() - 7}) {
+    const fs::path file = dir / ("jeep_" + std::to_string(keep) + ".3ds");
+    std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(keep));
+    auto model = loadModel(file.string());
+    // Either assimp refuses it, or what it salvaged is still consistent.
+    if (!model.ok()) {
+      EXPECT_NE(model.error().find(file.string()), std::string::npos) << model.error();
+    } else {
+      expectTreeBoundsHold(**model);
+      EXPECT_LT((*model)->triangleCount(), 2100u);
+    }
+  }
+  // Cut inside the header: there is nothing to salvage.
+  auto tiny = loadModel((dir / "jeep_5.3ds").string());
+  ASSERT_FALSE(tiny.ok());
+  EXPECT_NE(tiny.error().find("jeep_5.3ds"), std::string::npos) << tiny.error();
+  fs::remove_all(dir);
+}
+
+TEST(ModelLoad, NonModelAndMissingFilesAreClearErrors) {
+  const fs::path dir = scratchDir("bad");
+  const fs::path text = dir / "notes.obj";
+  std::ofstream(text) << "this is a shopping list, not a model\nmilk\neggs\n";
+  auto model = loadModel(text.string());
+  ASSERT_FALSE(model.ok());
+  EXPECT_NE(model.error().find("notes.obj"), std::string::npos) << model.error();
+
+  const fs::path png = dir / "picture.3ds";
+  std::ofstream(png, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n garbage", 17);
+  auto notModel = loadModel(png.string());
+  ASSERT_FALSE(notModel.ok());
+  EXPECT_NE(notModel.error().find("picture.3ds"), std::string::npos) << notModel.error();
+
+  auto missing = loadModel((dir / "nothing_here.glb").string());
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().find("no such model file"), std::string::npos) << missing.error();
+  fs::remove_all(dir);
+}
+
+TEST(ModelLoad, MissingTextureFallsBackToTheMaterialColourWithAWarning) {
+  const fs::path dir = scratchDir("missing_texture");
+  std::ofstream(dir / "crate.mtl") << "newmtl crate\nKd 0.9 0.2 0.1\nmap_Kd crate_wood.png\n";
+  std::ofstream(dir / "crate.obj") << "mtllib crate.mtl\nusemtl crate\n"
+                                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                      "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+  auto model = mustLoad((dir / "crate.obj").string());
+  ASSERT_TRUE(model);
+  EXPECT_TRUE(model->images.empty());
+  ASSERT_EQ(model->warnings.size(), 1u);
+  EXPECT_NE(model->warnings[0].find("crate_wood.png"), std::string::npos) << model->warnings[0];
+  const ModelMaterial& material = model->materials[model->meshes[0].material];
+  EXPECT_EQ(material.image, -1);
+  EXPECT_GT(material.diffuse.x(), 0.7f);  // 0.9 sRGB -> 0.79 linear
+  EXPECT_LT(material.diffuse.y(), 0.1f);
+  fs::remove_all(dir);
+}
+
+// A hand-made tree: root (no mesh) -> two children, one with a grandchild
+// far away, to check covering volumes and culling.
+Model makeTree() {
+  Model model;
+  ModelMesh cube;
+  for (int i = 0; i < 8; ++i) {
+    cube.positions.emplace_back(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f);
+    cube.normals.push_back(cube.positions.back().normalized());
+  }
+  cube.triangles = {{0, 1, 2}};
+  model.meshes.push_back(cube);
+  model.materials.push_back(ModelMaterial{});
+  auto node = [&](int parent, const Eigen::Vector3f& offset) {
+    ModelNode n;
+    n.parent = parent;
+    n.local = Eigen::Affine3f(Eigen::Translation3f(offset)).matrix();
+    n.meshes = {0};
+    model.nodes.push_back(n);
+    if (parent >= 0) model.nodes[parent].children.push_back(int(model.nodes.size()) - 1);
+  };
+  node(-1, {0, 0, 0});
+  model.nodes[0].meshes.clear();
+  node(0, {2, 0, 0});
+  node(0, {-2, 0, 0});
+  node(2, {0, 0, -30});  // grandchild, 30 m further along -Z of its parent
+  computeBounds(model);
+  return model;
+}
+
+TEST(ModelTree, CoveringVolumesContainTheirChildren) {
+  const Model model = makeTree();
+  expectTreeBoundsHold(model);
+  EXPECT_TRUE(model.nodes[0].tightBox.empty);
+  // The root covers the grandchild at z = -30 +- 0.5.
+  EXPECT_NEAR(model.nodes[0].coverBox.min.z(), -30.5f, 1e-5f);
+  EXPECT_NEAR(model.nodes[0].coverBox.max.x(), 2.5f, 1e-5f);
+  // The grandchild's tight sphere: the cube's half diagonal.
+  EXPECT_NEAR(model.nodes[3].tightSphere.radius_m, std::sqrt(0.75f), 1e-5f);
+}
+
+TEST(ModelTree, NodesBehindTheCameraAreCulled) {
+  const Model model = makeTree();
+  Camera camera;
+  camera.target = {0, 0, -10};  // looking down -Z from z = +4
+  camera.yaw_rad = 0;
+  camera.pitch_rad = 0;
+  camera.distance_m = 14;
+  const Eigen::Matrix4f vp = makeFrameView(camera, 1.5f).viewProjection;
+  std::vector<int> visible;
+  cullModel(model, Eigen::Matrix4f::Identity(), vp, visible);
+  EXPECT_EQ(visible, (std::vector<int>{1, 2, 3}));
+
+  // Model turned 180 degrees about Y: the children at x = -+2 stay in view,
+  // the grandchild moves to z = +30, behind the camera at z = +4.
+  Eigen::Matrix4f turn = Eigen::Affine3f(Eigen::AngleAxisf(float(kPi), Eigen::Vector3f::UnitY())).matrix();
+  cullModel(model, turn, vp, visible);
+  EXPECT_EQ(visible, (std::vector<int>{1, 2}));
+
+  // The whole model behind the camera: the root's covering volume fails, so
+  // no child is even looked at.
+  int tested = 0;
+  const Eigen::Matrix4f behind = Eigen::Affine3f(Eigen::Translation3f(0, 0, 80)).matrix() * turn;
+  cullModel(model, behind, vp, visible, &tested);
+  EXPECT_TRUE(visible.empty());
+  EXPECT_EQ(tested, 1);
+}
+
+TEST(ModelTree, OverlapQuerySkipsSubtreesEarly) {
+  const Model model = makeTree();
+  std::vector<int> nodes;
+  int tested = 0;
+  BoundingBox box;
+  // A box around the grandchild (model z = -30), model placed 100 m up X.
+  const Eigen::Matrix4f place = Eigen::Affine3f(Eigen::Translation3f(100, 0, 0)).matrix();
+  box.add(Eigen::Vector3f(97.5f, -0.2f, -30.2f));
+  box.add(Eigen::Vector3f(98.5f, 0.2f, -29.8f));
+  overlapModel(model, place, box, nodes, &tested);
+  EXPECT_EQ(nodes, (std::vector<int>{3}));
+  // Node 1 (x = +2) is looked at and dropped; nothing below it exists.
+  EXPECT_EQ(tested, 4);
+
+  // Far from everything: only the root's covering sphere is tested.
+  BoundingBox far;
+  far.add(Eigen::Vector3f(0, 50, 0));
+  far.add(Eigen::Vector3f(1, 51, 1));
+  overlapModel(model, place, far, nodes, &tested);
+  EXPECT_TRUE(nodes.empty());
+  EXPECT_EQ(tested, 1);
+
+  // Scaled by 2: the grandchild moves to z = -60 and grows to 2 m.
+  const Eigen::Matrix4f scaled = Eigen::Affine3f(Eigen::Scaling(2.0f)).matrix();
+  BoundingBox nearScaled;
+  nearScaled.add(Eigen::Vector3f(-4.9f, 0, -60));
+  nearScaled.add(Eigen::Vector3f(-4.8f, 0.1f, -59.9f));
+  overlapModel(model, scaled, nearScaled, nodes, &tested);
+  EXPECT_EQ(nodes, (std::vector<int>{3}));
+}
+
+}  // namespace
+}  // namespace tumble::render
