@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "app/paths.h"
+#include "physics/joints/joint_system.h"
 #include "script/mods.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
@@ -74,7 +75,7 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
     return makeError("--set " + key +
                      ": unknown physics setting (known: physics.substeps, physics.iterations, "
                      "physics.relax_iterations, physics.soft_contacts, physics.sleep, physics.baumgarte, "
-                     "physics.solver_tolerance, physics.gravity)");
+                     "physics.solver_tolerance, physics.gravity, physics.joint_solver)");
   }
   return Ok{};
 }
@@ -116,6 +117,11 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   for (const auto& [key, value] : options.sets) {
     if (key.rfind("terrain.", 0) == 0) {
       terrainSettings[key] = value;
+    } else if (key == "physics.joint_solver") {
+      physics::JointSolverKind kind;
+      if (!physics::parseJointSolver(value, &kind))
+        return makeError("--set " + key + "=" + value + ": expected lagrange or impulse");
+      so.jointSolver = value;
     } else if (key.rfind("physics.", 0) == 0) {
       if (auto st = applyPhysicsSetting(ws, key, value); !st) return makeError(st.error());
     } else {

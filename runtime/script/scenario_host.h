@@ -55,6 +55,9 @@ struct ScenarioOptions {
   std::uint64_t seed = 1;
   std::string scriptsDir;  ///< the runtime's Lua library (require "tumble.x")
   VmLimits limits;
+  /// --set physics.joint_solver: "lagrange" or "impulse" (checked by the
+  /// app); empty: the scenario's joint_solver field, else lagrange.
+  std::string jointSolver;
 };
 
 class ScenarioHost {
@@ -113,6 +116,8 @@ class ScenarioHost {
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
+  /// "lagrange" or "impulse": the formulation joints() uses (the report's joint_solver).
+  const char* jointSolverName() const { return m_impulseJoints ? "impulse" : "lagrange"; }
   const ModInfo& mod() const { return m_mod; }
   const std::string& scenarioFile() const { return m_file; }
   std::size_t luaMemoryBytes() const { return m_vm.memoryUsed(); }
@@ -210,6 +215,7 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  bool m_impulseJoints = false;  ///< joints() uses formulation B (joint_solver / --set physics.joint_solver)
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).

@@ -85,6 +85,15 @@
 // change and adding them to Q (so resting limbs would not stretch their
 // joints by g / k_s): with a one-step delay it oscillated (parts at 0.1-1
 // m/s) and it sees the projection's own velocity changes as forces.
+// Rejected too (issue 4, second session): the contact solver's own impulses
+// of the last substep as forces in Q. ragdoll_pile blew up (33 NaN events;
+// at half the force as well); only for parts slower than 0.2-0.5 m/s it
+// stayed finite but the worst joint stayed 10.9-11.2 cm open (10.3 cm
+// without). Stiffer Baumgarte gains (k_s = 900, 1600 /s^2) left it at 10.4
+// and 9.1 cm: the stretch there is not a spring sag but a conflict the
+// Lagrange solve cannot see, a part held by contacts (split impulses remove
+// overlap at once) where its joint wants it. Formulation B (impulse_joints.cpp)
+// solves joints and contacts together: 1.7 cm on the same pile.
 //
 // Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
 // semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
