@@ -65,6 +65,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"dt", scene.options().dt_s},
       {"substeps", world.settings().substeps},
       {"integrator", scene.options().integrator},
+      {"joint_solver", scene.host().jointSolverName()},
       {"steps", steps},
       {"simulated_seconds", simulatedSeconds},
       {"wall_seconds",

@@ -11,6 +11,7 @@
 #include "core/log.h"
 #include "script/mod_bindings.h"
 #include "app/scene_models.h"
+#include "physics/joints/joint_system.h"
 #include "script/mods.h"
 #include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
@@ -83,7 +84,7 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
     return makeError("--set " + key +
                      ": unknown physics setting (known: physics.substeps, physics.iterations, "
                      "physics.relax_iterations, physics.soft_contacts, physics.sleep, physics.baumgarte, "
-                     "physics.solver_tolerance, physics.gravity)");
+                     "physics.solver_tolerance, physics.gravity, physics.joint_solver)");
   }
   return Ok{};
 }
@@ -154,6 +155,11 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
       if (name.rfind(mod->name + ".", 0) == 0) name = name.substr(mod->name.size() + 1);
       if (name.empty()) return makeError("--set " + key + ": expected tune.NAME=VALUE or tune.MOD.NAME=VALUE");
       so.tuneSets[name] = value;
+    } else if (key == "physics.joint_solver") {
+      physics::JointSolverKind kind;
+      if (!physics::parseJointSolver(value, &kind))
+        return makeError("--set " + key + "=" + value + ": expected lagrange or impulse");
+      so.jointSolver = value;
     } else if (key.rfind("physics.", 0) == 0) {
       if (auto st = applyPhysicsSetting(ws, key, value); !st) return makeError(st.error());
     } else {

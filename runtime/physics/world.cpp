@@ -20,6 +20,7 @@
 
 #include "core/hash.h"
 #include "physics/compound_shape.h"
+#include "physics/constraint_solver.h"
 #include "physics/internal/broad_phase.h"
 #include "physics/internal/contact_solver.h"
 #include "physics/internal/height_field_collision.h"
@@ -795,11 +796,14 @@ void World::step(Real dt) {
   const Real tol2 = m_settings.solverTolerance * m_settings.solverTolerance;
   contacts.prepare(m_manifolds, m_bodies);
   m_inStep = true;
+  ConstraintSolver* joints = m_constraintSolver;  // the joint hook (constraint_solver.h), usually null
+  if (joints) joints->prepare(*this, dt, substeps);
   for (int s = 0; s < substeps; ++s) {
     integrateVelocities(ss.h);
     for (auto& [id, hook] : m_substepHooks) hook(*this, ss.h);
     contacts.captureApproachSpeeds(st.vel);
     contacts.warmStart(st.vel);
+    if (joints) joints->warmStart(st.vel.data(), m_bodies.data());
     // Rolling and split impulses are per substep (not warm started), so
     // each substep can apply its full share again.
     contacts.resetSubstepImpulses();
@@ -807,13 +811,16 @@ void World::step(Real dt) {
     // updated once per phase, not once per iteration.
     if (m_settings.velocityIterations > 0) contacts.updateSeparations(st.pose);
     for (int it = 0; it < m_settings.velocityIterations; ++it) {
+      const Real jr = joints ? joints->solve(st.vel.data(), m_bodies.data(), true) : Real(0);
       const Real r = contacts.solve(st.vel, st.pseudo, ss, true);
-      if (r <= tol2 * contacts.lastMagnitude()) break;  // converged: see WorldSettings::solverTolerance
+      if (r <= tol2 * contacts.lastMagnitude() && jr <= tol2) break;  // converged: see WorldSettings::solverTolerance
     }
     integratePositions(ss.h);
     if (m_settings.relaxIterations > 0) contacts.updateSeparations(st.pose);
-    for (int it = 0; it < m_settings.relaxIterations; ++it)
-      if (contacts.solve(st.vel, st.pseudo, ss, false) == 0) break;
+    for (int it = 0; it < m_settings.relaxIterations; ++it) {
+      const Real jr = joints ? joints->solve(st.vel.data(), m_bodies.data(), false) : Real(0);
+      if (contacts.solve(st.vel, st.pseudo, ss, false) == 0 && jr == 0) break;
+    }
     // Impulses from static, kinematic or sleeping bodies are external to the
     // moving set; between two moving bodies they cancel exactly.
     m_externalImpulse += contacts.externalImpulse();
@@ -829,6 +836,7 @@ void World::step(Real dt) {
     b.angularVelocity_radps = narrow(st.vel[i].angular);
   }
   contacts.store(m_manifolds);
+  if (joints) joints->finish(*this);
   if (m_settings.continuousStatic) clampToStatic();
   for (Body& b : m_bodies)
     if (b.alive && b.moves()) updateInertia(b);

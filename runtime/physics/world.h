@@ -112,6 +112,7 @@ class DebugDraw {
 
 struct Manifold;
 class BroadPhase;
+class ConstraintSolver;
 struct StepScratch;
 
 class World {
@@ -189,6 +190,11 @@ class World {
   void applyImpulseNow(BodyId id, const Vec3& impulse_Ns, const Vec3& point_m);
   /// Ray against one body's shape (dir need not be unit); false if missed.
   bool rayCastBody(BodyId id, const Vec3& origin_m, const Vec3& dir, Real maxDistance_m, RayHit* hit) const;
+  /// Constraints solved inside the substep loop with the contacts (the
+  /// impulse joints; see constraint_solver.h), or null. Not owned: the
+  /// caller keeps it alive while set and resets it to null before it dies.
+  void setConstraintSolver(ConstraintSolver* solver) { m_constraintSolver = solver; }
+  ConstraintSolver* constraintSolver() const { return m_constraintSolver; }
 
   /// Static terrain the bodies collide with (see height_field.h), or null.
   /// Owned by the caller and must outlive the world or be reset to null;
@@ -269,6 +275,7 @@ class World {
 
   WorldSettings m_settings;
   const HeightField* m_heightField = nullptr;
+  ConstraintSolver* m_constraintSolver = nullptr;  ///< see setConstraintSolver
   std::vector<Body> m_bodies;
   std::vector<std::uint32_t> m_freeList;
   int m_bodyCount = 0;

@@ -388,6 +388,7 @@ ScenarioHost::ScenarioHost(const ModInfo& mod, physics::World& world, const Scen
     m_ownInput = std::make_unique<input::InputSystem>();
     m_input = m_ownInput.get();
   }
+  m_impulseJoints = options.jointSolver == "impulse";
   lua_State* L = m_vm.state();
   lua_pushlightuserdata(L, this);
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kHostKey);
@@ -501,6 +502,7 @@ void ScenarioHost::buildEnvironment() {
 /// What a scenario file returns. Every field is optional.
 /// @field title string shown in the window title and the HUD
 /// @field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
+/// @field joint_solver string "lagrange" (default; formulation A, Lagrange multipliers before the step) or "impulse" (formulation B, impulses solved with the contacts); --set physics.joint_solver=... overrides it
 /// @field on_start fun(ctx: Ctx) called once before the first step
 /// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 /// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
@@ -576,6 +578,17 @@ Status ScenarioHost::adoptScenarioTable(bool first) {
   if (lua_type(L, -1) == LUA_TNUMBER && lua_tonumber(L, -1) > 0) m_duration_s = lua_tonumber(L, -1);
   else if (!lua_isnil(L, -1)) {
     return fail(2, where + ": field 'duration' must be a number of seconds > 0");
+  }
+  lua_pop(L, 1);
+  // joint_solver = "lagrange" | "impulse"; --set physics.joint_solver wins.
+  lua_getfield(L, -1, "joint_solver");
+  if (!lua_isnil(L, -1)) {
+    physics::JointSolverKind kind;
+    if (lua_type(L, -1) != LUA_TSTRING || !physics::parseJointSolver(lua_tostring(L, -1), &kind)) {
+      lua_pop(L, 2);
+      return makeError(where + ": field 'joint_solver' must be \"lagrange\" or \"impulse\"");
+    }
+    if (options.jointSolver.empty()) host->m_impulseJoints = kind == physics::JointSolverKind::Impulse;
   }
   lua_pop(L, 1);
   // terrain = {generate = 7, size = 1025, ...} or {heightmap = "assets/map.png"}
@@ -831,6 +844,7 @@ physics::JointSystem& ScenarioHost::joints() {
     // ~0.3 m/s); see JointSettings::projectPositions.
     physics::JointSettings js;
     js.projectPositions = false;
+    js.solver = m_impulseJoints ? physics::JointSolverKind::Impulse : physics::JointSolverKind::Lagrange;
     m_joints = std::make_unique<physics::JointSystem>(m_world, js);
   }
   return *m_joints;

@@ -93,6 +93,9 @@ struct ScenarioOptions {
   /// Bounds of a model file (world.add_static_model's collision box); the
   /// app provides it. Unset: static models cannot have collision = "box".
   ModelBoundsFn modelBounds;
+  /// --set physics.joint_solver: "lagrange" or "impulse" (checked by the
+  /// app); empty: the scenario's joint_solver field, else lagrange.
+  std::string jointSolver;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number
@@ -201,6 +204,8 @@ class ScenarioHost {
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
+  /// "lagrange" or "impulse": the formulation joints() uses (the report's joint_solver).
+  const char* jointSolverName() const { return m_impulseJoints ? "impulse" : "lagrange"; }
   const ModInfo& mod() const { return m_mod; }
   const std::string& scenarioFile() const { return m_file; }
   std::size_t luaMemoryBytes() const { return m_vm.memoryUsed(); }
@@ -319,6 +324,7 @@ class ScenarioHost {
   std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
   Presentation m_presentation;
+  bool m_impulseJoints = false;  ///< joints() uses formulation B (joint_solver / --set physics.joint_solver)
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).

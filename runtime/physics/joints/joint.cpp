@@ -73,6 +73,8 @@ Status validateJointDef(const World& world, const JointDef& d) {
       return makeError("cone-twist fields 'twist_lower' in (-pi, 0] and 'twist_upper' in [0, pi) rad");
   }
   auto nonNeg = [](Real x) { return std::isfinite(x) && x >= 0; };
+  if (!std::isfinite(d.motorSpeed_radps) || !nonNeg(d.maxMotorTorque_Nm))
+    return makeError("hinge motor fields: 'motor_speed' must be finite (rad/s) and 'max_motor_torque' >= 0 (N m)");
   if (!nonNeg(d.linearStiffness_Npm) || !nonNeg(d.linearDamping_Nspm) || !nonNeg(d.angularStiffness_Nmprad) ||
       !nonNeg(d.angularDamping_Nmsprad))
     return makeError("joint spring fields (stiffness, damping) must be finite numbers >= 0");

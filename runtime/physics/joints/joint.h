@@ -1,12 +1,15 @@
 #pragma once
-// Joint definitions for the Lagrange-multiplier joint solver (joint_system.h).
+// Joint definitions, shared by both joint solvers of joint_system.h: the
+// Lagrange-multiplier solver (formulation A) and the impulse solver inside
+// the contact loop (formulation B, impulse_joints.cpp).
 //
 // Every joint has a point-to-point (ball) part: an anchor fixed in body A and
 // one fixed in body B must coincide. The types add angular rows on top:
 //
 //   Ball       3 rows   the anchors coincide; free rotation.
 //   Hinge      5 rows   ball + 2 rows keeping the hinge axes aligned; optional
-//                       angle limits (one inequality row, active when violated).
+//                       angle limits (one inequality row, active when violated)
+//                       and a motor (target rate, torque bound).
 //   ConeTwist  3 rows   ball + swing-cone and twist limits (inequality rows,
 //                       active when violated). Shoulders, hips, neck, spine.
 //   Fixed      6 rows   ball + 3 rows locking the relative orientation.
@@ -60,6 +63,15 @@ struct JointDef {
   Real swingLimit_rad = kPi / 4;
   Real twistLower_rad = -kPi / 4;  ///< ConeTwist: twist about +X, rad, in (-pi, 0]
   Real twistUpper_rad = kPi / 4;   ///< ConeTwist: twist about +X, rad, in [0, pi)
+
+  // ---- motor (Hinge) ----------------------------------------------------------
+  /// Drives the hinge angle's rate (B relative to A about +X) towards
+  /// motorSpeed_radps with a torque of at most maxMotorTorque_Nm. Impulse
+  /// solver: a velocity row clamped to +-maxMotorTorque_Nm * h. Lagrange
+  /// solver: an explicit servo torque (see joint_system.cpp).
+  bool enableMotor = false;
+  Real motorSpeed_radps = 0;   ///< rad/s
+  Real maxMotorTorque_Nm = 0;  ///< N m, >= 0
 
   // ---- soft (spring) joints ------------------------------------------------
   /// > 0: the equality rows become springs instead of hard rows: the

@@ -39,6 +39,12 @@
 // would pull the joint into the limit) are dropped and the system solved
 // again (at most JointSettings::maxActiveSetIterations times).
 //
+// Hinge motors are not rows here: an explicit servo torque tau = clamp(
+// I_axial k_d (speed - rate), +-maxTorque) about the hinge axis joins Q (the
+// rate reaches the target with the Baumgarte time constant 1/k_d unless the
+// torque saturates). A bounded row would need a second active set; the
+// impulse solver (formulation B) does have the exact bounded row.
+//
 // Soft joints: the equality rows of a joint with a stiffness are not solved
 // for; their lambda = -k C - c C' is an explicit spring force, added to Q
 // before the hard rows are solved (so hard rows see the springs).
@@ -79,6 +85,15 @@
 // change and adding them to Q (so resting limbs would not stretch their
 // joints by g / k_s): with a one-step delay it oscillated (parts at 0.1-1
 // m/s) and it sees the projection's own velocity changes as forces.
+// Rejected too (issue 4, second session): the contact solver's own impulses
+// of the last substep as forces in Q. ragdoll_pile blew up (33 NaN events;
+// at half the force as well); only for parts slower than 0.2-0.5 m/s it
+// stayed finite but the worst joint stayed 10.9-11.2 cm open (10.3 cm
+// without). Stiffer Baumgarte gains (k_s = 900, 1600 /s^2) left it at 10.4
+// and 9.1 cm: the stretch there is not a spring sag but a conflict the
+// Lagrange solve cannot see, a part held by contacts (split impulses remove
+// overlap at once) where its joint wants it. Formulation B (impulse_joints.cpp)
+// solves joints and contacts together: 1.7 cm on the same pile.
 //
 // Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
 // semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
@@ -102,6 +117,8 @@
 // World uses (60 Hz has a margin of 1.8).
 #include "physics/joints/joint_system.h"
 
+#include "physics/internal/impulse_joints.h"
+
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -114,6 +131,17 @@ using V3 = Eigen::Vector3d;
 using M3 = Eigen::Matrix3d;
 using Qd = Eigen::Quaterniond;
 using V6 = Eigen::Matrix<double, 6, 1>;
+
+const char* jointSolverName(JointSolverKind kind) {
+  return kind == JointSolverKind::Impulse ? "impulse" : "lagrange";
+}
+
+bool parseJointSolver(const std::string& text, JointSolverKind* out) {
+  if (text == "lagrange") *out = JointSolverKind::Lagrange;
+  else if (text == "impulse") *out = JointSolverKind::Impulse;
+  else return false;
+  return true;
+}
 
 const char* jointIntegratorName(JointIntegrator m) {
   switch (m) {
@@ -189,8 +217,26 @@ struct JointSystem::Impl {
 };
 
 JointSystem::JointSystem(World& world, const JointSettings& settings)
-    : m_world(world), m_settings(settings), m_impl(std::make_unique<Impl>()) {}
-JointSystem::~JointSystem() = default;
+    : m_world(world), m_settings(settings), m_impl(std::make_unique<Impl>()) {
+  const JointSolverKind kind = m_settings.solver;
+  m_settings.solver = JointSolverKind::Lagrange;
+  setSolver(kind);
+}
+
+JointSystem::~JointSystem() {
+  if (m_impulse && m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
+}
+
+void JointSystem::setSolver(JointSolverKind kind) {
+  m_settings.solver = kind;
+  if (kind == JointSolverKind::Impulse && !m_impulse) {
+    m_impulse = std::make_unique<ImpulseJoints>(*this, m_settings.impulseHertz, m_settings.impulseDampingRatio);
+    m_world.setConstraintSolver(m_impulse.get());
+  } else if (kind == JointSolverKind::Lagrange && m_impulse) {
+    if (m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
+    m_impulse.reset();
+  }
+}
 
 // ---- joint bookkeeping -------------------------------------------------------------
 
@@ -624,6 +670,27 @@ static void deriveStates(std::vector<BodyState>& states, const JointSettings& js
   }
 }
 
+// Hinge motors: an explicit servo torque added to Q (see the top of the
+// file): tau = clamp(I_axial k_d (speed - rate), +-maxMotorTorque) about the
+// hinge axis, on B (and -tau on A), I_axial = 1 / (a1.(IA^-1 + IB^-1) a1).
+static void addMotorTorques(const Evaluation& ev, std::vector<BodyState>& st, const JointSettings& js) {
+  for (std::size_t k = 0; k < ev.defs.size(); ++k) {
+    const JointDef& d = *ev.defs[k];
+    if (d.type != JointType::Hinge || !d.enableMotor) continue;
+    const auto [ia, ib] = ev.bodies[k];
+    BodyState* A = ia >= 0 ? &st[ia] : nullptr;
+    BodyState* B = ib >= 0 ? &st[ib] : nullptr;
+    const V3 a1 = poseOf(d.localAnchorA_m, d.localFrameA, A).F.col(0);
+    const V3 wA = A ? A->w : V3::Zero(), wB = B ? B->w : V3::Zero();
+    const double kinv = a1.dot(((A ? A->invI : M3::Zero()) + (B ? B->invI : M3::Zero())) * a1);
+    if (!(kinv > 0)) continue;
+    const double maxT = d.maxMotorTorque_Nm;
+    const double tau = std::clamp((d.motorSpeed_radps - (wB - wA).dot(a1)) / kinv * js.damping_per_s, -maxT, maxT);
+    if (A && A->dynamic) A->Qt -= tau * a1;
+    if (B && B->dynamic) B->Qt += tau * a1;
+  }
+}
+
 // Computes the constraint forces (states[i].Fc, Tc) for the given states.
 // Returns the joints (slot indices) that broke, with their force and torque.
 static std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, const JointSettings& js,
@@ -634,6 +701,7 @@ static std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, cons
   deriveStates(st, js, gravity, includeExternal);
   buildRows(ev.defs, ev.slots, ev.bodies, st, im.rows);
   std::vector<Row>& rows = im.rows;
+  addMotorTorques(ev, st, js);
   std::vector<char> broken(ev.defs.size(), 0);  // per evaluation joint
   std::vector<JointBreakEvent> events;
   std::vector<int> jointOf(rows.size());
@@ -744,18 +812,33 @@ static std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, cons
 
 // ---- the public steps ----------------------------------------------------------------------
 
+void JointSystem::refreshLinks() {
+  if (!m_orderDirty) return;
+  Impl& im = *m_impl;
+  std::vector<JointDef> defs;
+  std::vector<std::uint32_t> ids;
+  for (std::uint32_t i = 0; i < m_slots.size(); ++i)
+    if (m_slots[i].alive) defs.push_back(m_slots[i].def), ids.push_back(i);
+  im.order = eliminationOrder(m_world, defs, ids);
+  // Jointed bodies sleep and wake as one island (World::setIslandLinks).
+  m_world.setIslandLinks(connectedPairs());
+  m_orderDirty = false;
+}
+
+void JointSystem::solveOrder(std::vector<std::uint32_t>& out) const {
+  out.clear();
+  if (!m_orderDirty) {
+    for (std::uint32_t i : m_impl->order)
+      if (m_slots[i].alive) out.push_back(i);
+    return;
+  }
+  for (std::uint32_t i = 0; i < m_slots.size(); ++i)
+    if (m_slots[i].alive) out.push_back(i);
+}
+
 void JointSystem::prepare() {
   Impl& im = *m_impl;
-  if (m_orderDirty) {
-    std::vector<JointDef> defs;
-    std::vector<std::uint32_t> ids;
-    for (std::uint32_t i = 0; i < m_slots.size(); ++i)
-      if (m_slots[i].alive) defs.push_back(m_slots[i].def), ids.push_back(i);
-    im.order = eliminationOrder(m_world, defs, ids);
-    // Jointed bodies sleep and wake as one island (World::setIslandLinks).
-    m_world.setIslandLinks(connectedPairs());
-    m_orderDirty = false;
-  }
+  refreshLinks();
   Evaluation& ev = im.ev;
   ev.defs.clear();
   ev.slots.clear();
@@ -819,22 +902,7 @@ void JointSystem::applyConstraintForces() {
     m_stats = JointSolveStats{};
     return;
   }
-  // Sleeping bodies: a sleeping body jointed to a body that moves faster
-  // than the sleep thresholds is woken (the World's islands know only
-  // contacts); otherwise it is held as fixed for this step and gets no force.
-  const WorldSettings& ws = m_world.settings();
-  auto fast = [&](const Body& b) {
-    return b.isDynamic() && b.awake &&
-           (b.linearVelocity_mps.norm() > ws.sleepLinearSpeed_mps ||
-            b.angularVelocity_radps.norm() > ws.sleepAngularSpeed_radps);
-  };
-  for (const Slot& s : m_slots) {
-    if (!s.alive || s.def.bodyB.isNull()) continue;
-    const Body& a = m_world.body(s.def.bodyA);
-    const Body& b = m_world.body(s.def.bodyB);
-    if (!a.awake && a.isDynamic() && fast(b)) m_world.wake(s.def.bodyA);
-    if (!b.awake && b.isDynamic() && fast(a)) m_world.wake(s.def.bodyB);
-  }
+  wakeJointedSleepers();
   prepare();
   Impl& im = *m_impl;
   const V3 g = wide3(m_world.settings().gravity_mps2);
@@ -852,6 +920,25 @@ void JointSystem::applyConstraintForces() {
   measureError();
 }
 
+void JointSystem::wakeJointedSleepers() {
+  // Sleeping bodies: a sleeping body jointed to a body that moves faster
+  // than the sleep thresholds is woken (the World's islands know only
+  // contacts); otherwise it is held as fixed for this step and gets no force.
+  const WorldSettings& ws = m_world.settings();
+  auto fast = [&](const Body& b) {
+    return b.isDynamic() && b.awake &&
+           (b.linearVelocity_mps.norm() > ws.sleepLinearSpeed_mps ||
+            b.angularVelocity_radps.norm() > ws.sleepAngularSpeed_radps);
+  };
+  for (const Slot& s : m_slots) {
+    if (!s.alive || s.def.bodyB.isNull()) continue;
+    const Body& a = m_world.body(s.def.bodyA);
+    const Body& b = m_world.body(s.def.bodyB);
+    if (!a.awake && a.isDynamic() && fast(b)) m_world.wake(s.def.bodyA);
+    if (!b.awake && b.isDynamic() && fast(a)) m_world.wake(s.def.bodyB);
+  }
+}
+
 void JointSystem::step(Real dt_s) {
   // The projection runs at the start of the step rather than at the end of
   // the previous one: for free chains that is the same cycle, but with
@@ -860,12 +947,41 @@ void JointSystem::step(Real dt_s) {
   // ground: a rag-doll never fell asleep, measured 0.3 m/s forever).
   beforeWorldStep();
   m_world.step(dt_s);
+  if (m_impulse) collectImpulseResults();
   measureError();
 }
 
 void JointSystem::beforeWorldStep() {
+  if (m_impulse) {
+    // Formulation B: the solve happens inside World::step (ImpulseJoints).
+    m_broken.clear();
+    collectImpulseResults();
+    if (dropJointsOfDeadBodies()) wakeJointedSleepers();
+    refreshLinks();
+    measureError();
+    return;
+  }
   if (m_settings.postStabilize) postStabilize();
   applyConstraintForces();
+}
+
+void JointSystem::collectImpulseResults() {
+  const std::vector<ImpulseJoints::Output>& out = m_impulse->outputs();
+  std::vector<JointBreakEvent> events;
+  for (std::uint32_t i = 0; i < m_slots.size() && i < out.size(); ++i) {
+    Slot& s = m_slots[i];
+    if (!s.alive || out[i].generation != s.generation) continue;
+    // Stored as the force on A, like formulation A's lastForce_N.
+    s.force_N = -out[i].force_N;
+    s.torque_Nm = -out[i].torque_Nm;
+    if (out[i].broken) {
+      JointBreakEvent e{JointId{i, s.generation}, s.def.bodyA, s.def.bodyB, double(out[i].force_N.norm()),
+                        double(out[i].torque_Nm.norm()), s.def.userData};
+      events.push_back(e);
+    }
+  }
+  m_impulse->clearBroken();
+  finishBreaks(events);
 }
 
 void JointSystem::postStabilize() {

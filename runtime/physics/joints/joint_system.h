@@ -14,6 +14,7 @@
 // through the World's substeps, like any applied force.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -22,7 +23,28 @@
 
 namespace tumble::physics {
 
+/// Which formulation solves the joints (issue 4).
+enum class JointSolverKind {
+  /// A: Lagrange multipliers (Baraff), one sparse solve per step before the
+  /// World's step, applied as forces; contacts are solved afterwards.
+  Lagrange,
+  /// B: velocity-level impulses solved with the contacts in the World's
+  /// substep loop (sequential impulses, soft constraints, warm starting;
+  /// impulse_joints.cpp), through World::setConstraintSolver.
+  Impulse,
+};
+const char* jointSolverName(JointSolverKind kind);
+/// "lagrange" or "impulse"; false for anything else.
+bool parseJointSolver(const std::string& text, JointSolverKind* out);
+
 struct JointSettings {
+  JointSolverKind solver = JointSolverKind::Lagrange;
+  /// Impulse solver: stiffness (Hz) and damping ratio of the soft position
+  /// correction of the hard rows (Box2D v3 uses 60 Hz, 2; we use 120 Hz,
+  /// measured in impulse_joints.cpp), capped at a quarter of the substep
+  /// rate. Springs (JointDef stiffness) use their own k and c instead.
+  double impulseHertz = 120;
+  double impulseDampingRatio = 2;
   /// Baumgarte feedback C'' = -k_s C - k_d C' against drift: position gain
   /// k_s (1/s^2) and velocity gain k_d (1/s). Critically damped at
   /// k_d = 2 sqrt(k_s). Defaults measured for a 60 Hz step: see the
@@ -88,6 +110,8 @@ enum class JointIntegrator {
 
 const char* jointIntegratorName(JointIntegrator m);
 
+class ImpulseJoints;
+
 class JointSystem {
  public:
   explicit JointSystem(World& world, const JointSettings& settings = {});
@@ -95,14 +119,22 @@ class JointSystem {
   JointSystem(const JointSystem&) = delete;
   JointSystem& operator=(const JointSystem&) = delete;
 
+  /// Changing settings().solver directly has no effect: use setSolver.
   JointSettings& settings() { return m_settings; }
   const JointSettings& settings() const { return m_settings; }
+  /// Switches the formulation (also while running; the impulse solver
+  /// registers itself with World::setConstraintSolver, so one JointSystem
+  /// per World). Warm-start impulses start from zero after a switch.
+  void setSolver(JointSolverKind kind);
+  JointSolverKind solver() const { return m_settings.solver; }
 
   /// Creates a joint; refuses bad definitions with a message naming the field.
   Result<JointId> createJoint(const JointDef& def);
   /// Removes a joint; false for a stale or null handle.
   bool destroyJoint(JointId id);
   bool isValid(JointId id) const;
+  /// Generation of a live slot (with solveOrder: the slot's JointId).
+  std::uint32_t generationOf(std::uint32_t slot) const { return m_slots[slot].generation; }
   int jointCount() const { return m_jointCount; }
   /// The definition the joint was created with. Asserts on a stale handle.
   const JointDef& jointDef(JointId id) const;
@@ -121,8 +153,11 @@ class JointSystem {
   /// World::step. Bodies that have been removed from the World drop their
   /// joints (reported as broken with zero force).
   void applyConstraintForces();
-  /// What step() does before World::step: the post-stabilization projection
-  /// (JointSettings::postStabilize), then applyConstraintForces(). For
+  /// What step() does before World::step. Lagrange: the post-stabilization
+  /// projection (JointSettings::postStabilize), then applyConstraintForces().
+  /// Impulse: the joints broken in the last World::step are removed and
+  /// reported, jointed sleepers next to fast bodies woken; the solve itself
+  /// happens inside World::step. For
   /// callers that step the World themselves (the scenario host): call it
   /// right before World::step.
   void beforeWorldStep();
@@ -160,6 +195,12 @@ class JointSystem {
       if (m_slots[i].alive) f(JointId{i, m_slots[i].generation}, m_slots[i].def);
   }
 
+  /// Live joint slots in formulation A's elimination order (post-order of
+  /// the body tree: leaves first), or in slot order when the joint set
+  /// changed since the last step. The impulse solver sweeps in this order,
+  /// so one sweep carries a load from the leaves to the root.
+  void solveOrder(std::vector<std::uint32_t>& out) const;
+
   struct Impl;  ///< solver scratch (joint_system.cpp)
 
  private:
@@ -171,6 +212,9 @@ class JointSystem {
     Vec3 torque_Nm = Vec3::Zero();
   };
   void measureError();
+  void refreshLinks();       ///< joint order and island links when the joint set changed
+  void wakeJointedSleepers();
+  void collectImpulseResults();  ///< impulse solver: forces of the last step, breaks
   void postStabilize();
   void prepare();  ///< joint order (when dirty), body states, evaluation lists
   void recordForces();
@@ -187,6 +231,7 @@ class JointSystem {
   JointSolveStats m_stats;
   double m_maxAnchorError_m = 0;
   std::unique_ptr<Impl> m_impl;
+  std::unique_ptr<ImpulseJoints> m_impulse;  ///< formulation B, registered with the World while set
 };
 
 }  // namespace tumble::physics

@@ -188,6 +188,7 @@ Result<Ragdoll> buildRagdoll(World& world, JointSystem& joints, RagdollDesc desc
     b.orientation = (R * p.orientation).normalized();
     b.friction = desc.friction;
     b.restitution = desc.restitution;
+    b.rollingResistance = desc.rollingResistance;
     auto id = world.createBody(b);
     if (!id) return fail("ragdoll part '" + p.name + "': " + id.error());
     r.bodies.push_back(id.value());
