@@ -1,6 +1,7 @@
 #include "app/scene.h"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 #include "app/paths.h"
@@ -12,7 +13,11 @@
 namespace tumble::app {
 
 const std::vector<std::string>& rigidBodyIntegrators() {
-  static const std::vector<std::string> names{"symplectic_euler"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& info : physics::bodyIntegrators()) n.emplace_back(info.name);
+    return n;
+  }();
   return names;
 }
 
@@ -85,11 +90,12 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   auto ref = script::parseScenarioRef(options.scenarioRef);
   if (!ref) return makeError(ref.error());
   if (!(options.dt_s > 0 && options.dt_s <= 1)) return makeError("--dt must be a time step in (0, 1] seconds");
-  const auto& integrators = rigidBodyIntegrators();
-  if (std::find(integrators.begin(), integrators.end(), options.integrator) == integrators.end()) {
-    std::string known;
-    for (auto& n : integrators) known += (known.empty() ? "" : ", ") + n;
-    return makeError("--integrator " + options.integrator + ": the rigid-body world offers " + known);
+  // --integrator wins over the scenario's integrator = "..." field.
+  std::optional<physics::BodyIntegrator> forcedIntegrator;
+  if (!options.integrator.empty()) {
+    auto m = physics::parseBodyIntegrator(options.integrator);
+    if (!m) return makeError("--integrator: " + m.error());
+    forcedIntegrator = *m;
   }
   auto scene = std::unique_ptr<Scene>(new Scene());
   scene->m_options = options;
@@ -126,6 +132,15 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
+  physics::BodyIntegrator integrator = physics::BodyIntegrator::SymplecticEuler;
+  if (forcedIntegrator) {
+    integrator = *forcedIntegrator;
+  } else if (!scene->m_host->integratorRequest().empty()) {
+    auto m = physics::parseBodyIntegrator(scene->m_host->integratorRequest());
+    if (!m) return makeError(scene->m_host->scenarioFile() + ": field 'integrator': " + m.error());
+    integrator = *m;
+  }
+  scene->m_world->settings().integrator = integrator;
   // The scenario's own terrain = {...} comes first; --set terrain.* overrides.
   for (const auto& [key, value] : scene->m_host->terrainRequest()) terrainSettings.emplace(key, value);
 #if TUMBLE_HAVE_TERRAIN

@@ -519,6 +519,13 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
     return makeError(where + ": field 'duration' must be a number of seconds > 0");
   }
   lua_pop(L, 1);
+  lua_getfield(L, -1, "integrator");
+  if (lua_type(L, -1) == LUA_TSTRING) host->m_integratorRequest = lua_tostring(L, -1);
+  else if (!lua_isnil(L, -1)) {
+    lua_pop(L, 2);
+    return makeError(where + ": field 'integrator' must be a string such as \"rk4\" (see tumble run --help)");
+  }
+  lua_pop(L, 1);
   // terrain = {generate = 7, size = 1025, ...} or {heightmap = "assets/map.png"}
   lua_getfield(L, -1, "terrain");
   if (lua_istable(L, -1)) {

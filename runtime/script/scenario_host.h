@@ -87,6 +87,9 @@ class ScenarioHost {
   /// value (as --set would give them); `heightmap` is made an absolute path
   /// inside the mod. Empty when the scenario declares no terrain.
   const std::map<std::string, std::string>& terrainRequest() const { return m_terrainRequest; }
+  /// The scenario's `integrator = "rk4"` field (physics/integrate.h names),
+  /// empty when absent; the app checks the name (--integrator wins).
+  const std::string& integratorRequest() const { return m_integratorRequest; }
   const std::vector<ScriptError>& errors() const { return m_errors; }
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
@@ -181,6 +184,7 @@ class ScenarioHost {
   std::string m_title;
   double m_duration_s = 10;
   std::map<std::string, std::string> m_terrainRequest;
+  std::string m_integratorRequest;
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   bool m_hasUpdate = false, m_updatePaused = false;
   bool m_hasContact = false, m_contactPaused = false;
