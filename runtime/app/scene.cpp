@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/paths.h"
+#include "physics/deformable.h"
 #include "script/mods.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
@@ -158,6 +159,16 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
 
 Scene::~Scene() = default;
 
+void Scene::stepDeformables(Real dt_s) {
+  physics::DeformableSystem* d = m_host->deformablesIfAny();
+  if (!d) return;
+  physics::DeformableEnvironment env;
+  env.gravity_mps2 = m_world->settings().gravity_mps2;
+  env.world = m_world.get();
+  env.heightField = m_world->heightField();
+  d->step(dt_s, env);
+}
+
 void Scene::registerStaticObjects() {
 #if TUMBLE_HAVE_TERRAIN
   if (!m_terrain) return;
@@ -175,6 +186,7 @@ void Scene::registerStaticObjects() {
 std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
   if (m_terrain) names.push_back("terrain");
+  if (m_host && m_host->deformablesIfAny()) names.push_back("deformables");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -226,6 +238,18 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     }
     out.shapes.push_back(s);
   });
+  // Ropes, cloth and the lines scripts drew (no interpolation: lines).
+  out.lines.clear();
+  if (const physics::DeformableSystem* d = m_host->deformablesIfAny()) {
+    d->forEach([&](int id, const physics::Deformable& def) {
+      const Eigen::Vector3f color = m_host->deformableColor(id);
+      def.forEachStructuralSegment([&](const Vec3& a, const Vec3& b) {
+        out.lines.push_back(render::DebugLine{a.cast<float>(), b.cast<float>(), color});
+      });
+    });
+  }
+  for (const auto& l : m_host->scriptLines())
+    out.lines.push_back(render::DebugLine{l.a_m.cast<float>(), l.b_m.cast<float>(), l.color});
 }
 
 }  // namespace tumble::app

@@ -56,6 +56,8 @@ class Scene {
   /// Builds what the renderer reads: every body as a shape with its colour.
   /// alpha in [0, 1] interpolates between the previous and current step.
   void snapshot(render::FrameSnapshot& out, double alpha) const;
+  /// Steps the scenario's ropes and cloth, if it made any (after World::step).
+  void stepDeformables(Real dt_s);
   /// Remembers the current state as "previous" (call before each step).
   void savePreviousState();
 

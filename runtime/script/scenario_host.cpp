@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "core/log.h"
+#include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
 #include "script/internal/lua_util.h"
 
@@ -455,6 +456,8 @@ void ScenarioHost::buildEnvironment() {
   openRandomBindings(L, env);
   openTriggerBindings(L, env);
   openRagdollBindings(L, env);
+  openDeformableBindings(L, env);
+  openOdeBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
@@ -629,6 +632,7 @@ void ScenarioHost::start() {
 
 void ScenarioHost::update(double time_s, double dt_s, std::int64_t step) {
   m_now_s = time_s;
+  m_scriptLines.clear();
   if (!m_timers.empty() && m_timers.front().due_s <= time_s + 1e-9) runTimers(time_s, dt_s, step);
   if (hasUpdate()) {
     pushCtx(time_s, dt_s, step);
@@ -651,6 +655,20 @@ physics::JointSystem& ScenarioHost::joints() {
     m_joints = std::make_unique<physics::JointSystem>(m_world, js);
   }
   return *m_joints;
+}
+
+physics::DeformableSystem& ScenarioHost::deformables() {
+  if (!m_deformables) m_deformables = std::make_unique<physics::DeformableSystem>();
+  return *m_deformables;
+}
+
+Eigen::Vector3f ScenarioHost::deformableColor(int id) const {
+  auto it = m_deformableColors.find(id);
+  return it == m_deformableColors.end() ? Eigen::Vector3f(0.9f, 0.6f, 0.2f) : it->second;
+}
+
+void ScenarioHost::addScriptLine(const ScriptLine& line) {
+  if (m_scriptLines.size() < kMaxScriptLines) m_scriptLines.push_back(line);
 }
 
 double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }

@@ -28,6 +28,7 @@
 
 namespace tumble::physics {
 class JointSystem;
+class DeformableSystem;
 }
 
 namespace tumble::script {
@@ -113,6 +114,21 @@ class ScenarioHost {
   /// The scene's joints, created on first use (spawn_ragdoll); null before.
   physics::JointSystem* jointsIfAny() { return m_joints.get(); }
   physics::JointSystem& joints();
+  /// The scene's ropes and cloth (bind_deformable.cpp), created on first
+  /// use; null before. The app steps them after World::step.
+  physics::DeformableSystem* deformablesIfAny() { return m_deformables.get(); }
+  const physics::DeformableSystem* deformablesIfAny() const { return m_deformables.get(); }
+  physics::DeformableSystem& deformables();
+  void setDeformableColor(int id, const Eigen::Vector3f& rgb) { m_deformableColors[id] = rgb; }
+  Eigen::Vector3f deformableColor(int id) const;
+  /// Lines scripts drew with draw_line since the last update() (bind_ode.cpp).
+  struct ScriptLine {
+    Vec3 a_m, b_m;
+    Eigen::Vector3f color;
+  };
+  const std::vector<ScriptLine>& scriptLines() const { return m_scriptLines; }
+  void addScriptLine(const ScriptLine& line);
+  static constexpr std::size_t kMaxScriptLines = 65536;
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
@@ -214,6 +230,9 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  std::unique_ptr<physics::DeformableSystem> m_deformables;  ///< see deformables()
+  std::map<int, Eigen::Vector3f> m_deformableColors;
+  std::vector<ScriptLine> m_scriptLines;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -229,5 +248,8 @@ void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
 /// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
 void openRagdollBindings(lua_State* L, int envIndex);
+/// deformable table (bind_deformable.cpp); ode table and draw_line (bind_ode.cpp).
+void openDeformableBindings(lua_State* L, int envIndex);
+void openOdeBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script
