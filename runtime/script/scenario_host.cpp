@@ -473,6 +473,7 @@ void ScenarioHost::buildEnvironment() {
 /// What a scenario file returns. Every field is optional.
 /// @field title string shown in the window title and the HUD
 /// @field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
+/// @field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
 /// @field on_start fun(ctx: Ctx) called once before the first step
 /// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 /// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b

@@ -106,6 +106,134 @@ function Body:material() end
 ---@field friction? number Coulomb coefficient >= 0; a pair uses sqrt(fa*fb)
 ---@field restitution? number 0..1; a pair uses the larger
 
+---@class RopeDef
+---@field from Vec3Arg first particle (m)
+---@field to Vec3Arg last particle (m)
+---@field segments? integer springs along the rope, 1..4096 (default 20)
+---@field mass? number total mass, kg (default 1)
+---@field stiffness? number each segment's spring, N/m (default 2e4)
+---@field bend? number springs over two segments, N/m (default stiffness / 1000)
+---@field damping? number along each spring, N s/m (default 0.5)
+---@field air_drag? number per particle against the wind-relative velocity, N s/m (default 0.01)
+---@field friction? number against the ground and shapes (default 0.5)
+---@field radius? number collision radius of the particles, m (default 0.02)
+---@field substeps? integer implicit steps per physics step, 1..64 (default 2)
+---@field pin_start? boolean hold the first particle where it is (default true)
+---@field pin_end? boolean hold the last particle where it is (default false)
+---@field wind? Vec3Arg wind velocity, m/s (default none)
+---@field color? Vec3Arg line colour, linear RGB 0..1
+
+---@class ClothDef
+---@field origin Vec3Arg the corner particle 1 (m)
+---@field u? Vec3Arg the first row, from origin to its last particle (m, default {2, 0, 0})
+---@field v? Vec3Arg the first column, from origin to its last particle (m, default {0, -1.5, 0})
+---@field columns? integer particles per row, 2..256 (default 16)
+---@field rows? integer particles per column, 2..256 (default 12)
+---@field mass? number total mass, kg (default 0.5)
+---@field stiffness? number structural springs, N/m (default 2e4)
+---@field shear? number diagonal springs, N/m (default stiffness / 4)
+---@field bend? number springs over two particles, N/m (default stiffness / 1000)
+---@field damping? number along each spring, N s/m (default 0.5)
+---@field drag? number pressure drag coefficient per triangle (default 1.2)
+---@field air_density? number kg/m^3 (default 1.2)
+---@field air_drag? number per particle, N s/m (default 0.01)
+---@field friction? number against the ground and shapes (default 0.5)
+---@field radius? number collision radius (thickness), m (default 0.02)
+---@field substeps? integer implicit steps per physics step (default 2)
+---@field pins? string "top" (the first row, default), "corners" (its two ends) or "none"
+---@field wind? Vec3Arg wind velocity, m/s
+---@field color? Vec3Arg line colour, linear RGB 0..1
+
+---A rope or cloth made by deformable.rope / deformable.cloth.
+---@class Deformable
+local Deformable = {}
+
+---@return integer # the number of particles
+function Deformable:count() end
+
+---Cloth particle index from its column and row (both from 0).
+---@param col integer 0..columns-1
+---@param row integer 0..rows-1
+---@return integer # the particle index (from 1)
+function Deformable:index(col, row) end
+
+---@param i integer particle index (from 1)
+---@return Vec3 # its position (m)
+function Deformable:position(i) end
+
+---@param i integer particle index (from 1)
+---@return Vec3 # its velocity (m/s)
+function Deformable:velocity(i) end
+
+---Holds a particle at a world point, or at the point of a body where it is
+---now (it then moves with the body).
+---@param i integer particle index (from 1)
+---@param target Body|Vec3Arg a body or a point (m)
+function Deformable:pin(i, target) end
+
+---@param i integer particle index (from 1)
+---@return boolean # true if it was pinned
+function Deformable:unpin(i) end
+
+---@param wind Vec3Arg wind velocity (m/s)
+function Deformable:set_wind(wind) end
+
+---Kinetic + gravitational (from y = 0) + spring energy.
+---@return number # J
+function Deformable:energy() end
+
+---@return number # the summed length of the structural springs now (m)
+---@return number # their summed rest length (m)
+function Deformable:length() end
+
+---@return number # the lowest particle surface, min of y - radius (m)
+function Deformable:lowest() end
+
+---@return table # {cg_iterations_max, cg_failures, nan_events, steps}
+function Deformable:stats() end
+
+---@return boolean # true if it was still there
+function Deformable:remove() end
+
+---@class OdeSystemDef
+---@field state number[] the initial state vector y (any length >= 1)
+---@field derivative fun(t: number, y: number[]): number[] returns y' (same length)
+---@field jacobian? fun(t: number, y: number[]): number[][] returns df/dy as rows (implicit methods; default: finite differences)
+---@field energy? fun(y: number[]): number a conserved quantity, for OdeSystem:energy
+---@field method? string an integrator of ode.methods() (default "rk4"); "symplectic_euler" and "verlet" need state = {q..., v...} with derivative {v..., a...}
+---@field time? number the initial time t (s, default 0)
+
+---A system made by ode.system.
+---@class OdeSystem
+local OdeSystem = {}
+
+---Advances the state by dt, in n equal steps.
+---@param dt number seconds (> 0)
+---@param n? integer steps (default 1)
+---@return OdeSystem # the system (for chaining)
+function OdeSystem:step(dt, n) end
+
+---@return number[] # a copy of the state vector
+function OdeSystem:state() end
+
+---Replaces the state (same length), e.g. after a kick.
+---@param y number[]
+function OdeSystem:set_state(y) end
+
+---@param i integer index into the state (from 1)
+---@return number # y[i]
+function OdeSystem:get(i) end
+
+---@return number # the system's time t (s)
+function OdeSystem:time() end
+
+---@return number? # the def's energy(y) now, nil without one
+function OdeSystem:energy() end
+
+---What stepping cost so far.
+---@return table # {steps, derivative_calls, jacobian_calls, newton_failures, lua_seconds, method}
+function OdeSystem:stats() end
+
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
 local Random = {}
@@ -255,6 +383,7 @@ function Trigger:count() end
 ---@class Scenario
 ---@field title string shown in the window title and the HUD
 ---@field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
+---@field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
 ---@field on_start fun(ctx: Ctx) called once before the first step
 ---@field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 ---@field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
@@ -267,6 +396,33 @@ function Trigger:count() end
 ---@field dt number the fixed step, s (0 in on_start and on_finish)
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
+
+---Mass-spring ropes and cloth. Each is stepped with implicit (backward)
+---Euler, one linearised step per substep solved by sparse conjugate
+---gradients (Baraff & Witkin), so stiff springs stay stable at 60 Hz.
+---They collide with the ground, static and kinematic shapes and the
+---terrain (one way: bodies do not feel them), and are drawn as lines.
+---Particle indices start at 1; cloth particle (col, row) is
+---row * columns + col + 1 with col, row from 0 (see Deformable:index).
+deformable = {}
+
+---A rope: a chain of springs between equal particles.
+---
+---```lua
+---local rope = deformable.rope{from = {0, 4, 0}, to = {3, 4, 0}, segments = 30, mass = 1.5}
+---```
+---@param def RopeDef
+---@return Deformable # the rope
+function deformable.rope(def) end
+
+---A cloth: a grid of particles with structural, shear and bend springs.
+---
+---```lua
+---local flag = deformable.cloth{origin = {0, 4, 0}, u = {0, -1, 0}, v = {1.5, 0, 0}, wind = {0, 0, 8}}
+---```
+---@param def ClothDef
+---@return Deformable # the cloth
+function deformable.cloth(def) end
 
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
@@ -321,6 +477,25 @@ function game.lose(reason) end
 ---@return string? # "won", "lost" or nil while undecided
 ---@return string? # the reason given to game.win / game.lose
 function game.outcome() end
+
+---Generic ODE systems for reduced-coordinate (Lagrangian) models: write
+---the state vector and its derivative in Lua, pick an integrator, step it.
+---Computed in double. Draw the result with kinematic bodies
+---(Body:set_position) or draw_line.
+ode = {}
+
+---A system y' = f(t, y) stepped in double by a numerics integrator.
+---
+---```lua
+---local osc = ode.system{state = {1, 0}, method = "verlet",
+---  derivative = function(t, y) return {y[2], -4 * y[1]} end}
+---```
+---@param def OdeSystemDef
+---@return OdeSystem # the system
+function ode.system(def) end
+
+---@return string[] # every integrator name, in report order
+function ode.methods() end
 
 ---Deterministic random numbers. `random.new(seed)` makes an independent
 ---generator; the functions random.float, random.int, random.normal,
@@ -508,6 +683,13 @@ function world.raycast_all(origin, dir, max_distance) end
 ---@param body Body the body to remove
 ---@return boolean # true if the body was removed now, false if it was already gone
 function world.remove(body) end
+
+---Draws a line this frame (cleared before each on_update): a rod, a
+---wire, a trajectory. At most 65536 lines per frame.
+---@param a Vec3Arg one end (m)
+---@param b Vec3Arg the other end (m)
+---@param color? Vec3Arg linear RGB 0..1 (default yellow)
+function draw_line(a, b, color) end
 
 ---Creates the default human (11 parts, 10 joints; Winter's anthropometric
 ---table, see ragdoll.cpp) with its feet at `position` when standing.
