@@ -458,6 +458,7 @@ void ScenarioHost::buildEnvironment() {
   openRagdollBindings(L, env);
   openDeformableBindings(L, env);
   openOdeBindings(L, env);
+  openSpringBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));

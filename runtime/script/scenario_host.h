@@ -251,5 +251,7 @@ void openRagdollBindings(lua_State* L, int envIndex);
 /// deformable table (bind_deformable.cpp); ode table and draw_line (bind_ode.cpp).
 void openDeformableBindings(lua_State* L, int envIndex);
 void openOdeBindings(lua_State* L, int envIndex);
+/// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
+void openSpringBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -289,6 +289,14 @@ function Random:pick(list) end
 ---@return integer # the seed this generator started from
 function Random:seed() end
 
+---@class SpringDef
+---@field a Body the first end (its centre of mass)
+---@field b? Body the other end; without it the spring holds a to `anchor`
+---@field anchor? Vec3Arg fixed world point for the other end (m), when b is absent
+---@field stiffness number k > 0 (N/m)
+---@field damping? number along the spring, >= 0 (N s/m, default 0)
+---@field rest_length? number >= 0 (m); default: the distance now
+
 ---A handle returned by timer.after and timer.every.
 ---@class Timer
 local Timer = {}
@@ -594,6 +602,23 @@ function trigger.box(def) end
 ---The physics world of the scenario: create and remove bodies, set gravity,
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.
 world = {}
+
+---An applied spring-damper between centres of mass (no torque). Stiff
+---springs (k/m of 1e5 and more at 60 Hz) need an implicit integrator:
+---integrator = "sdirk2" in the scenario, or --integrator sdirk2; with the
+---default symplectic Euler they blow up (the body is frozen and counted
+---in the report's nan_events).
+---
+---```lua
+---world.spring{a = bob, anchor = {0, 5, 0}, stiffness = 400, damping = 2}
+---```
+---@param def SpringDef
+---@return integer # the spring's id (for world.remove_spring)
+function world.spring(def) end
+
+---@param id integer what world.spring returned
+---@return boolean # true if the spring was still there
+function world.remove_spring(id) end
 
 ---Creates a box.
 ---
