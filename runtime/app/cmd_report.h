@@ -9,7 +9,7 @@
 //              DIR/precision_<problem>.png (+ .gp script that drew it)
 //   stability  DIR/stability.csv   case,method,dt,outcome,time_to_failure_s,
 //                                  energy_growth,penetration_max_m,
-//                                  joint_error_max_m,nan_events
+//                                  joint_error_max_m,nan_events,failed_body
 //              DIR/stability_regions.csv, DIR/stability.md
 //
 // Exit code: 0 written; 1 a file could not be written or gnuplot failed

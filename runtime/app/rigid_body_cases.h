@@ -3,20 +3,55 @@
 // a physics::World driven through its public API, so the reports measure the
 // same engine the scenarios run. Lives in app because it is the only module
 // that may see both numerics and physics.
+#include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "numerics/reference_problems.h"
 #include "numerics/stability.h"
+#include "physics/world.h"
 
 namespace tumble::app {
 
 /// Work-precision problems: free rigid body (energy and |L|), resting box
-/// stack (drift).
+/// stack (drift), a stiff applied spring in the world (every integrator),
+/// a 10-link chain per joint formulation, a rag-doll drop.
 std::vector<numerics::PrecisionProblem> rigidBodyPrecisionProblems();
 
 /// The stiff and extreme suite: mass ratios 1:100 and 1:1000, a 500 m/s
 /// projectile at a thin wall, 50 interpenetrating boxes, a stack 10 km from
-/// the origin, 1 cm and 100 m boxes, a top spinning at 100 rad/s.
+/// the origin, 1 cm and 100 m boxes, a top spinning at 100 rad/s, a world
+/// spring with k/m = 1e6 (every integrator), a 100-link hanging chain per
+/// joint formulation, a heavy box on a light rag-doll, a stiff cloth.
 std::vector<numerics::StabilityCase> rigidBodyStabilityCases();
+
+// ---- joint formulations (hook for formulation B) -----------------------------
+
+/// Bodies joined by ball joints, stepped the formulation's way.
+class JointRig {
+ public:
+  virtual ~JointRig() = default;
+  /// One step of dt: the joints' work and World::step.
+  virtual void step(Real dt_s) = 0;
+  /// Largest anchor separation now (m).
+  virtual double anchorError_m() const = 0;
+};
+
+/// A joint formulation the chain cases run: `chain` joins bodies[i] to
+/// bodies[i + 1] at anchors[i + 1] with ball joints and bodies[0] to the
+/// world at anchors[0]. Formulation A (Lagrange multipliers,
+/// physics/joints) is registered here; formulation B registers itself with
+/// registerJointFormulation({"B", ...}) before the report runs (e.g. from
+/// cmd_report.cpp), and the chain problem and case then run once per
+/// formulation: chain_10_links_B, chain_100_links_B.
+struct JointFormulation {
+  std::string name;  ///< "A", "B": suffix of the case and problem names
+  std::function<std::unique_ptr<JointRig>(physics::World& world, const std::vector<physics::BodyId>& bodies,
+                                          const std::vector<Vec3>& anchors_m)>
+      chain;
+};
+void registerJointFormulation(JointFormulation formulation);
+const std::vector<JointFormulation>& jointFormulations();
 
 }  // namespace tumble::app

@@ -64,7 +64,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"seed", scene.options().seed},
       {"dt", scene.options().dt_s},
       {"substeps", world.settings().substeps},
-      {"integrator", scene.options().integrator},
+      {"integrator", scene.integratorName()},
       {"joint_solver", scene.host().jointSolverName()},
       {"steps", steps},
       {"simulated_seconds", simulatedSeconds},

@@ -8,10 +8,11 @@
 #include <sstream>
 
 #include "app/paths.h"
-#include "core/log.h"
-#include "script/mod_bindings.h"
 #include "app/scene_models.h"
+#include "core/log.h"
+#include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
+#include "script/mod_bindings.h"
 #include "script/mods.h"
 #include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
@@ -22,7 +23,11 @@
 namespace tumble::app {
 
 const std::vector<std::string>& rigidBodyIntegrators() {
-  static const std::vector<std::string> names{"symplectic_euler"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& info : physics::bodyIntegrators()) n.emplace_back(info.name);
+    return n;
+  }();
   return names;
 }
 
@@ -116,11 +121,12 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   auto ref = script::parseScenarioRef(options.scenarioRef);
   if (!ref) return makeError(ref.error());
   if (!(options.dt_s > 0 && options.dt_s <= 1)) return makeError("--dt must be a time step in (0, 1] seconds");
-  const auto& integrators = rigidBodyIntegrators();
-  if (std::find(integrators.begin(), integrators.end(), options.integrator) == integrators.end()) {
-    std::string known;
-    for (auto& n : integrators) known += (known.empty() ? "" : ", ") + n;
-    return makeError("--integrator " + options.integrator + ": the rigid-body world offers " + known);
+  // --integrator wins over the scenario's integrator = "..." field.
+  std::optional<physics::BodyIntegrator> forcedIntegrator;
+  if (!options.integrator.empty()) {
+    auto m = physics::parseBodyIntegrator(options.integrator);
+    if (!m) return makeError("--integrator: " + m.error());
+    forcedIntegrator = *m;
   }
   auto scene = std::unique_ptr<Scene>(new Scene());
   scene->m_options = options;
@@ -176,6 +182,15 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
+  physics::BodyIntegrator integrator = physics::BodyIntegrator::SymplecticEuler;
+  if (forcedIntegrator) {
+    integrator = *forcedIntegrator;
+  } else if (!scene->m_host->integratorRequest().empty()) {
+    auto m = physics::parseBodyIntegrator(scene->m_host->integratorRequest());
+    if (!m) return makeError(scene->m_host->scenarioFile() + ": field 'integrator': " + m.error());
+    integrator = *m;
+  }
+  scene->m_world->settings().integrator = integrator;
   // The scenario's own terrain = {...} comes first; --set terrain.* overrides.
   for (const auto& [key, value] : scene->m_host->terrainRequest()) terrainSettings.emplace(key, value);
 #if TUMBLE_HAVE_TERRAIN
@@ -213,6 +228,16 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
 
 Scene::~Scene() = default;
 
+void Scene::stepDeformables(Real dt_s) {
+  physics::DeformableSystem* d = m_host->deformablesIfAny();
+  if (!d) return;
+  physics::DeformableEnvironment env;
+  env.gravity_mps2 = m_world->settings().gravity_mps2;
+  env.world = m_world.get();
+  env.heightField = m_world->heightField();
+  d->step(dt_s, env);
+}
+
 void Scene::registerStaticObjects() {
 #if TUMBLE_HAVE_TERRAIN
   if (!m_terrain) return;
@@ -233,6 +258,7 @@ std::vector<std::string> Scene::subsystems() const {
   if (m_host->particlesIfAny()) names.push_back("particles");  // created by the first particles.spawn
   if (m_host && m_host->vehiclesIfAny()) names.push_back("vehicle");
   if (m_models && m_models->size() > 0) names.push_back("models");
+  if (m_host && m_host->deformablesIfAny()) names.push_back("deformables");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -369,6 +395,18 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
         out.shapes.push_back(s);
       }
     });
+  // Ropes, cloth and the lines scripts drew (no interpolation: lines).
+  out.lines.clear();
+  if (const physics::DeformableSystem* d = m_host->deformablesIfAny()) {
+    d->forEach([&](int id, const physics::Deformable& def) {
+      const Eigen::Vector3f color = m_host->deformableColor(id);
+      def.forEachStructuralSegment([&](const Vec3& a, const Vec3& b) {
+        out.lines.push_back(render::DebugLine{a.cast<float>(), b.cast<float>(), color});
+      });
+    });
+  }
+  for (const auto& l : m_host->scriptLines())
+    out.lines.push_back(render::DebugLine{l.a_m.cast<float>(), l.b_m.cast<float>(), l.color});
 }
 
 }  // namespace tumble::app

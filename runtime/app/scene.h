@@ -25,7 +25,7 @@ struct SceneOptions {
   std::map<std::string, std::string> sets;  ///< --set KEY=VALUE (physics.* go to the world)
   double dt_s = 1.0 / 60.0;
   int substeps = 0;  ///< 0: the world's default
-  std::string integrator = "symplectic_euler";
+  std::string integrator;  ///< --integrator; empty: the scenario's field, else symplectic_euler
   std::uint64_t seed = 1;
   /// terrain.* settings a scenario asks for by default (terrain_scene.h lists
   /// the keys); --set terrain.* wins. Empty: no terrain unless --set asks.
@@ -38,7 +38,7 @@ struct SceneOptions {
 class TerrainScene;
 class ModelCache;
 
-/// Integrators the rigid-body world offers (more come with the numerics lab).
+/// Integrators the rigid-body world offers (physics/integrate.h), default first.
 const std::vector<std::string>& rigidBodyIntegrators();
 
 class Scene {
@@ -55,6 +55,8 @@ class Scene {
   const script::ScenarioHost& host() const { return *m_host; }
   const SceneOptions& options() const { return m_options; }
   std::string name() const { return m_modName + ":" + m_scenarioName; }
+  /// The integrator the world runs (the run report's `integrator`).
+  std::string integratorName() const { return physics::bodyIntegratorName(m_world->settings().integrator); }
   std::vector<std::string> subsystems() const;
   void noteSubsystem(const std::string& name) { m_extraSubsystems.push_back(name); }
   /// A terrain exists only when asked for (--set terrain.*, terrainDefaults).
@@ -68,6 +70,8 @@ class Scene {
   void snapshot(render::FrameSnapshot& out, double alpha) const;
   /// The particles part of snapshot(): billboards of every live particle.
   void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
+  /// Steps the scenario's ropes and cloth, if it made any (after World::step).
+  void stepDeformables(Real dt_s);
   /// Remembers the current state as "previous" (call before each step).
   void savePreviousState();
   /// A body's pose interpolated like the snapshot; nullopt for a removed body.

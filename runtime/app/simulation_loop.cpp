@@ -48,6 +48,7 @@ void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   scene.host().update(time_s, scene.options().dt_s, step);
   double script = sw.seconds();
   scene.world().step(Real(scene.options().dt_s));
+  scene.stepDeformables(Real(scene.options().dt_s));
   double physics = sw.seconds() - script;
   // Contact events and trigger volumes (no Lua call when nothing listens).
   scene.host().afterStep(time_s + scene.options().dt_s, step);

@@ -273,12 +273,12 @@ std::vector<StabilityRow> runStabilityCases(std::span<const StabilityCase> cases
 std::string stabilityCsv(std::span<const StabilityRow> rows) {
   std::string out =
       "case,method,dt,outcome,time_to_failure_s,energy_growth,penetration_max_m,"
-      "joint_error_max_m,nan_events\n";
+      "joint_error_max_m,nan_events,failed_body\n";
   for (const StabilityRow& r : rows)
     out += r.caseName + "," + r.method + "," + formatNumber(r.dt_s, 9) + "," +
            outcomeName(r.outcome) + "," + caseCell(r.timeToFailure_s) + "," +
            caseCell(r.energyGrowth) + "," + caseCell(r.penetrationMax_m) + "," +
-           caseCell(r.jointErrorMax_m) + "," + std::to_string(r.nanEvents) + "\n";
+           caseCell(r.jointErrorMax_m) + "," + std::to_string(r.nanEvents) + "," + csvText(r.failedBody) + "\n";
   return out;
 }
 
@@ -304,14 +304,14 @@ std::string stabilityMarkdown(std::span<const StabilityRow> rows,
   md += "## Cases\n\n";
   for (const StabilityCase& c : cases) md += "- `" + c.name + "`: " + c.description + "\n";
   md += "\n| case | method | dt (s) | outcome | time to failure (s) | energy growth | "
-        "penetration max (m) | joint error max (m) | NaN events |\n";
-  md += "|---|---|---|---|---|---|---|---|---|\n";
+        "penetration max (m) | joint error max (m) | NaN events | failed body |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const StabilityRow& r : rows)
     md += "| " + r.caseName + " | " + r.method + " | " + formatNumber(r.dt_s, 4) + " | " +
           outcomeName(r.outcome) + " | " + caseCell(r.timeToFailure_s) + " | " +
           (r.energyGrowth ? formatNumber(*r.energyGrowth, 3) : "") + " | " +
           caseCell(r.penetrationMax_m) + " | " + caseCell(r.jointErrorMax_m) + " | " +
-          std::to_string(r.nanEvents) + " |\n";
+          std::to_string(r.nanEvents) + " | " + r.failedBody + " |\n";
 
   md += "\n## Stability regions\n\n";
   md += "Largest stable scaled step, measured, beside the linear theory (|R(z)| <= 1 for the "

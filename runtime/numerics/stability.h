@@ -102,6 +102,7 @@ struct StabilityRow {
   std::optional<double> penetrationMax_m;  // rigid-body cases; empty for ODE cases
   std::optional<double> jointErrorMax_m;   // jointed cases; empty otherwise
   long nanEvents = 0;                      // steps that produced a non-finite state
+  std::string failedBody;                  // blew_up: which body / particle failed first (empty: n/a)
 };
 
 /// A registry entry. Cases written by other modules (stacks, rag-dolls,
@@ -133,7 +134,8 @@ std::vector<StabilityRow> runStabilityCases(
     const std::function<void(const std::string&)>& progress = {});
 
 /// Columns exactly: case,method,dt,outcome,time_to_failure_s,energy_growth,
-/// penetration_max_m,joint_error_max_m,nan_events (empty cell: not applicable).
+/// penetration_max_m,joint_error_max_m,nan_events,failed_body (empty cell: not
+/// applicable).
 std::string stabilityCsv(std::span<const StabilityRow> rows);
 
 /// Columns: problem,method,scale,max_stable_scaled,max_stable_dt_s,theory_scaled,note

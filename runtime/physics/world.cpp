@@ -49,6 +49,8 @@ struct StepScratch {
   HeightFieldScratch heightField;
   std::vector<Manifold> pairManifolds;  ///< manifolds of one body pair (compounds have several)
   std::vector<std::uint32_t> usedOld;   ///< old height-field manifolds already inherited from
+  std::vector<Vec3> linear;  ///< per body slot: linear velocities for BodyIntegration::advance
+  bool integrationEngaged = false;  ///< this substep's translation came from integrate.cpp
 };
 
 Status validateBodyDef(const BodyDef& d) {
@@ -79,7 +81,23 @@ Status validateBodyDef(const BodyDef& d) {
 }
 
 World::World(const WorldSettings& settings)
-    : m_settings(settings), m_broad(std::make_unique<BroadPhase>()), m_scratch(std::make_unique<StepScratch>()) {}
+    : m_settings(settings),
+      m_broad(std::make_unique<BroadPhase>()),
+      m_integration(std::make_unique<BodyIntegration>()),
+      m_scratch(std::make_unique<StepScratch>()) {}
+
+Result<SpringId> World::addSpring(SpringDef def) {
+  if (auto s = validateSpringDef(def); !s) return makeError(s.error());
+  if (!isValid(def.a)) return makeError("spring field 'a' is a removed body");
+  if (!def.b.isNull() && !isValid(def.b)) return makeError("spring field 'b' is a removed body");
+  const Vec3 other = def.b.isNull() ? def.anchor_m : body(def.b).position_m;
+  if (def.restLength_m < 0) def.restLength_m = (other - body(def.a).position_m).norm();
+  wakeIsland(def.a.index);
+  if (!def.b.isNull()) wakeIsland(def.b.index);
+  return m_integration->addSpring(def);
+}
+
+bool World::removeSpring(SpringId id) { return m_integration->removeSpring(id); }
 World::~World() = default;
 
 void World::setHeightField(const HeightField* field) {
@@ -625,12 +643,22 @@ void World::integrateVelocities(Real h) {
   const Vec3 g = m_settings.gravity_mps2;
   std::vector<SolverVelocity>& vel = m_scratch->vel;
   double gravityMass = 0;
+  // Another integrator or springs: translation comes from integrate.cpp
+  // (free motion first, contacts then change the velocity; see there).
+  const bool engaged = m_scratch->integrationEngaged = m_integration->engaged(m_settings.integrator);
+  if (engaged) {
+    std::vector<Vec3>& linear = m_scratch->linear;
+    linear.resize(m_bodies.size());
+    for (std::uint32_t i = 0; i < m_bodies.size(); ++i) linear[i] = narrow(vel[i].linear);
+    m_externalImpulse += m_integration->advance(m_settings.integrator, *this, m_bodies, g, h, linear);
+    for (std::uint32_t i = 0; i < m_bodies.size(); ++i) vel[i].linear = wide(linear[i]);
+  }
   for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
     Body& b = m_bodies[i];
     if (!b.alive || !b.isDynamic() || !b.awake) continue;
     gravityMass += b.mass_kg;
     Vec3 v = narrow(vel[i].linear), w = narrow(vel[i].angular);
-    v += h * (g + b.invMass_per_kg * b.force_N);
+    if (!engaged) v += h * (g + b.invMass_per_kg * b.force_N);
     if (b.force_N != Vec3::Zero() || b.torque_Nm != Vec3::Zero()) {
       w += h * (b.invInertiaWorld * b.torque_Nm);
       m_externalImpulse += double(h) * b.force_N.cast<double>();
@@ -661,7 +689,10 @@ void World::integratePositions(Real h) {
     // Split-impulse pseudo-velocities move the body but are then dropped.
     SolverVelocity& pv = st.pseudo[i];
     const SolverVelocity& v = st.vel[i];
-    b.position_m += h * narrow(v.linear + pv.linear);
+    if (st.integrationEngaged)
+      b.position_m += m_integration->displacement(i, narrow(v.linear), h) + h * narrow(pv.linear);
+    else
+      b.position_m += h * narrow(v.linear + pv.linear);
     const Vec3 w = narrow(v.angular + pv.angular);
     pv = SolverVelocity{};
     Quat dq(0, w.x(), w.y(), w.z());
@@ -948,6 +979,7 @@ double World::totalEnergy() const {
     e += 0.5 * b.mass_kg * v.squaredNorm() + 0.5 * wl.dot(b.inertiaLocal_kgm2.cast<double>().cwiseProduct(wl));
     e -= b.mass_kg * g.dot(b.position_m.cast<double>());
   }
+  if (m_integration->springCount() > 0) e += m_integration->springEnergy(*this);
   return e;
 }
 

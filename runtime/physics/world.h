@@ -18,6 +18,7 @@
 #include "core/result.h"
 #include "physics/body.h"
 #include "physics/height_field.h"
+#include "physics/integrate.h"
 
 namespace tumble::physics {
 
@@ -69,6 +70,8 @@ struct WorldSettings {
   Real sleepAngularSpeed_radps = Real(0.1);
   Real timeToSleep_s = Real(0.5);
   bool gyroscopic = true;  ///< include the gyroscopic term w x Iw (implicit)
+  /// How bodies move between contact solves (integrate.h; --integrator).
+  BodyIntegrator integrator = BodyIntegrator::SymplecticEuler;
 };
 
 /// A contact event for scripts: reported once when a pair first touches,
@@ -195,6 +198,12 @@ class World {
   /// caller keeps it alive while set and resets it to null before it dies.
   void setConstraintSolver(ConstraintSolver* solver) { m_constraintSolver = solver; }
   ConstraintSolver* constraintSolver() const { return m_constraintSolver; }
+  /// Applied springs between centres of mass (integrate.h). A negative
+  /// rest length means "the current distance". Refuses bad definitions and
+  /// stale bodies with a message naming the field.
+  Result<SpringId> addSpring(SpringDef def);
+  bool removeSpring(SpringId id);
+  const BodyIntegration& integration() const { return *m_integration; }
 
   /// Static terrain the bodies collide with (see height_field.h), or null.
   /// Owned by the caller and must outlive the world or be reset to null;
@@ -284,6 +293,7 @@ class World {
   std::vector<ContactEvent> m_events;
   std::vector<Vec3> m_stepStartPosition;
   std::vector<Quat> m_stepStartOrientation;
+  std::unique_ptr<BodyIntegration> m_integration;  ///< integrator strategy and springs (integrate.h)
   std::unique_ptr<StepScratch> m_scratch;  ///< solver arrays kept between steps (no allocation per step)
   std::vector<std::uint32_t> m_sleepIsland;  ///< per body: island it fell asleep with (0 = none)
   std::uint32_t m_nextIsland = 1;

@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "core/log.h"
+#include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
 #include "script/internal/emitter_table.h"
 #include "vehicle/vehicle_system.h"
@@ -483,6 +484,9 @@ void ScenarioHost::buildEnvironment() {
   openSaveBindings(L, env);
   openModelBindings(L, env);
   openCameraBindings(L, env);
+  openDeformableBindings(L, env);
+  openOdeBindings(L, env);
+  openSpringBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
@@ -503,6 +507,7 @@ void ScenarioHost::buildEnvironment() {
 /// @field title string shown in the window title and the HUD
 /// @field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
 /// @field joint_solver string "lagrange" (default; formulation A, Lagrange multipliers before the step) or "impulse" (formulation B, impulses solved with the contacts); --set physics.joint_solver=... overrides it
+/// @field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
 /// @field on_start fun(ctx: Ctx) called once before the first step
 /// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 /// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
@@ -584,12 +589,15 @@ Status ScenarioHost::adoptScenarioTable(bool first) {
   lua_getfield(L, -1, "joint_solver");
   if (!lua_isnil(L, -1)) {
     physics::JointSolverKind kind;
-    if (lua_type(L, -1) != LUA_TSTRING || !physics::parseJointSolver(lua_tostring(L, -1), &kind)) {
-      lua_pop(L, 2);
-      return makeError(where + ": field 'joint_solver' must be \"lagrange\" or \"impulse\"");
-    }
-    if (options.jointSolver.empty()) host->m_impulseJoints = kind == physics::JointSolverKind::Impulse;
+    if (lua_type(L, -1) != LUA_TSTRING || !physics::parseJointSolver(lua_tostring(L, -1), &kind))
+      return fail(2, where + ": field 'joint_solver' must be \"lagrange\" or \"impulse\"");
+    if (m_options.jointSolver.empty()) m_impulseJoints = kind == physics::JointSolverKind::Impulse;
   }
+  lua_pop(L, 1);
+  lua_getfield(L, -1, "integrator");
+  if (lua_type(L, -1) == LUA_TSTRING) m_integratorRequest = lua_tostring(L, -1);
+  else if (!lua_isnil(L, -1))
+    return fail(2, where + ": field 'integrator' must be a string such as \"rk4\" (see tumble run --help)");
   lua_pop(L, 1);
   // terrain = {generate = 7, size = 1025, ...} or {heightmap = "assets/map.png"}
   lua_getfield(L, -1, "terrain");
@@ -819,6 +827,7 @@ void ScenarioHost::start() {
 
 void ScenarioHost::update(double time_s, double dt_s, std::int64_t step) {
   m_now_s = time_s;
+  m_scriptLines.clear();
   if (!m_timers.empty() && m_timers.front().due_s <= time_s + 1e-9) runTimers(time_s, dt_s, step);
   if (hasUpdate()) {
     pushCtx(time_s, dt_s, step);
@@ -932,6 +941,18 @@ Result<particles::EmitterDef> ScenarioHost::emitterDef(const std::string& ref, i
   std::string msg;
   for (const std::string& p : problems) msg += (msg.empty() ? "" : "; ") + p;
   return makeError("mod " + mod->name + ": " + file + (overridesIdx ? " (with overrides)" : "") + ": " + msg);
+physics::DeformableSystem& ScenarioHost::deformables() {
+  if (!m_deformables) m_deformables = std::make_unique<physics::DeformableSystem>();
+  return *m_deformables;
+}
+
+Eigen::Vector3f ScenarioHost::deformableColor(int id) const {
+  auto it = m_deformableColors.find(id);
+  return it == m_deformableColors.end() ? Eigen::Vector3f(0.9f, 0.6f, 0.2f) : it->second;
+}
+
+void ScenarioHost::addScriptLine(const ScriptLine& line) {
+  if (m_scriptLines.size() < kMaxScriptLines) m_scriptLines.push_back(line);
 }
 
 double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }

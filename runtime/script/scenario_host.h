@@ -47,6 +47,7 @@
 
 namespace tumble::physics {
 class JointSystem;
+class DeformableSystem;
 }
 namespace tumble::vehicle {
 class VehicleSystem;
@@ -162,6 +163,9 @@ class ScenarioHost {
   /// instruction and memory budgets; false and `err` filled on failure.
   bool callTerrainBuild(const std::function<void(lua_State*)>& pushArg, ScriptError* err);
   lua_State* luaState() { return m_vm.state(); }
+  /// The scenario's `integrator = "rk4"` field (physics/integrate.h names),
+  /// empty when absent; the app checks the name (--integrator wins).
+  const std::string& integratorRequest() const { return m_integratorRequest; }
   const std::vector<ScriptError>& errors() const { return m_errors; }
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
@@ -201,6 +205,21 @@ class ScenarioHost {
   vehicle::VehicleSystem& vehicles();
   /// Vehicle definitions loaded so far, by "mod:name" (bind_vehicle.cpp).
   std::map<std::string, vehicle::VehicleDef>& vehicleDefCache() { return m_vehicleDefs; }
+  /// The scene's ropes and cloth (bind_deformable.cpp), created on first
+  /// use; null before. The app steps them after World::step.
+  physics::DeformableSystem* deformablesIfAny() { return m_deformables.get(); }
+  const physics::DeformableSystem* deformablesIfAny() const { return m_deformables.get(); }
+  physics::DeformableSystem& deformables();
+  void setDeformableColor(int id, const Eigen::Vector3f& rgb) { m_deformableColors[id] = rgb; }
+  Eigen::Vector3f deformableColor(int id) const;
+  /// Lines scripts drew with draw_line since the last update() (bind_ode.cpp).
+  struct ScriptLine {
+    Vec3 a_m, b_m;
+    Eigen::Vector3f color;
+  };
+  const std::vector<ScriptLine>& scriptLines() const { return m_scriptLines; }
+  void addScriptLine(const ScriptLine& line);
+  static constexpr std::size_t kMaxScriptLines = 65536;
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
@@ -285,6 +304,7 @@ class ScenarioHost {
   double m_duration_s = 10;
   std::map<std::string, std::string> m_terrainRequest;
   int m_terrainBuildRef = 0;  ///< registry ref of terrain.build, 0 = none
+  std::string m_integratorRequest;
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   int m_requireCacheRef = 0;  ///< require's loaded-modules table
   int m_reloadCount = 0;
@@ -325,6 +345,9 @@ class ScenarioHost {
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
   Presentation m_presentation;
   bool m_impulseJoints = false;  ///< joints() uses formulation B (joint_solver / --set physics.joint_solver)
+  std::unique_ptr<physics::DeformableSystem> m_deformables;  ///< see deformables()
+  std::map<int, Eigen::Vector3f> m_deformableColors;
+  std::vector<ScriptLine> m_scriptLines;
 };
 
 /// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
@@ -353,5 +376,10 @@ void openSaveBindings(lua_State* L, int envIndex);
 /// openWorldBindings and openBodyType), and the camera table (bind_camera.cpp).
 void openModelBindings(lua_State* L, int envIndex);
 void openCameraBindings(lua_State* L, int envIndex);
+/// deformable table (bind_deformable.cpp); ode table and draw_line (bind_ode.cpp).
+void openDeformableBindings(lua_State* L, int envIndex);
+void openOdeBindings(lua_State* L, int envIndex);
+/// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
+void openSpringBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -32,7 +32,7 @@ endfunction()
 
 expect_csv(precision.csv "problem,method,dt,error,cpu_seconds")
 expect_csv(stability.csv
-  "case,method,dt,outcome,time_to_failure_s,energy_growth,penetration_max_m,joint_error_max_m,nan_events")
+  "case,method,dt,outcome,time_to_failure_s,energy_growth,penetration_max_m,joint_error_max_m,nan_events,failed_body")
 expect_csv(stability_regions.csv
   "problem,method,scale,max_stable_scaled,max_stable_dt_s,theory_scaled,note")
 foreach(md precision.md stability.md)

@@ -125,8 +125,12 @@ TEST(StabilityCases, CsvHasTheAgreedColumnsAndEmptyCellsForNotApplicable) {
   const std::vector<StabilityRow> rows = {row};
   EXPECT_EQ(stabilityCsv(rows),
             "case,method,dt,outcome,time_to_failure_s,energy_growth,penetration_max_m,"
-            "joint_error_max_m,nan_events\n"
-            "c,rk4,0.5,stable,,0.25,,,0\n");
+            "joint_error_max_m,nan_events,failed_body\n"
+            "c,rk4,0.5,stable,,0.25,,,0,\n");
+  row.outcome = Outcome::BlewUp;
+  row.failedBody = "box 3";
+  EXPECT_EQ(stabilityCsv(std::vector<StabilityRow>{row}).substr(stabilityCsv(rows).find('\n') + 1),
+            "c,rk4,0.5,blew_up,,0.25,,,0,box 3\n");
 }
 
 }  // namespace

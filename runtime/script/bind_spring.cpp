@@ -1,0 +1,104 @@
+// world.spring{...} and world.remove_spring(id): applied springs between
+// centres of mass (physics/integrate.h). Their stiffness is what makes the
+// world's integrator choice matter: a scenario with stiff springs sets
+// integrator = "sdirk2" (or --integrator sdirk2).
+//
+//   local s = world.spring{a = ball, anchor = {0, 5, 0}, stiffness = 1e6, rest_length = 1}
+#include "script/internal/bind_common.h"
+
+namespace tumble::script {
+namespace {
+
+/// @class SpringDef
+/// @field a Body the first end (its centre of mass)
+/// @field b? Body the other end; without it the spring holds a to `anchor`
+/// @field anchor? Vec3Arg fixed world point for the other end (m), when b is absent
+/// @field stiffness number k > 0 (N/m)
+/// @field damping? number along the spring, >= 0 (N s/m, default 0)
+/// @field rest_length? number >= 0 (m); default: the distance now
+
+/// @function world.spring
+/// An applied spring-damper between centres of mass (no torque). Stiff
+/// springs (k/m of 1e5 and more at 60 Hz) need an implicit integrator:
+/// integrator = "sdirk2" in the scenario, or --integrator sdirk2; with the
+/// default symplectic Euler they blow up (the body is frozen and counted
+/// in the report's nan_events).
+/// @param def SpringDef
+/// @return integer the spring's id (for world.remove_spring)
+/// @example world.spring{a = bob, anchor = {0, 5, 0}, stiffness = 400, damping = 2}
+int worldSpring(lua_State* L) {
+  const char* fn = "world.spring";
+  if (!lua_istable(L, 1))
+    throw LuaArgError("world.spring: expected a table, e.g. world.spring{a = body, anchor = {0, 5, 0}, stiffness = 100}");
+  lua_settop(L, 1);
+  lua_pushnil(L);
+  while (lua_next(L, 1) != 0) {
+    lua_pop(L, 1);
+    std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
+    if (key != "a" && key != "b" && key != "anchor" && key != "stiffness" && key != "damping" && key != "rest_length") {
+      lua_pop(L, 1);
+      throw LuaArgError("world.spring: unknown field '" + key + "' (valid: a, b, anchor, stiffness, damping, rest_length)");
+    }
+  }
+  physics::SpringDef def;
+  lua_getfield(L, 1, "a");
+  if (!testBody(L, -1, &def.a)) throw LuaArgError("world.spring: field 'a' must be a Body");
+  def.a = checkBody(L, -1);
+  lua_pop(L, 1);
+  lua_getfield(L, 1, "b");
+  if (!lua_isnil(L, -1)) {
+    if (!testBody(L, -1, &def.b)) throw LuaArgError("world.spring: field 'b' must be a Body");
+    def.b = checkBody(L, -1);
+  }
+  lua_pop(L, 1);
+  try {
+    const bool hasAnchor = optVec3Field(L, 1, "anchor", &def.anchor_m);
+    if (def.b.isNull() && !hasAnchor) throw LuaArgError("give 'b' (a Body) or 'anchor' ({x, y, z}, m)");
+    if (!def.b.isNull() && hasAnchor) throw LuaArgError("give 'b' or 'anchor', not both");
+    lua_getfield(L, 1, "stiffness");
+    const bool hasK = !lua_isnil(L, -1);
+    lua_pop(L, 1);
+    if (!hasK) throw LuaArgError("field 'stiffness' is required (N/m)");
+    def.stiffness_Npm = Real(optNumberField(L, 1, "stiffness", 0));
+    def.damping_Nspm = Real(optNumberField(L, 1, "damping", 0));
+    def.restLength_m = Real(optNumberField(L, 1, "rest_length", -1));
+    lua_getfield(L, 1, "rest_length");
+    const bool hasRest = !lua_isnil(L, -1);
+    lua_pop(L, 1);
+    if (hasRest && def.restLength_m < 0) throw LuaArgError("field 'rest_length' must be >= 0 (m)");
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what());
+  }
+  auto id = ScenarioHost::from(L)->world().addSpring(def);
+  if (!id) throw LuaArgError(std::string(fn) + ": " + id.error());
+  // One integer: index and generation packed (both < 2^31 in practice).
+  lua_pushinteger(L, (lua_Integer(id->generation) << 32) | lua_Integer(id->index));
+  return 1;
+}
+
+/// @function world.remove_spring
+/// @param id integer what world.spring returned
+/// @return boolean true if the spring was still there
+int worldRemoveSpring(lua_State* L) {
+  const double v = checkNumber(L, 1, "spring id");
+  const auto packed = lua_Integer(v);
+  physics::SpringId id{std::uint32_t(packed & 0xffffffff), std::uint32_t(packed >> 32)};
+  lua_pushboolean(L, ScenarioHost::from(L)->world().removeSpring(id));
+  return 1;
+}
+
+}  // namespace
+
+void openSpringBindings(lua_State* L, int envIndex) {
+  if (lua_getfield(L, envIndex, "world") != LUA_TTABLE) {
+    lua_pop(L, 1);
+    return;
+  }
+  lua_pushcfunction(L, guarded<worldSpring>);
+  lua_setfield(L, -2, "spring");
+  lua_pushcfunction(L, guarded<worldRemoveSpring>);
+  lua_setfield(L, -2, "remove_spring");
+  lua_pop(L, 1);
+}
+
+}  // namespace tumble::script
