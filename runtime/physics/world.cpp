@@ -895,19 +895,6 @@ void World::step(Real dt) {
   trackErrors(dt);
 }
 
-static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
-                     Real inflate = 0);
-/// Radius of the largest sphere about the centre inside the shape (m).
-static Real innerRadius(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::Sphere: return s.radius_m;
-    case ShapeType::Box: return s.halfExtents_m.minCoeff();
-    case ShapeType::Capsule: return s.radius_m;
-    case ShapeType::Plane: return 0;
-  }
-  return 0;
-}
-
 void World::clampToStatic() {
   // Continuous collision against static geometry (see WorldSettings::
   // continuousStatic). Speculative contacts stop a body that heads for a

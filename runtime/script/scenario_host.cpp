@@ -941,6 +941,8 @@ Result<particles::EmitterDef> ScenarioHost::emitterDef(const std::string& ref, i
   std::string msg;
   for (const std::string& p : problems) msg += (msg.empty() ? "" : "; ") + p;
   return makeError("mod " + mod->name + ": " + file + (overridesIdx ? " (with overrides)" : "") + ": " + msg);
+}
+
 physics::DeformableSystem& ScenarioHost::deformables() {
   if (!m_deformables) m_deformables = std::make_unique<physics::DeformableSystem>();
   return *m_deformables;
