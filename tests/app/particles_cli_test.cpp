@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
 
 #include "tumble_process.h"
 
@@ -23,7 +24,33 @@ bool has(const nlohmann::json& list, const std::string& name) {
   auto v = list.get<std::vector<std::string>>();
   return std::find(v.begin(), v.end(), name) != v.end();
 }
+// Fire-coloured pixels: bright, red >= green > blue by a margin. Nothing else
+// in base:effects (sky, grey ground, brown logs, tan crate, blue sled) is.
+int firePixels(const std::string& path) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
+  EXPECT_NE(data, nullptr) << path;
+  if (!data) return 0;
+  int count = 0;
+  for (int i = 0; i < w * h; ++i) {
+    int r = data[3 * i], g = data[3 * i + 1], b = data[3 * i + 2];
+    count += r > 200 && g > 110 && r >= g && b + 70 < g;
+  }
+  stbi_image_free(data);
+  return count;
+}
 }  // namespace
+
+TEST(ParticlesCli, TheEffectsScenarioShowsItsParticlesInAScreenshot) {
+  const std::string dir = outDir("particles_screenshot");
+  // At t = 0 no step has run: emitters exist, particles not yet.
+  auto r = runTumble("run base:effects --screenshot " + dir + "/t0.png --at 0 --width 960 --height 540");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = runTumble("run base:effects --screenshot " + dir + "/t2.png --at 2 --width 960 --height 540");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_LT(firePixels(dir + "/t0.png"), 5);
+  EXPECT_GT(firePixels(dir + "/t2.png"), 30) << "the fire shows; pictures in " << dir;
+}
 
 TEST(ParticlesCli, ASceneWithoutEmittersCreatesNoParticleSystem) {
   auto j = report("run base:drop", "particles_none");
