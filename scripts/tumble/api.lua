@@ -106,6 +106,59 @@ function Body:material() end
 ---@field friction? number Coulomb coefficient >= 0; a pair uses sqrt(fa*fb)
 ---@field restitution? number 0..1; a pair uses the larger
 
+---Where an emitter sits: a fixed point, or a body (it then moves and turns
+---with the body, and its `direction` is in the body's frame).
+---@class EmitterAt
+---@field position? Vec3Arg a fixed point in the world, m
+---@field body? Body the body to attach to
+---@field offset? Vec3Arg with body: the point in the body's frame, m (default its centre)
+
+---A handle returned by particles.spawn / particles.burst. Methods on an
+---emitter that is gone raise an error, except :alive() and :count().
+---@class Emitter
+local Emitter = {}
+
+---Particles per second from now on (the fraction carries between steps).
+---
+---```lua
+---dust:set_rate(math.min(60, 80 * slip))
+---```
+---@param per_s number rate, 1/s (>= 0)
+function Emitter:set_rate(per_s) end
+
+---@return number # the current rate, particles per second
+function Emitter:rate() end
+
+---n particles at once, born at the start of the next step.
+---@param n integer how many (>= 0)
+function Emitter:burst(n) end
+
+---Moves a free emitter to a world point (particles born during the next
+---step are spread along the way), or, for an attached one, sets its offset
+---in the body's frame.
+---@param p Vec3Arg m
+function Emitter:set_position(p) end
+
+---@return Vec3 # where the emitter is now (world, m)
+function Emitter:position() end
+
+---The main direction particles fly in: world frame for a free emitter, the
+---body's frame for an attached one.
+---@param d Vec3Arg any non-zero length
+function Emitter:set_direction(d) end
+
+---Stops emitting; live particles finish their lives, then the emitter is gone.
+function Emitter:stop() end
+
+---Removes the emitter and its particles at once.
+function Emitter:remove() end
+
+---@return integer # its live particles (0 once it is gone)
+function Emitter:count() end
+
+---@return boolean # false once removed, or stopped with no particles left
+function Emitter:alive() end
+
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
 local Random = {}
@@ -267,6 +320,44 @@ function Trigger:count() end
 ---@field dt number the fixed step, s (0 in on_start and on_finish)
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
+
+---Particle emitters: dust, smoke, fire, rain, sparks ... Each is defined in
+---a mod's emitters/NAME.lua (fields in docs/emitters.md) and spawned here,
+---at a point or attached to a body. Particles are simulated after physics
+---every step and drawn as camera-facing billboards; they never push bodies.
+particles = {}
+
+---Starts an emitter from a definition file. It runs until :stop() (or its
+---`duration` runs out) and :remove(). Fields in `overrides` replace the
+---file's (same names and units, e.g. {rate = 0, color = {1, 0, 0}}).
+---
+---```lua
+---local smoke = particles.spawn("base:smoke", {position = {0, 0.5, 0}})
+---local dust = particles.spawn("base:dust", {body = car, offset = {0.8, -0.3, 1.2}}, {rate = 0})
+---dust:set_rate(40 * slip)   -- per step, from the wheel's slip
+---```
+---@param name string "mod:name" (mods/<mod>/emitters/<name>.lua), or "name" (this mod, then base)
+---@param at EmitterAt {position = {x, y, z}} or {body = b, offset = {x, y, z}}
+---@param overrides? table emitter fields to change for this emitter
+---@return Emitter # the emitter
+function particles.spawn(name, at, overrides) end
+
+---A one-shot: `count` particles at once, then the emitter stops and frees
+---itself when they are gone (sparks from an impact). The definition's own
+---rate and bursts are not used.
+---
+---```lua
+---particles.burst("base:sparks", 40, {position = point})
+---```
+---@param name string "mod:name" or "name", as for particles.spawn
+---@param count integer particles to emit (>= 0)
+---@param at EmitterAt where, as for particles.spawn
+---@param overrides? table emitter fields to change
+---@return Emitter # the emitter (alive until its last particle dies)
+function particles.burst(name, count, at, overrides) end
+
+---@return integer # live particles of every emitter (0 before the first spawn)
+function particles.count() end
 
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
