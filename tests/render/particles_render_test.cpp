@@ -115,7 +115,8 @@ TEST(ParticlesSort, FarthestAlongTheViewComesFirstAndTiesKeepTheirOrder) {
   ps[2].position = {3, 1, -5};  // same depth as 0: after it
   ps[3].position = {0, 0, 2};   // behind the eye: nearest
   std::vector<std::uint32_t> order;
-  ParticlesPass::sortBackToFront(ps, Eigen::Vector3f::Zero(), Eigen::Vector3f(0, 0, -1), order);
+  std::vector<float> depth;
+  ParticlesPass::sortBackToFront(ps, Eigen::Vector3f::Zero(), Eigen::Vector3f(0, 0, -1), order, depth);
   EXPECT_EQ(order, (std::vector<std::uint32_t>{1, 0, 2, 3}));
 }
 
