@@ -103,10 +103,6 @@ void ParticleSystem::setDirection(EmitterId id, const Eigen::Vector3f& direction
   if (e && direction.allFinite() && direction.norm() > 1e-6f) e->def.direction = direction.normalized();
 }
 
-void ParticleSystem::setVelocity(EmitterId id, const Eigen::Vector3f& velocity_mps) {
-  if (Emitter* e = get(id)) e->velocity_mps = velocity_mps;
-}
-
 void ParticleSystem::attach(EmitterId id, std::uint64_t anchor, const Eigen::Vector3f& offset_m) {
   if (Emitter* e = get(id)) {
     e->anchor = anchor;
@@ -294,6 +290,7 @@ void ParticleSystem::step(float dt_s) {
     Slot& slot = m_slots[i];
     if (!slot.live) continue;
     Emitter& e = slot.emitter;
+    if (e.anchor == kNoAnchor) e.velocity_mps = (e.position_m - e.previousPosition_m) / dt_s;
     // burst(n) from the script: born at the step's start at the old pose,
     // then moved by the full step like every other particle.
     if (e.pendingBurst > 0) {
