@@ -142,6 +142,17 @@ function Emitter:set_position(p) end
 ---@return Vec3 # where the emitter is now (world, m)
 function Emitter:position() end
 
+---The box around its live particles, in the world (for checks and game
+---logic: how high the smoke went, where the rain ends).
+---
+---```lua
+---local lo, hi = smoke:bounds()
+---if hi then hud_text(("smoke top: %.1f m"):format(hi.y)) end
+---```
+---@return Vec3? # lowest corner, m (nil when it has no particles)
+---@return Vec3? # highest corner, m
+function Emitter:bounds() end
+
 ---The main direction particles fly in: world frame for a free emitter, the
 ---body's frame for an attached one.
 ---@param d Vec3Arg any non-zero length
