@@ -734,6 +734,12 @@ Result<particles::EmitterDef> ScenarioHost::emitterDef(const std::string& ref, i
   return makeError("mod " + mod->name + ": " + file + (overridesIdx ? " (with overrides)" : "") + ": " + msg);
 }
 
+void ScenarioHost::forgetEmitterDefinitions() {
+  lua_State* L = m_vm.state();
+  lua_newtable(L);
+  lua_rawseti(L, LUA_REGISTRYINDEX, m_emitterTablesRef);
+}
+
 double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }
 
 void ScenarioHost::afterStep(double time_s, std::int64_t step) {

@@ -131,6 +131,9 @@ class ScenarioHost {
   /// the fields of the table at overridesIdx (0: none) on top. The file is
   /// read once and cached. Error: file, field and what is expected.
   Result<particles::EmitterDef> emitterDef(const std::string& ref, int overridesIdx);
+  /// Forgets the cached emitter files, so the next spawn reads them again
+  /// (hot reload). Emitters already running keep their definitions.
+  void forgetEmitterDefinitions();
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;

@@ -130,6 +130,24 @@ TEST_F(Emitters, BadNamesFilesAndArgumentsGiveClearErrors) {
   expectAllHeld(*host);
 }
 
+TEST_F(Emitters, EditedFilesAreReadAgainAfterForgettingTheCache) {
+  auto host = load(R"(
+    return {on_update = function() particles.spawn("fx:puff", {position = {0, 0, 0}}) end})", {}, "fx", 1,
+                   kEmitterFiles);
+  host->start();
+  host->update(0, 1.0 / 60, 0);
+  writeFile(m_root / "fx" / "emitters" / "puff.lua", "return {rate = 33}\n");
+  host->update(1.0 / 60, 1.0 / 60, 1);  // cached: still the old file
+  host->forgetEmitterDefinitions();
+  host->update(2.0 / 60, 1.0 / 60, 2);
+  const particles::ParticleSystem* ps = host->particlesIfAny();
+  ASSERT_NE(ps, nullptr);
+  std::vector<float> rates;
+  ps->forEach([&](particles::EmitterId, const particles::Emitter& e) { rates.push_back(e.rate_per_s); });
+  EXPECT_EQ(rates, (std::vector<float>{10, 10, 33}));
+  for (const auto& e : host->errors()) ADD_FAILURE() << e.summary();
+}
+
 TEST_F(Emitters, AnEmitterFileIsDataAndCannotReachTheWorld) {
   std::map<std::string, std::string> files = {
       {"emitters/sneaky.lua", "world.sphere{position = {0, 1, 0}}\nreturn {rate = 1}\n"}};
