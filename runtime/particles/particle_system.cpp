@@ -7,13 +7,13 @@
 namespace tumble::particles {
 
 void ParticlePool::reserve(std::size_t n) {
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps, &seed}) a->resize(n);
+  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps}) a->resize(n);
 }
 
 void ParticlePool::removeSwap(std::uint32_t i) {
   const std::uint32_t last = --count;
   if (i == last) return;
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps, &seed})
+  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps})
     (*a)[i] = (*a)[last];
 }
 
@@ -217,7 +217,6 @@ void ParticleSystem::spawnOne(Emitter& e, float birthFraction, float dt_s) {
   p.invLifetime[i] = 1.0f / r.range(d.lifetimeMin_s, d.lifetimeMax_s);
   p.spin_radps[i] = r.range(d.spinMin_radps, d.spinMax_radps);
   p.angle_rad[i] = 6.28318530718f * r.uniform() + p.spin_radps[i] * tau;
-  p.seed[i] = r.uniform();
 }
 
 void ParticleSystem::updateParticles(Emitter& e, float dt_s) const {

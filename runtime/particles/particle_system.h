@@ -52,7 +52,6 @@ struct ParticlePool {
   std::vector<float> invLifetime;    ///< 1 / lifetime, 1/s (normalised life = age * invLifetime)
   std::vector<float> angle_rad;      ///< billboard rotation, rad
   std::vector<float> spin_radps;     ///< its rate, rad/s
-  std::vector<float> seed;           ///< per-particle random 0..1 (for looks that vary per particle)
   std::uint32_t count = 0;
 
   void reserve(std::size_t n);
