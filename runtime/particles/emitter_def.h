@@ -102,7 +102,7 @@ struct EmitterDef {
   SimSpace space = SimSpace::World;                            ///< space: "world" or "local"
 };
 
-/// Largest max_count an emitter may ask for (memory: 48 bytes a particle).
+/// Largest max_count an emitter may ask for (memory: 40 bytes a particle).
 inline constexpr int kMaxParticlesPerEmitter = 1'000'000;
 
 /// Checks ranges and consistency. The message starts with the Lua field name

@@ -7,13 +7,13 @@
 namespace tumble::particles {
 
 void ParticlePool::reserve(std::size_t n) {
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps, &seed}) a->resize(n);
+  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps}) a->resize(n);
 }
 
 void ParticlePool::removeSwap(std::uint32_t i) {
   const std::uint32_t last = --count;
   if (i == last) return;
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps, &seed})
+  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &age_s, &invLifetime, &angle_rad, &spin_radps})
     (*a)[i] = (*a)[last];
 }
 
@@ -101,10 +101,6 @@ void ParticleSystem::setPose(EmitterId id, const Eigen::Vector3f& position_m, co
 void ParticleSystem::setDirection(EmitterId id, const Eigen::Vector3f& direction) {
   Emitter* e = get(id);
   if (e && direction.allFinite() && direction.norm() > 1e-6f) e->def.direction = direction.normalized();
-}
-
-void ParticleSystem::setVelocity(EmitterId id, const Eigen::Vector3f& velocity_mps) {
-  if (Emitter* e = get(id)) e->velocity_mps = velocity_mps;
 }
 
 void ParticleSystem::attach(EmitterId id, std::uint64_t anchor, const Eigen::Vector3f& offset_m) {
@@ -221,7 +217,6 @@ void ParticleSystem::spawnOne(Emitter& e, float birthFraction, float dt_s) {
   p.invLifetime[i] = 1.0f / r.range(d.lifetimeMin_s, d.lifetimeMax_s);
   p.spin_radps[i] = r.range(d.spinMin_radps, d.spinMax_radps);
   p.angle_rad[i] = 6.28318530718f * r.uniform() + p.spin_radps[i] * tau;
-  p.seed[i] = r.uniform();
 }
 
 void ParticleSystem::updateParticles(Emitter& e, float dt_s) const {
@@ -294,6 +289,7 @@ void ParticleSystem::step(float dt_s) {
     Slot& slot = m_slots[i];
     if (!slot.live) continue;
     Emitter& e = slot.emitter;
+    if (e.anchor == kNoAnchor) e.velocity_mps = (e.position_m - e.previousPosition_m) / dt_s;
     // burst(n) from the script: born at the step's start at the old pose,
     // then moved by the full step like every other particle.
     if (e.pendingBurst > 0) {

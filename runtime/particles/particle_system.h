@@ -52,7 +52,6 @@ struct ParticlePool {
   std::vector<float> invLifetime;    ///< 1 / lifetime, 1/s (normalised life = age * invLifetime)
   std::vector<float> angle_rad;      ///< billboard rotation, rad
   std::vector<float> spin_radps;     ///< its rate, rad/s
-  std::vector<float> seed;           ///< per-particle random 0..1 (for looks that vary per particle)
   std::uint32_t count = 0;
 
   void reserve(std::size_t n);
@@ -80,7 +79,9 @@ struct Emitter {
   Eigen::Vector3f position_m = Eigen::Vector3f::Zero();
   Eigen::Quaternionf rotation = Eigen::Quaternionf::Identity();  ///< emitter frame -> world
   Eigen::Vector3f previousPosition_m = Eigen::Vector3f::Zero();
-  Eigen::Vector3f velocity_mps = Eigen::Vector3f::Zero();         ///< of the emitter point, world
+  /// Of the emitter point, world, for inherit_velocity: from the anchor
+  /// (setAnchorState), or for a free emitter its move over the step / dt.
+  Eigen::Vector3f velocity_mps = Eigen::Vector3f::Zero();
   // Attachment: the app resolves `anchor` each step and calls setAnchorState.
   std::uint64_t anchor = kNoAnchor;
   Eigen::Vector3f anchorOffset_m = Eigen::Vector3f::Zero();      ///< in the anchor's frame
@@ -123,9 +124,6 @@ class ParticleSystem {
                bool teleport = false);
   /// Main direction in the emitter's frame (normalised here; zero is ignored).
   void setDirection(EmitterId id, const Eigen::Vector3f& direction);
-  /// Velocity of the emitter point (world, m/s), for inherit_velocity. Set by
-  /// setAnchorState for attached emitters.
-  void setVelocity(EmitterId id, const Eigen::Vector3f& velocity_mps);
   /// Attaches to an anchor (the app's number for a body, never kNoAnchor) at
   /// an offset in the anchor's frame.
   void attach(EmitterId id, std::uint64_t anchor, const Eigen::Vector3f& offset_m);

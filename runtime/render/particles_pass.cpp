@@ -74,10 +74,11 @@ void main() {
 }  // namespace
 
 void ParticlesPass::sortBackToFront(const std::vector<DrawParticle>& particles, const Eigen::Vector3f& eye,
-                                    const Eigen::Vector3f& forward, std::vector<std::uint32_t>& order) {
+                                    const Eigen::Vector3f& forward, std::vector<std::uint32_t>& order,
+                                    std::vector<float>& depth) {
   order.resize(particles.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::vector<float> depth(particles.size());
+  depth.resize(particles.size());
   for (std::size_t i = 0; i < particles.size(); ++i) depth[i] = (particles[i].position - eye).dot(forward);
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     return depth[a] != depth[b] ? depth[a] > depth[b] : a < b;  // ties: stable, so frames do not flicker
@@ -146,7 +147,7 @@ Status ParticlesPass::draw(const std::vector<DrawParticle>& alphaBlended, const 
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
   if (!alphaBlended.empty()) {
-    sortBackToFront(alphaBlended, view.eye, view.forward, m_order);
+    sortBackToFront(alphaBlended, view.eye, view.forward, m_order, m_depth);
     upload(alphaBlended, &m_order);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(alphaBlended.size()));

@@ -234,6 +234,35 @@ int emitterPosition(lua_State* L) {
   return 1;
 }
 
+/// @function Emitter:bounds
+/// The box around its live particles, in the world (for checks and game
+/// logic: how high the smoke went, where the rain ends).
+/// @return Vec3? lowest corner, m (nil when it has no particles)
+/// @return Vec3? highest corner, m
+/// @example local lo, hi = smoke:bounds()
+/// @example if hi then hud_text(("smoke top: %.1f m"):format(hi.y)) end
+int emitterBounds(lua_State* L) {
+  particles::EmitterId id = checkEmitter(L, 1, "Emitter:bounds");
+  const particles::Emitter* e = ScenarioHost::from(L)->particles().get(id);
+  const particles::ParticlePool& p = e->pool;
+  if (p.count == 0) {
+    lua_pushnil(L);
+    lua_pushnil(L);
+    return 2;
+  }
+  const bool local = e->def.space == particles::SimSpace::Local;
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e30f), hi = -lo;
+  for (std::uint32_t i = 0; i < p.count; ++i) {
+    Eigen::Vector3f x(p.px[i], p.py[i], p.pz[i]);
+    if (local) x = e->rotation * x + e->position_m;
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  pushVec3(L, lo.cast<Real>());
+  pushVec3(L, hi.cast<Real>());
+  return 2;
+}
+
 /// @function Emitter:set_direction
 /// The main direction particles fly in: world frame for a free emitter, the
 /// body's frame for an attached one.
@@ -307,6 +336,7 @@ const luaL_Reg kMethods[] = {
     {"burst", guarded<emitterBurst>},
     {"set_position", guarded<emitterSetPosition>},
     {"position", guarded<emitterPosition>},
+    {"bounds", guarded<emitterBounds>},
     {"set_direction", guarded<emitterSetDirection>},
     {"stop", guarded<emitterStop>},
     {"remove", guarded<emitterRemove>},

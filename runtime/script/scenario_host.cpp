@@ -957,6 +957,12 @@ void ScenarioHost::addScriptLine(const ScriptLine& line) {
   if (m_scriptLines.size() < kMaxScriptLines) m_scriptLines.push_back(line);
 }
 
+void ScenarioHost::forgetEmitterDefinitions() {
+  lua_State* L = m_vm.state();
+  lua_newtable(L);
+  lua_rawseti(L, LUA_REGISTRYINDEX, m_emitterTablesRef);
+}
+
 double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }
 
 void ScenarioHost::afterStep(double time_s, std::int64_t step) {

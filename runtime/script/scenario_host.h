@@ -220,6 +220,9 @@ class ScenarioHost {
   const std::vector<ScriptLine>& scriptLines() const { return m_scriptLines; }
   void addScriptLine(const ScriptLine& line);
   static constexpr std::size_t kMaxScriptLines = 65536;
+  /// Forgets the cached emitter files, so the next spawn reads them again
+  /// (hot reload). Emitters already running keep their definitions.
+  void forgetEmitterDefinitions();
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "particles/particle_system.h"
@@ -247,6 +248,74 @@ TEST(Particles, AttachedEmitterFollowsItsAnchorAndInheritsVelocity) {
   EXPECT_TRUE(ps.isValid(id));
   for (int i = 0; i < 601 && ps.isValid(id); ++i) ps.step(kDt);
   EXPECT_FALSE(ps.isValid(id)) << "a stopped emitter frees itself when its last particle dies";
+}
+
+TEST(Particles, AFreeEmitterMovedByHandPassesOnItsVelocity) {
+  EmitterDef d = quiet();
+  d.inheritVelocity = 0.5f;
+  ParticleSystem ps(2);
+  ps.setGravity(Eigen::Vector3f::Zero());
+  EmitterId id = ps.create(d, Eigen::Vector3f::Zero());
+  ps.step(kDt);
+  // Moved 0.1 m along x during the next step: 6 m/s, half of it inherited.
+  ps.setPose(id, Eigen::Vector3f(0.1f, 0, 0), Eigen::Quaternionf::Identity());
+  ps.burst(id, 1);
+  ps.step(kDt);
+  EXPECT_NEAR(ps.get(id)->pool.vx[0], 3.0f, 1e-4f);
+}
+
+TEST(Particles, ShapesFillTheirVolumesUniformly) {
+  auto spawn = [](EmitterDef d) {
+    d.rate_per_s = 0;
+    d.speedMin_mps = d.speedMax_mps = 0;
+    d.lifetimeMin_s = d.lifetimeMax_s = 10;
+    d.bursts = {{0, 20000}};
+    d.maxCount = 20000;
+    auto ps = std::make_unique<ParticleSystem>(5);
+    ps->setGravity(Eigen::Vector3f::Zero());
+    EmitterId id = ps->create(d, Eigen::Vector3f(1, 2, 3));
+    ps->step(kDt);
+    std::vector<Eigen::Vector3f> out;
+    const ParticlePool& p = ps->get(id)->pool;
+    for (std::uint32_t i = 0; i < p.count; ++i) out.emplace_back(p.px[i] - 1, p.py[i] - 2, p.pz[i] - 3);
+    return out;
+  };
+  const double n = 20000;
+  // Box 2 x 4 x 0: uniform on each axis, variance size^2 / 12.
+  EmitterDef box;
+  box.shape = EmitterShape::Box;
+  box.boxSize_m = Eigen::Vector3f(2, 4, 0);
+  double vx = 0, vy = 0;
+  for (const auto& p : spawn(box)) {
+    EXPECT_LE(std::abs(p.x()), 1.0f + 1e-5f);
+    EXPECT_LE(std::abs(p.y()), 2.0f + 1e-5f);
+    EXPECT_NEAR(p.z(), 0.0f, 1e-5f);
+    vx += p.x() * p.x() / n, vy += p.y() * p.y() / n;
+  }
+  EXPECT_NEAR(vx, 4.0 / 12, 0.02);
+  EXPECT_NEAR(vy, 16.0 / 12, 0.06);
+  // Ball of radius 2, uniform in volume: P(r < s) = (s / R)^3, E[r] = 3/4 R.
+  EmitterDef ball;
+  ball.shape = EmitterShape::Sphere;
+  ball.radius_m = 2;
+  double mean = 0;
+  for (const auto& p : spawn(ball)) {
+    EXPECT_LE(p.norm(), 2.0f + 1e-5f);
+    mean += p.norm() / n;
+  }
+  EXPECT_NEAR(mean, 1.5, 4 * 0.39 / std::sqrt(n));  // sd of r: R sqrt(3/80) = 0.39 m
+  // Cone base: a disc of radius 1 across the direction, E[r] = 2/3 R.
+  EmitterDef cone;
+  cone.shape = EmitterShape::Cone;
+  cone.radius_m = 1;
+  cone.direction = Eigen::Vector3f(0, 0, 1);
+  mean = 0;
+  for (const auto& p : spawn(cone)) {
+    EXPECT_NEAR(p.z(), 0.0f, 1e-5f) << "on the disc across the direction";
+    EXPECT_LE(p.norm(), 1.0f + 1e-5f);
+    mean += p.norm() / n;
+  }
+  EXPECT_NEAR(mean, 2.0 / 3, 4 * 0.236 / std::sqrt(n));  // sd of r: R / sqrt(18)
 }
 
 TEST(Particles, DurationStopsAndBurstsComeAtTheirTimes) {

@@ -3,12 +3,12 @@
 return {
   description = "rain falling over a 30 m square",
   rate = 1800,                        -- drops/s
-  lifetime = {1.0, 1.1},              -- s: long enough to reach the ground from 14 m
+  lifetime = {1.0, 1.05},             -- s: from 14 m up they end at the ground (0.1 m below .. 1.6 m above)
   max_count = 2500,
   shape = "box", box_size = {30, 0.5, 30},  -- m
   direction = {0.05, -1, 0},
   spread = math.rad(2),
-  speed = {9, 10},                    -- m/s, about a drop's terminal speed
+  speed = {9.5, 10},                  -- m/s, about a drop's terminal speed
   gravity = 1,
   drag = 0.3,                         -- 1/s
   size = 0.035,                       -- m: the streak's width

@@ -23,9 +23,11 @@ class ParticlesPass {
   bool created() const { return m_program.get() != 0; }
 
   /// Indices of `particles` sorted by distance along `forward` from `eye`,
-  /// farthest first (the back-to-front order alpha blending needs).
+  /// farthest first (the back-to-front order alpha blending needs). `depth`
+  /// is scratch space (kept between frames, so no allocation per frame).
   static void sortBackToFront(const std::vector<DrawParticle>& particles, const Eigen::Vector3f& eye,
-                              const Eigen::Vector3f& forward, std::vector<std::uint32_t>& order);
+                              const Eigen::Vector3f& forward, std::vector<std::uint32_t>& order,
+                              std::vector<float>& depth);
 
  private:
   struct Instance {
