@@ -177,8 +177,9 @@ void BindingsMenu::draw() {
   if (!open) toggle();
 }
 
-void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
-                     render::Camera& camera) {
+void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
+                     render::Renderer& renderer) {
+  render::Camera& camera = renderer.camera();
   for (int a : input.takeFramePresses()) {
     const std::string& name = input.action(a).name;
     if (name == "pause") controls.paused = !controls.paused;
@@ -186,6 +187,10 @@ void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Cont
     else if (name == "menu") menu.toggle();
     else if (name == "camera")
       camera.mode = camera.mode == render::CameraMode::Orbit ? render::CameraMode::Follow : render::CameraMode::Orbit;
+  }
+  if (auto p = input.pointer()) {
+    auto [origin, direction] = renderer.viewRay((*p)[0], (*p)[1]);
+    input.setPointerRay(origin.cast<Real>(), direction.cast<Real>());
   }
 }
 

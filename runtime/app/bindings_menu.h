@@ -44,10 +44,12 @@ class BindingsMenu {
   input::Source m_pairNegative;
 };
 
-/// The app's own actions, pressed since the last frame (they work while the
-/// simulation is paused): pause, screenshot, menu (opens the menu) and camera
-/// (orbit / follow). Actions the loaded mods do not declare are skipped.
-void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
-                     render::Camera& camera);
+/// Once per rendered frame, after Renderer::processEvents: the app's own
+/// actions pressed since the last frame (they work while the simulation is
+/// paused): pause, screenshot, menu (opens this menu) and camera (orbit /
+/// follow); actions no loaded mod declares are skipped. Then the world ray
+/// under the pointer for input.pointer_ray().
+void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
+                     render::Renderer& renderer);
 
 }  // namespace tumble::app

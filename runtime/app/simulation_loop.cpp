@@ -255,7 +255,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   double lastRender_s = 0;
   while (!controls.quitRequested) {
     renderer.processEvents(controls);
-    applyAppActions(in, menu, controls, renderer.camera());
+    applyFrameInput(in, menu, controls, renderer);
     double now = clock.seconds();
     double elapsed = std::min(now - last, 0.25);  // avoid the spiral of death after a stall
     last = now;

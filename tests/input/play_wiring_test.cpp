@@ -4,6 +4,8 @@
 // camera and debug keys, and F1 opens the bindings menu inside the HUD.
 #include <SDL.h>
 
+#include <cmath>
+
 #include "app/bindings_menu.h"
 #include "input_fixture.h"
 #include "script/mod_bindings.h"
@@ -42,7 +44,7 @@ class PlayWiring : public ::testing::Test {
 
   void frame() {
     m_renderer->processEvents(m_controls);
-    app::applyAppActions(*m_input, *m_menu, m_controls, m_renderer->camera());
+    app::applyFrameInput(*m_input, *m_menu, m_controls, *m_renderer);
   }
 
   std::unique_ptr<render::Renderer> m_renderer;
@@ -91,6 +93,26 @@ TEST_F(PlayWiring, F1OpensTheBindingsMenuAndTheHudDrawsIt) {
   pushKey(SDL_SCANCODE_F1);
   frame();
   EXPECT_FALSE(m_menu->isOpen());
+}
+
+TEST_F(PlayWiring, ThePointerRayStartsAtTheEyeAndPointsAtTheCameraTargetFromTheCentre) {
+  EXPECT_FALSE(m_input->pointerRay()) << "no pointer yet";
+  m_input->setPointer(0, 0);  // the centre of the view
+  frame();
+  auto ray = m_input->pointerRay();
+  ASSERT_TRUE(ray);
+  const render::Camera& cam = m_renderer->camera();
+  const Eigen::Vector3f eye = cam.target + cam.distance_m * Eigen::Vector3f(std::cos(cam.pitch_rad) * std::sin(cam.yaw_rad),
+                                                                           std::sin(cam.pitch_rad),
+                                                                           std::cos(cam.pitch_rad) * std::cos(cam.yaw_rad));
+  EXPECT_LT((ray->origin_m.cast<float>() - eye).norm(), 1e-4f);
+  const Eigen::Vector3f toTarget = (cam.target - eye).normalized();
+  EXPECT_GT(ray->direction.cast<float>().dot(toTarget), 0.99999f);
+  m_input->setPointer(1, 0);  // the right edge: half the horizontal field of view away
+  frame();
+  const float aspect = 320.0f / 240.0f;
+  const float halfFovX = std::atan(std::tan(cam.fovY_rad / 2) * aspect);
+  EXPECT_NEAR(std::acos(m_input->pointerRay()->direction.cast<float>().dot(toTarget)), halfFovX, 1e-4f);
 }
 
 }  // namespace
