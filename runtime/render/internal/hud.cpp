@@ -144,7 +144,7 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     }
     ImGui::TextColored(kDimColor, "camera: %s (C)",
                        cameraMode == CameraMode::Orbit ? "orbit" : "follow");
-    ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot");
+    ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot  F1 keys");
   }
   ImGui::End();
 
