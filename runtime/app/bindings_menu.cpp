@@ -39,6 +39,13 @@ Status BindingsMenu::save() {
   return st;
 }
 
+void BindingsMenu::rebind(int action, int slot) {
+  m_captureAction = action;
+  m_captureSlot = slot;
+  m_waitingPositive = false;
+  m_input.beginCapture();
+}
+
 void BindingsMenu::finishCapture() {
   auto got = m_input.takeCaptured();
   if (!got) return;
@@ -51,7 +58,21 @@ void BindingsMenu::finishCapture() {
   const input::ActionDef& def = m_input.action(a);
   input::Source src = got->second;
   input::Binding b;
+  // Modifiers: those of the binding being replaced if it is the same kind of
+  // input, else of a default binding of that kind (a new stick keeps the
+  // stick's dead zone), else the action's.
   b.modifiers = def.modifiers;
+  const std::vector<input::Binding>& current = m_input.bindings(a);
+  if (m_captureSlot >= 0 && m_captureSlot < int(current.size()) &&
+      current[std::size_t(m_captureSlot)].source.device == src.device) {
+    b.modifiers = current[std::size_t(m_captureSlot)].modifiers;
+  } else {
+    for (const input::Binding& d : def.bindings)
+      if (d.source.device == src.device) {
+        b.modifiers = d.modifiers;
+        break;
+      }
+  }
   if (def.type == input::ActionType::Axis) {
     if (src.device == input::Device::PadAxis) src.half = 0;  // a stick drives the whole axis
     if (src.device == input::Device::Key && !m_waitingPositive) {
@@ -101,11 +122,7 @@ void BindingsMenu::drawAction(int a) {
     const bool capturingThis = m_captureAction == a && m_captureSlot == int(i);
     std::string label = capturingThis ? (m_waitingPositive ? "press the + key..." : "press a key...")
                                       : input::bindingLabel(list[i]);
-    if (ImGui::SmallButton(label.c_str()) && m_captureAction < 0) {
-      m_captureAction = a;
-      m_captureSlot = int(i);
-      m_input.beginCapture();
-    }
+    if (ImGui::SmallButton(label.c_str()) && m_captureAction < 0) rebind(a, int(i));
     ImGui::SameLine(0, 2);
     if (ImGui::SmallButton("x")) remove = int(i);
     ImGui::SameLine();
@@ -113,11 +130,8 @@ void BindingsMenu::drawAction(int a) {
   }
   const bool addingHere = m_captureAction == a && m_captureSlot < 0;
   if (ImGui::SmallButton(addingHere ? (m_waitingPositive ? "press the + key..." : "press a key...") : "+") &&
-      m_captureAction < 0) {
-    m_captureAction = a;
-    m_captureSlot = -1;
-    m_input.beginCapture();
-  }
+      m_captureAction < 0)
+    rebind(a, -1);
   ImGui::TableSetColumnIndex(2);
   const bool isDefault = list == def.bindings;
   if (isDefault) ImGui::BeginDisabled();

@@ -25,6 +25,10 @@ class BindingsMenu {
   bool isOpen() const { return m_open; }
   /// Builds the window (call inside an ImGui frame). Does nothing when closed.
   void draw();
+  /// Starts "press a key" for the action's binding `slot` (-1: a new one);
+  /// the next drawn frame after the key takes it (what clicking a binding does).
+  void rebind(int action, int slot);
+  bool rebinding() const { return m_captureAction >= 0; }
   /// Writes the overrides now (what the Save button does).
   Status save();
   const std::string& status() const { return m_status; }

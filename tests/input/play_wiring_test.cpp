@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "app/bindings_menu.h"
+#include "input/overrides_file.h"
 #include "input_fixture.h"
 #include "script/mod_bindings.h"
 
@@ -37,7 +38,8 @@ class PlayWiring : public ::testing::Test {
     base.name = "base";
     base.dir = std::string(TUMBLE_SOURCE_DIR) + "/mods/base";
     m_input = std::make_unique<input::InputSystem>(script::loadModBindings(base).set);
-    m_menu = std::make_unique<app::BindingsMenu>(*m_input, (testDir() / "bindings.json").string());
+    m_configPath = (testDir() / "bindings.json").string();
+    m_menu = std::make_unique<app::BindingsMenu>(*m_input, m_configPath);
     m_renderer->setEventHook([this](const SDL_Event& e, bool hudWants) { return m_input->handleEvent(e, hudWants); });
     m_renderer->addHudPanel([this] { m_menu->draw(); });
   }
@@ -51,6 +53,7 @@ class PlayWiring : public ::testing::Test {
   std::unique_ptr<input::InputSystem> m_input;
   std::unique_ptr<app::BindingsMenu> m_menu;
   render::Controls m_controls;
+  std::string m_configPath;
 };
 
 TEST_F(PlayWiring, PauseIsAnActionThatTogglesOncePerPress) {
@@ -93,6 +96,54 @@ TEST_F(PlayWiring, F1OpensTheBindingsMenuAndTheHudDrawsIt) {
   pushKey(SDL_SCANCODE_F1);
   frame();
   EXPECT_FALSE(m_menu->isOpen());
+}
+
+TEST_F(PlayWiring, APlayerRebindsInTheMenuAndSavesOnlyTheChanges) {
+  pushKey(SDL_SCANCODE_F1);
+  frame();
+  ASSERT_TRUE(m_menu->isOpen());
+  render::FrameSnapshot snap;
+  render::HudStats hud;
+  auto draw = [&] { ASSERT_TRUE(m_renderer->drawFrame(snap, hud, m_controls)); };
+  const int throttle = m_input->find("throttle"), steer = m_input->find("steer");
+
+  m_menu->rebind(throttle, 0);  // click on "W"
+  pushKey(SDL_SCANCODE_I);
+  frame();
+  draw();
+  EXPECT_FALSE(m_menu->rebinding());
+  EXPECT_EQ(input::toText(m_input->bindings(throttle)[0]), "key:I");
+  m_input->step();
+  EXPECT_FALSE(m_input->down(throttle)) << "the key pressed to rebind did not drive the game";
+
+  m_menu->rebind(steer, 0);  // an axis: two keys, - then +
+  pushKey(SDL_SCANCODE_J);
+  frame();
+  draw();
+  EXPECT_TRUE(m_menu->rebinding()) << "waits for the + key";
+  pushKey(SDL_SCANCODE_L);
+  frame();
+  draw();
+  EXPECT_EQ(input::toText(m_input->bindings(steer)[0]), "keys:J/L");
+
+  m_menu->rebind(steer, 2);  // the stick: push the right stick instead; its dead zone stays
+  m_input->handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_RIGHTX, -30000), false);
+  draw();
+  EXPECT_EQ(input::toText(m_input->bindings(steer)[2]), "pad_axis:rightx;dead_zone=0.15;curve=1.5");
+
+  m_menu->rebind(throttle, -1);  // Escape cancels
+  pushKey(SDL_SCANCODE_ESCAPE);
+  frame();
+  draw();
+  EXPECT_FALSE(m_controls.quitRequested) << "Escape cancelled the capture and did not quit";
+  EXPECT_EQ(m_input->bindings(throttle).size(), 3u);
+
+  ASSERT_TRUE(m_menu->save());
+  auto saved = input::loadOverrides(m_configPath);
+  ASSERT_TRUE(saved) << saved.error();
+  ASSERT_EQ(saved->size(), 2u) << "throttle and steer only";
+  ASSERT_EQ(saved->count("throttle"), 1u);
+  EXPECT_EQ(saved->at("throttle").at(0), "key:I");
 }
 
 TEST_F(PlayWiring, ThePointerRayStartsAtTheEyeAndPointsAtTheCameraTargetFromTheCentre) {
