@@ -1,6 +1,7 @@
 #include "script/mod_bindings.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <regex>
