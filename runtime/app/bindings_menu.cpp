@@ -28,6 +28,17 @@ void BindingsMenu::toggle() {
   m_waitingPositive = false;
 }
 
+void BindingsMenu::syncPause(render::Controls& controls) {
+  if (m_open && !m_pauseApplied) {
+    m_pausedBefore = controls.paused;
+    controls.paused = true;
+    m_pauseApplied = true;
+  } else if (!m_open && m_pauseApplied) {
+    controls.paused = m_pausedBefore;
+    m_pauseApplied = false;
+  }
+}
+
 Status BindingsMenu::save() {
   Status st = input::saveOverrides(m_path, m_input.overrides());
   if (st) {
@@ -202,6 +213,7 @@ void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Cont
     else if (name == "camera")
       camera.mode = camera.mode == render::CameraMode::Orbit ? render::CameraMode::Follow : render::CameraMode::Orbit;
   }
+  menu.syncPause(controls);
   if (auto p = input.pointer()) {
     auto [origin, direction] = renderer.viewRay((*p)[0], (*p)[1]);
     input.setPointerRay(origin.cast<Real>(), direction.cast<Real>());

@@ -23,6 +23,9 @@ class BindingsMenu {
 
   void toggle();
   bool isOpen() const { return m_open; }
+  /// The game pauses while the menu is open and resumes as it was when it
+  /// closes (applyFrameInput calls this every frame).
+  void syncPause(render::Controls& controls);
   /// Builds the window (call inside an ImGui frame). Does nothing when closed.
   void draw();
   /// Starts "press a key" for the action's binding `slot` (-1: a new one);
@@ -42,6 +45,7 @@ class BindingsMenu {
   std::string m_status;
   bool m_open = false;
   bool m_dirty = false;
+  bool m_pauseApplied = false, m_pausedBefore = false;
   // Capture in progress: which action and which binding it replaces (-1: a new one).
   int m_captureAction = -1, m_captureSlot = -1;
   bool m_waitingPositive = false;  ///< a key pair: the negative key is in m_pairNegative
@@ -50,8 +54,8 @@ class BindingsMenu {
 
 /// Once per rendered frame, after Renderer::processEvents: the app's own
 /// actions pressed since the last frame (they work while the simulation is
-/// paused): pause, screenshot, menu (opens this menu) and camera (orbit /
-/// follow); actions no loaded mod declares are skipped. Then the world ray
+/// paused): pause, screenshot, menu (opens this menu, which pauses the game)
+/// and camera (orbit / follow); actions no loaded mod declares are skipped. Then the world ray
 /// under the pointer for input.pointer_ray().
 void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
                      render::Renderer& renderer);

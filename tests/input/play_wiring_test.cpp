@@ -90,12 +90,14 @@ TEST_F(PlayWiring, F1OpensTheBindingsMenuAndTheHudDrawsIt) {
   pushKey(SDL_SCANCODE_F1);
   frame();
   EXPECT_TRUE(m_menu->isOpen());
+  EXPECT_TRUE(m_controls.paused) << "the game waits while the player rebinds";
   render::FrameSnapshot snap;
   render::HudStats hud;
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(m_renderer->drawFrame(snap, hud, m_controls));
   pushKey(SDL_SCANCODE_F1);
   frame();
   EXPECT_FALSE(m_menu->isOpen());
+  EXPECT_FALSE(m_controls.paused) << "and resumes as it was";
 }
 
 TEST_F(PlayWiring, APlayerRebindsInTheMenuAndSavesOnlyTheChanges) {
