@@ -28,6 +28,17 @@ void BindingsMenu::toggle() {
   m_waitingPositive = false;
 }
 
+void BindingsMenu::syncPause(render::Controls& controls) {
+  if (m_open && !m_pauseApplied) {
+    m_pausedBefore = controls.paused;
+    controls.paused = true;
+    m_pauseApplied = true;
+  } else if (!m_open && m_pauseApplied) {
+    controls.paused = m_pausedBefore;
+    m_pauseApplied = false;
+  }
+}
+
 Status BindingsMenu::save() {
   Status st = input::saveOverrides(m_path, m_input.overrides());
   if (st) {
@@ -37,6 +48,13 @@ Status BindingsMenu::save() {
     m_status = "not saved: " + st.error();
   }
   return st;
+}
+
+void BindingsMenu::rebind(int action, int slot) {
+  m_captureAction = action;
+  m_captureSlot = slot;
+  m_waitingPositive = false;
+  m_input.beginCapture();
 }
 
 void BindingsMenu::finishCapture() {
@@ -51,7 +69,21 @@ void BindingsMenu::finishCapture() {
   const input::ActionDef& def = m_input.action(a);
   input::Source src = got->second;
   input::Binding b;
+  // Modifiers: those of the binding being replaced if it is the same kind of
+  // input, else of a default binding of that kind (a new stick keeps the
+  // stick's dead zone), else the action's.
   b.modifiers = def.modifiers;
+  const std::vector<input::Binding>& current = m_input.bindings(a);
+  if (m_captureSlot >= 0 && m_captureSlot < int(current.size()) &&
+      current[std::size_t(m_captureSlot)].source.device == src.device) {
+    b.modifiers = current[std::size_t(m_captureSlot)].modifiers;
+  } else {
+    for (const input::Binding& d : def.bindings)
+      if (d.source.device == src.device) {
+        b.modifiers = d.modifiers;
+        break;
+      }
+  }
   if (def.type == input::ActionType::Axis) {
     if (src.device == input::Device::PadAxis) src.half = 0;  // a stick drives the whole axis
     if (src.device == input::Device::Key && !m_waitingPositive) {
@@ -101,11 +133,7 @@ void BindingsMenu::drawAction(int a) {
     const bool capturingThis = m_captureAction == a && m_captureSlot == int(i);
     std::string label = capturingThis ? (m_waitingPositive ? "press the + key..." : "press a key...")
                                       : input::bindingLabel(list[i]);
-    if (ImGui::SmallButton(label.c_str()) && m_captureAction < 0) {
-      m_captureAction = a;
-      m_captureSlot = int(i);
-      m_input.beginCapture();
-    }
+    if (ImGui::SmallButton(label.c_str()) && m_captureAction < 0) rebind(a, int(i));
     ImGui::SameLine(0, 2);
     if (ImGui::SmallButton("x")) remove = int(i);
     ImGui::SameLine();
@@ -113,11 +141,8 @@ void BindingsMenu::drawAction(int a) {
   }
   const bool addingHere = m_captureAction == a && m_captureSlot < 0;
   if (ImGui::SmallButton(addingHere ? (m_waitingPositive ? "press the + key..." : "press a key...") : "+") &&
-      m_captureAction < 0) {
-    m_captureAction = a;
-    m_captureSlot = -1;
-    m_input.beginCapture();
-  }
+      m_captureAction < 0)
+    rebind(a, -1);
   ImGui::TableSetColumnIndex(2);
   const bool isDefault = list == def.bindings;
   if (isDefault) ImGui::BeginDisabled();
@@ -177,8 +202,9 @@ void BindingsMenu::draw() {
   if (!open) toggle();
 }
 
-void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
-                     render::Camera& camera) {
+void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
+                     render::Renderer& renderer) {
+  render::Camera& camera = renderer.camera();
   for (int a : input.takeFramePresses()) {
     const std::string& name = input.action(a).name;
     if (name == "pause") controls.paused = !controls.paused;
@@ -186,6 +212,11 @@ void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Cont
     else if (name == "menu") menu.toggle();
     else if (name == "camera")
       camera.mode = camera.mode == render::CameraMode::Orbit ? render::CameraMode::Follow : render::CameraMode::Orbit;
+  }
+  menu.syncPause(controls);
+  if (auto p = input.pointer()) {
+    auto [origin, direction] = renderer.viewRay((*p)[0], (*p)[1]);
+    input.setPointerRay(origin.cast<Real>(), direction.cast<Real>());
   }
 }
 

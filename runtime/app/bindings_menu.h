@@ -23,8 +23,15 @@ class BindingsMenu {
 
   void toggle();
   bool isOpen() const { return m_open; }
+  /// The game pauses while the menu is open and resumes as it was when it
+  /// closes (applyFrameInput calls this every frame).
+  void syncPause(render::Controls& controls);
   /// Builds the window (call inside an ImGui frame). Does nothing when closed.
   void draw();
+  /// Starts "press a key" for the action's binding `slot` (-1: a new one);
+  /// the next drawn frame after the key takes it (what clicking a binding does).
+  void rebind(int action, int slot);
+  bool rebinding() const { return m_captureAction >= 0; }
   /// Writes the overrides now (what the Save button does).
   Status save();
   const std::string& status() const { return m_status; }
@@ -38,16 +45,19 @@ class BindingsMenu {
   std::string m_status;
   bool m_open = false;
   bool m_dirty = false;
+  bool m_pauseApplied = false, m_pausedBefore = false;
   // Capture in progress: which action and which binding it replaces (-1: a new one).
   int m_captureAction = -1, m_captureSlot = -1;
   bool m_waitingPositive = false;  ///< a key pair: the negative key is in m_pairNegative
   input::Source m_pairNegative;
 };
 
-/// The app's own actions, pressed since the last frame (they work while the
-/// simulation is paused): pause, screenshot, menu (opens the menu) and camera
-/// (orbit / follow). Actions the loaded mods do not declare are skipped.
-void applyAppActions(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
-                     render::Camera& camera);
+/// Once per rendered frame, after Renderer::processEvents: the app's own
+/// actions pressed since the last frame (they work while the simulation is
+/// paused): pause, screenshot, menu (opens this menu, which pauses the game)
+/// and camera (orbit / follow); actions no loaded mod declares are skipped. Then the world ray
+/// under the pointer for input.pointer_ray().
+void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
+                     render::Renderer& renderer);
 
 }  // namespace tumble::app

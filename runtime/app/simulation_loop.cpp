@@ -320,7 +320,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   double lastRender_s = 0;
   while (!controls.quitRequested) {
     renderer.processEvents(controls);
-    applyAppActions(in, menu, controls, renderer.camera());
+    applyFrameInput(in, menu, controls, renderer);
     double now = clock.seconds();
     for (const script::ReloadEvent& e : hotReload.poll(now, time_s, step))
       if (e.ok) scene.host().addMessage(e.message, 3);  // failures are already on the HUD as errors

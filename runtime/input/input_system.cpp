@@ -43,8 +43,11 @@ InputSystem::InputSystem(BindingSet definitions) : m_defs(std::move(definitions)
 }
 
 InputSystem::~InputSystem() {
+  // After an SDL_Quit the controllers are gone already; closing them again
+  // would touch freed memory.
+  if (!m_gamepads || !SDL_WasInit(SDL_INIT_GAMECONTROLLER)) return;
   for (void* pad : m_pads) SDL_GameControllerClose(static_cast<SDL_GameController*>(pad));
-  if (m_gamepads) SDL_QuitSubSystem(SDL_INIT_GAMECONTROLLER);
+  SDL_QuitSubSystem(SDL_INIT_GAMECONTROLLER);
 }
 
 int InputSystem::find(std::string_view name) const {

@@ -26,6 +26,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/math.h"
 #include "core/result.h"
 #include "input/binding.h"
 
@@ -64,6 +65,13 @@ class InputSystem {
   /// once the mouse moved over the window.
   std::optional<std::array<float, 2>> pointer() const { return m_pointer; }
   void setPointer(float x, float y) { m_pointer = std::array<float, 2>{x, y}; }
+  /// The world ray under the pointer (the app computes it from the camera
+  /// each frame; none headless): origin in m, unit direction.
+  struct Ray {
+    Vec3 origin_m, direction;
+  };
+  std::optional<Ray> pointerRay() const { return m_pointerRay; }
+  void setPointerRay(const Vec3& origin_m, const Vec3& direction) { m_pointerRay = Ray{origin_m, direction}; }
 
   // --- Per fixed step --------------------------------------------------------
   /// Takes the snapshot for the coming fixed step. Call once per step,
@@ -160,6 +168,7 @@ class InputSystem {
   std::array<float, 8> m_padAxes{};
   double m_motion[2] = {0, 0}, m_wheel[2] = {0, 0};  ///< since the last step: px, notches
   std::optional<std::array<float, 2>> m_pointer;
+  std::optional<Ray> m_pointerRay;
   std::vector<void*> m_pads;  ///< SDL_GameController*
   bool m_gamepads = false;
 

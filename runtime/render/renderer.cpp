@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include <algorithm>
+
 #include "core/log.h"
 #include "render/internal/camera_math.h"
 #include "render/internal/renderer_impl.h"
@@ -118,6 +120,13 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
 }
 
 void Renderer::setTuningPanel(TuningPanel* panel) { m_impl->tuning = panel; }
+std::pair<Eigen::Vector3f, Eigen::Vector3f> Renderer::viewRay(float x, float y) const {
+  const Impl& r = *m_impl;
+  const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(std::max(1, r.targets.height()));
+  const FrameView view = makeFrameView(r.camera, aspect);
+  Eigen::Vector3f dir = view.forward + x * view.tanHalfFovX * view.right + y * view.tanHalfFovY * view.up;
+  return {view.eye, dir.normalized()};
+}
 
 const TerrainStats& Renderer::terrainStats() const { return m_impl->terrainStats; }
 const MeshStats& Renderer::meshStats() const { return m_impl->meshStats; }

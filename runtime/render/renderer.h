@@ -22,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -277,6 +278,9 @@ class Renderer {
   Camera& camera();
   /// Size in pixels of the frame drawFrame renders and screenshots store.
   Eigen::Vector2i framebufferSize() const;
+  /// The ray from the eye through view point (x, y), both -1..1 with y up
+  /// (pointer picking): origin (m, world) and unit direction.
+  std::pair<Eigen::Vector3f, Eigen::Vector3f> viewRay(float x, float y) const;
 
   // Handles SDL events: close/Escape quit; P or Space pause; N single step;
   // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; C steps through the

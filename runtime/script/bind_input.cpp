@@ -160,6 +160,24 @@ int inputPointer(lua_State* L) {
   return 2;
 }
 
+/// @function input.pointer_ray
+/// The ray from the camera through the mouse pointer, for grabbing what is
+/// under it: cast it with world.raycast. nil without a window.
+/// @return Vec3? origin, m (the camera's eye)
+/// @return Vec3? unit direction
+/// @example local o, d = input.pointer_ray()
+/// @example if o and input.pressed("grab") then local hit = world.raycast(o, d, 100) end
+int inputPointerRay(lua_State* L) {
+  auto ray = ScenarioHost::from(L)->input().pointerRay();
+  if (!ray) {
+    lua_pushnil(L);
+    return 1;
+  }
+  pushVec3(L, ray->origin_m);
+  pushVec3(L, ray->direction);
+  return 2;
+}
+
 const luaL_Reg kInput[] = {
     {"value", guarded<inputValue>},
     {"down", guarded<inputDown>},
@@ -170,6 +188,7 @@ const luaL_Reg kInput[] = {
     {"inject", guarded<inputInject>},
     {"actions", guarded<inputActions>},
     {"pointer", guarded<inputPointer>},
+    {"pointer_ray", guarded<inputPointerRay>},
     {nullptr, nullptr},
 };
 

@@ -1,6 +1,8 @@
 #include "script/mod_bindings.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <regex>
 
@@ -35,7 +37,7 @@ class Reader {
     if (!lua_istable(m_L, -1)) {
       problem(0, "contexts: expected a table of contexts, e.g. contexts = {vehicle = {priority = 10, actions = {...}}}");
     } else {
-      for (const std::string& name : sortedKeys(-1, "contexts")) {
+      for (const std::string& name : inFileOrder(sortedKeys(-1, "contexts"), 1)) {
         lua_getfield(m_L, -1, name.c_str());
         context(name, out);
         lua_pop(m_L, 1);
@@ -93,6 +95,21 @@ class Reader {
     return keys;
   }
 
+  // Lua tables forget the order they were written in; the menu and `tumble
+  // list` should not. Names sort by the line that declares them (from
+  // fromLine on), then by name.
+  std::vector<std::string> inFileOrder(std::vector<std::string> names, int fromLine) const {
+    std::vector<std::pair<int, std::string>> keyed;
+    for (auto& n : names) {
+      int l = lineOf(n, fromLine);
+      keyed.emplace_back(l == 0 ? INT32_MAX : l, std::move(n));
+    }
+    std::stable_sort(keyed.begin(), keyed.end());
+    std::vector<std::string> out;
+    for (auto& [l, n] : keyed) out.push_back(std::move(n));
+    return out;
+  }
+
   void checkFields(int idx, const std::vector<std::string>& known, const std::string& where, int skipArray = 0) {
     idx = lua_absindex(m_L, idx);
     lua_pushnil(m_L);
@@ -146,7 +163,7 @@ class Reader {
       problem(line, where + ".actions: expected a table of actions, e.g. actions = {jump = {type = \"button\", "
                             "bindings = {\"key:Space\", \"pad:a\"}}}");
     } else {
-      for (const std::string& a : sortedKeys(-1, where + ".actions")) {
+      for (const std::string& a : inFileOrder(sortedKeys(-1, where + ".actions"), line)) {
         lua_getfield(m_L, -1, a.c_str());
         action(a, name, out);
         lua_pop(m_L, 1);

@@ -468,6 +468,17 @@ function input.actions() end
 ---@return number? # y, -1 (bottom) .. 1 (top)
 function input.pointer() end
 
+---The ray from the camera through the mouse pointer, for grabbing what is
+---under it: cast it with world.raycast. nil without a window.
+---
+---```lua
+---local o, d = input.pointer_ray()
+---if o and input.pressed("grab") then local hit = world.raycast(o, d, 100) end
+---```
+---@return Vec3? # origin, m (the camera's eye)
+---@return Vec3? # unit direction
+function input.pointer_ray() end
+
 ---Deterministic random numbers. `random.new(seed)` makes an independent
 ---generator; the functions random.float, random.int, random.normal,
 ---random.chance and random.pick use the scenario's own generator, seeded

@@ -41,7 +41,7 @@ TEST(InputCli, CheckReportsBindingProblemsWithFileAndLine) {
 
 TEST(InputCli, ListShowsEachModsActionsByContext) {
   auto r = runTumble("list");
-  EXPECT_NE(r.output.find("actions    game: menu, pause, screenshot; interact: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("actions    game: pause, screenshot, menu; vehicle: throttle, brake, steer (axis), handbrake, "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("steer (axis)"), std::string::npos) << r.output;
 }
 

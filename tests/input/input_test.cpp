@@ -155,6 +155,63 @@ TEST(InputContexts, TheHigherPriorityContextTakesASharedKey) {
   EXPECT_NE(in.setContextEnabled("vehicel", true).error().find("vehicle"), std::string::npos);
 }
 
+TEST(InputDevices, GamepadButtonsDriveActionsAndAPadThatLeavesReleasesThem) {
+  input::BindingSet s;
+  s.contexts = {{"vehicle", 10, true}};
+  s.actions = {actionDef("handbrake", ActionType::Button, "vehicle", {"key:Space", "pad:a"}),
+               actionDef("steer", ActionType::Axis, "vehicle", {"pad_axis:leftx"})};
+  InputSystem in(s);
+  in.handleEvent(padButtonEvent(SDL_CONTROLLER_BUTTON_A, true));
+  in.handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_LEFTX, 32767));
+  in.step();
+  EXPECT_TRUE(in.pressed(0));
+  EXPECT_NEAR(in.value(1), 1.0, 1e-6);
+  SDL_Event gone{};
+  gone.type = SDL_CONTROLLERDEVICEREMOVED;
+  gone.cdevice.which = 12345;
+  in.handleEvent(gone);
+  in.step();
+  EXPECT_TRUE(in.released(0)) << "nothing stays held by a pad that was unplugged";
+  EXPECT_EQ(in.value(1), 0);
+}
+
+TEST(InputDevices, TheWheelCountsNotchesPerStepAndAMouseButtonIsAButton) {
+  input::BindingSet s;
+  s.contexts = {{"interact", 5, false}, {"camera", 0, true}};
+  s.actions = {actionDef("grab", ActionType::Button, "interact", {"mouse:left"}),
+               actionDef("zoom", ActionType::Axis, "camera", {"wheel:y"})};
+  InputSystem in(s);
+  EXPECT_FALSE(in.handleEvent(mouseButtonEvent(SDL_BUTTON_LEFT, true))) << "interact is off: the camera keeps the button";
+  in.handleEvent(mouseButtonEvent(SDL_BUTTON_LEFT, false));
+  ASSERT_TRUE(in.setContextEnabled("interact", true));
+  EXPECT_TRUE(in.handleEvent(mouseButtonEvent(SDL_BUTTON_LEFT, true)));
+  SDL_Event wheel{};
+  wheel.type = SDL_MOUSEWHEEL;
+  wheel.wheel.preciseY = 1;
+  wheel.wheel.direction = SDL_MOUSEWHEEL_NORMAL;
+  in.handleEvent(wheel);
+  in.handleEvent(wheel);
+  in.step();
+  EXPECT_TRUE(in.pressed(0));
+  EXPECT_EQ(in.value(1), 2);
+  in.step();
+  EXPECT_TRUE(in.down(0));
+  EXPECT_EQ(in.value(1), 0);
+}
+
+TEST(InputDevices, PressesTheHudTakesAreIgnoredButReleasesAlwaysCount) {
+  InputSystem in(vehicleSet());
+  const int throttle = in.find("throttle");
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true), /*uiWants*/ true);  // typing in a HUD field
+  in.step();
+  EXPECT_FALSE(in.down(throttle));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.step();
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, false), true);  // focus moved to the HUD while held
+  in.step();
+  EXPECT_TRUE(in.released(throttle)) << "no stuck key";
+}
+
 TEST(InputContexts, UnboundKeysAreLeftForTheCamera) {
   InputSystem in(vehicleSet());
   EXPECT_FALSE(in.handleEvent(keyEvent(SDL_SCANCODE_N, true)));

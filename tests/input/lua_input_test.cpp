@@ -144,4 +144,23 @@ TEST_F(LuaInput, ANonStringActionNameIsAClearError) {
   expectAllHeld(*host);
 }
 
+TEST_F(LuaInput, ThePointerRayFeedsWorldRaycastToPickWhatIsUnderTheMouse) {
+  auto host = load(R"(
+    local box
+    return {on_start = function()
+      expect("no ray before the app sets one", input.pointer_ray() == nil)
+      box = world.box{size = {1, 1, 1}, position = {0, 2, -10}, type = "static"}
+    end, on_update = function()
+      local o, d = input.pointer_ray()
+      local hit = world.raycast(o, d, 100)
+      expect("picked the box", hit ~= nil and hit.body == box)
+      expect("at its front face, m", hit and hit.distance or -1, {min = 9.49, max = 9.51})
+    end})");
+  ASSERT_TRUE(host);
+  host->start();
+  m_input->setPointerRay(Vec3(0, 2, 0), Vec3(0, 0, -1));  // what play computes from the camera
+  step(*host);
+  expectAllHeld(*host);
+}
+
 }  // namespace tumble::test

@@ -4,7 +4,10 @@
 // camera and debug keys, and F1 opens the bindings menu inside the HUD.
 #include <SDL.h>
 
+#include <cmath>
+
 #include "app/bindings_menu.h"
+#include "input/overrides_file.h"
 #include "input_fixture.h"
 #include "script/mod_bindings.h"
 
@@ -35,20 +38,22 @@ class PlayWiring : public ::testing::Test {
     base.name = "base";
     base.dir = std::string(TUMBLE_SOURCE_DIR) + "/mods/base";
     m_input = std::make_unique<input::InputSystem>(script::loadModBindings(base).set);
-    m_menu = std::make_unique<app::BindingsMenu>(*m_input, (testDir() / "bindings.json").string());
+    m_configPath = (testDir() / "bindings.json").string();
+    m_menu = std::make_unique<app::BindingsMenu>(*m_input, m_configPath);
     m_renderer->setEventHook([this](const SDL_Event& e, bool hudWants) { return m_input->handleEvent(e, hudWants); });
     m_renderer->addHudPanel([this] { m_menu->draw(); });
   }
 
   void frame() {
     m_renderer->processEvents(m_controls);
-    app::applyAppActions(*m_input, *m_menu, m_controls, m_renderer->camera());
+    app::applyFrameInput(*m_input, *m_menu, m_controls, *m_renderer);
   }
 
   std::unique_ptr<render::Renderer> m_renderer;
   std::unique_ptr<input::InputSystem> m_input;
   std::unique_ptr<app::BindingsMenu> m_menu;
   render::Controls m_controls;
+  std::string m_configPath;
 };
 
 TEST_F(PlayWiring, PauseIsAnActionThatTogglesOncePerPress) {
@@ -85,12 +90,82 @@ TEST_F(PlayWiring, F1OpensTheBindingsMenuAndTheHudDrawsIt) {
   pushKey(SDL_SCANCODE_F1);
   frame();
   EXPECT_TRUE(m_menu->isOpen());
+  EXPECT_TRUE(m_controls.paused) << "the game waits while the player rebinds";
   render::FrameSnapshot snap;
   render::HudStats hud;
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(m_renderer->drawFrame(snap, hud, m_controls));
   pushKey(SDL_SCANCODE_F1);
   frame();
   EXPECT_FALSE(m_menu->isOpen());
+  EXPECT_FALSE(m_controls.paused) << "and resumes as it was";
+}
+
+TEST_F(PlayWiring, APlayerRebindsInTheMenuAndSavesOnlyTheChanges) {
+  pushKey(SDL_SCANCODE_F1);
+  frame();
+  ASSERT_TRUE(m_menu->isOpen());
+  render::FrameSnapshot snap;
+  render::HudStats hud;
+  auto draw = [&] { ASSERT_TRUE(m_renderer->drawFrame(snap, hud, m_controls)); };
+  const int throttle = m_input->find("throttle"), steer = m_input->find("steer");
+
+  m_menu->rebind(throttle, 0);  // click on "W"
+  pushKey(SDL_SCANCODE_I);
+  frame();
+  draw();
+  EXPECT_FALSE(m_menu->rebinding());
+  EXPECT_EQ(input::toText(m_input->bindings(throttle)[0]), "key:I");
+  m_input->step();
+  EXPECT_FALSE(m_input->down(throttle)) << "the key pressed to rebind did not drive the game";
+
+  m_menu->rebind(steer, 0);  // an axis: two keys, - then +
+  pushKey(SDL_SCANCODE_J);
+  frame();
+  draw();
+  EXPECT_TRUE(m_menu->rebinding()) << "waits for the + key";
+  pushKey(SDL_SCANCODE_L);
+  frame();
+  draw();
+  EXPECT_EQ(input::toText(m_input->bindings(steer)[0]), "keys:J/L");
+
+  m_menu->rebind(steer, 2);  // the stick: push the right stick instead; its dead zone stays
+  m_input->handleEvent(padAxisEvent(SDL_CONTROLLER_AXIS_RIGHTX, -30000), false);
+  draw();
+  EXPECT_EQ(input::toText(m_input->bindings(steer)[2]), "pad_axis:rightx;dead_zone=0.15;curve=1.5");
+
+  m_menu->rebind(throttle, -1);  // Escape cancels
+  pushKey(SDL_SCANCODE_ESCAPE);
+  frame();
+  draw();
+  EXPECT_FALSE(m_controls.quitRequested) << "Escape cancelled the capture and did not quit";
+  EXPECT_EQ(m_input->bindings(throttle).size(), 3u);
+
+  ASSERT_TRUE(m_menu->save());
+  auto saved = input::loadOverrides(m_configPath);
+  ASSERT_TRUE(saved) << saved.error();
+  ASSERT_EQ(saved->size(), 2u) << "throttle and steer only";
+  ASSERT_EQ(saved->count("throttle"), 1u);
+  EXPECT_EQ(saved->at("throttle").at(0), "key:I");
+}
+
+TEST_F(PlayWiring, ThePointerRayStartsAtTheEyeAndPointsAtTheCameraTargetFromTheCentre) {
+  EXPECT_FALSE(m_input->pointerRay()) << "no pointer yet";
+  m_input->setPointer(0, 0);  // the centre of the view
+  frame();
+  auto ray = m_input->pointerRay();
+  ASSERT_TRUE(ray);
+  const render::Camera& cam = m_renderer->camera();
+  const Eigen::Vector3f eye = cam.target + cam.distance_m * Eigen::Vector3f(std::cos(cam.pitch_rad) * std::sin(cam.yaw_rad),
+                                                                           std::sin(cam.pitch_rad),
+                                                                           std::cos(cam.pitch_rad) * std::cos(cam.yaw_rad));
+  EXPECT_LT((ray->origin_m.cast<float>() - eye).norm(), 1e-4f);
+  const Eigen::Vector3f toTarget = (cam.target - eye).normalized();
+  EXPECT_GT(ray->direction.cast<float>().dot(toTarget), 0.99999f);
+  m_input->setPointer(1, 0);  // the right edge: half the horizontal field of view away
+  frame();
+  const float aspect = 320.0f / 240.0f;
+  const float halfFovX = std::atan(std::tan(cam.fovY_rad / 2) * aspect);
+  EXPECT_NEAR(std::acos(m_input->pointerRay()->direction.cast<float>().dot(toTarget)), halfFovX, 1e-4f);
 }
 
 }  // namespace

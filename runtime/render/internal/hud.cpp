@@ -149,7 +149,7 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
       controls.timeScale = kTimeScales[level];
     }
     ImGui::TextColored(kDimColor, "camera: %s (C)", cameraModeName(cameraMode));
-    ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot");
+    ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot  F1 keys");
     if (tuning) {
       if (ImGui::Button(controls.tuningPanelVisible ? "Hide tuning (F2)" : "Tune (F2)", ImVec2(132, 0)))
         controls.tuningPanelVisible = !controls.tuningPanelVisible;
