@@ -647,7 +647,9 @@ Status ScenarioHost::reload(double time_s, std::int64_t step) {
       err = ScriptError{};
       err.mod = m_mod.name;
       err.file = m_file;
-      err.message = st.error().substr(st.error().find(m_file) + m_file.size() + 2);
+      // "mod X: scenarios/y.lua: field ..." -> "field ..." (file is a field of its own).
+      const std::string prefix = "mod " + m_mod.name + ": " + m_file + ": ";
+      err.message = st.error().rfind(prefix, 0) == 0 ? st.error().substr(prefix.size()) : st.error();
     }
   }
   if (!ok) {
