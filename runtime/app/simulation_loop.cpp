@@ -305,6 +305,8 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   renderer.addHudPanel([&menu] { menu.draw(); });
   // Live editing: saved .lua files of the mod take effect (polled at 4 Hz),
   // and the tuning panel (F2) edits the scenario's tunables.
+  // Emitters, bindings and vehicles reload through hooks registered here:
+  //   hotReload.addHook(script::ModFileKind::Emitter, [&](const std::string& path, const std::string& rel) {...});
   script::HotReload hotReload(scene.host());
   render::TuningPanel tuning;
   tuning.title = scene.name();

@@ -691,7 +691,9 @@ Status ScenarioHost::reload(double time_s, std::int64_t step) {
       err = ScriptError{};
       err.mod = m_mod.name;
       err.file = m_file;
-      err.message = st.error().substr(st.error().find(m_file) + m_file.size() + 2);
+      // "mod X: scenarios/y.lua: field ..." -> "field ..." (file is a field of its own).
+      const std::string prefix = "mod " + m_mod.name + ": " + m_file + ": ";
+      err.message = st.error().rfind(prefix, 0) == 0 ? st.error().substr(prefix.size()) : st.error();
     }
   }
   if (!ok) {
@@ -974,6 +976,18 @@ void ScenarioHost::afterStep(double time_s, std::int64_t step) {
 void ScenarioHost::finish(double time_s, std::int64_t step) {
   pushCtx(time_s, 0, step);
   callLifecycle("on_finish", 1, nullptr, nullptr);
+  // A --set tune.X that nothing declared is most likely a typo: say so
+  // rather than let the run silently use the default.
+  for (const std::string& name : m_tunables.undeclared("--set")) {
+    std::string known;
+    for (const Tunable& t : m_tunables.items()) known += (known.empty() ? "" : ", ") + t.name;
+    ScriptError e;
+    e.mod = m_mod.name;
+    e.file = m_file;
+    e.message = "--set tune." + name + ": the scenario declared no tunable \"" + name + "\" (declared: " +
+                (known.empty() ? std::string("none") : known) + ")";
+    recordError(std::move(e));
+  }
 }
 
 // ---- contacts -------------------------------------------------------------------

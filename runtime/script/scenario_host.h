@@ -127,6 +127,8 @@ class ScenarioHost {
   /// that began, then trigger volumes' on_enter / on_exit. No Lua call, and
   /// no work beyond two size checks, when the scenario has neither.
   void afterStep(double time_s, std::int64_t step);
+  /// on_finish; then each --set tune.NAME the scenario never declared is
+  /// recorded as an error (a misspelt name must not pass silently).
   void finish(double time_s, std::int64_t step);
   /// Runs the (saved) scenario file again and switches to its code, as the
   /// header says. time_s/step: the current simulated time, for ctx. On an

@@ -171,6 +171,13 @@ Status Tunables::setText(const std::string& name, const std::string& text, const
   return Ok{};
 }
 
+std::vector<std::string> Tunables::undeclared(const std::string& origin) const {
+  std::vector<std::string> names;
+  for (const auto& [name, p] : m_pending)
+    if (p.origin == origin) names.push_back(name);
+  return names;
+}
+
 void Tunables::reset(const std::string& name) {
   int i = find(name);
   if (i >= 0 && m_items[std::size_t(i)].userValue) {

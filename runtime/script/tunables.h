@@ -86,6 +86,8 @@ class Tunables {
   /// Problems found when a pending value met its declaration ("--set
   /// tune.gravity=abc: expected a number"); taken (cleared) by the caller.
   std::vector<std::string> takeProblems() { return std::exchange(m_problems, {}); }
+  /// Names given a value by `origin` (e.g. "--set") that nothing declared.
+  std::vector<std::string> undeclared(const std::string& origin) const;
 
  private:
   struct Pending {

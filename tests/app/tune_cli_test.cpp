@@ -50,6 +50,14 @@ TEST(TuneCli, ABadValueIsAScriptErrorThatNamesIt) {
   EXPECT_NEAR(distance(j), 2.0, 1e-3) << "the default applies";
 }
 
+TEST(TuneCli, AMisspeltNameIsAnErrorListingTheDeclaredOnes) {
+  std::string dir = outDir("tune_misspelt");
+  auto j = report("run good:tuned --set tune.sped=4", dir, 3);
+  ASSERT_EQ(j["script_errors"].size(), 1u);
+  EXPECT_EQ(j["script_errors"][0]["message"],
+            "--set tune.sped: the scenario declared no tunable \"sped\" (declared: speed)");
+}
+
 TEST(TuneCli, RunIgnoresSavedOverridesSoItDependsOnlyOnItsCommandLine) {
   std::string dir = outDir("tune_overrides");
   std::filesystem::create_directories(dir + "/config/tune");

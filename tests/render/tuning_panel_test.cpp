@@ -1,6 +1,7 @@
 // The tuning panel (F2): which widget each tunable gets, how values print
 // and snap, and that the panel is really drawn (offscreen) when visible,
 // without pressing any of its buttons.
+#include <SDL.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -90,6 +91,22 @@ TEST(TuningPanel, IsDrawnOnlyWhenVisibleAndPressesNothing) {
   EXPECT_TRUE(controls.tuningPanelVisible);
   for (const TuningItem& item : panel.items) EXPECT_FALSE(item.edited || item.resetRequested) << item.name;
   EXPECT_FALSE(panel.saveRequested || panel.resetAllRequested);
+}
+
+TEST(TuningPanel, F2TogglesIt) {
+  auto renderer = test::makeOffscreenRenderer(320, 240, /*hud=*/true);
+  ASSERT_NE(renderer, nullptr);
+  Controls controls;
+  for (bool expected : {true, false}) {
+    SDL_Event event{};
+    event.type = SDL_KEYDOWN;
+    event.key.state = SDL_PRESSED;
+    event.key.keysym.sym = SDLK_F2;
+    event.key.keysym.scancode = SDL_SCANCODE_F2;
+    ASSERT_EQ(SDL_PushEvent(&event), 1) << SDL_GetError();
+    renderer->processEvents(controls);
+    EXPECT_EQ(controls.tuningPanelVisible, expected);
+  }
 }
 
 }  // namespace tumble::render

@@ -106,6 +106,22 @@ TEST_F(HotReloadTest, ASavedScenarioRunsTheNewCodeWithTheOldState) {
   EXPECT_TRUE(host->errors().empty()) << host->errors().front().summary();
 }
 
+TEST_F(HotReloadTest, ASaveIsPickedUpWithinAQuarterSecondOfPlaying) {
+  auto host = load(kCounterV1);
+  ASSERT_TRUE(host);
+  script::HotReload reload(*host, 0.25);
+  host->start();
+  EXPECT_TRUE(reload.poll(100.0, 0, 0).empty());  // the first poll scans: nothing saved yet
+  save(file(), kCounterV2);
+  EXPECT_TRUE(reload.poll(100.1, 0, 0).empty()) << "between scans nothing is read";
+  EXPECT_EQ(host->reloadCount(), 0);
+  auto events = reload.poll(100.25, 0, 0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_TRUE(events[0].ok) << events[0].message;
+  EXPECT_EQ(host->reloadCount(), 1);
+  EXPECT_TRUE(reload.poll(100.5, 0, 0).empty()) << "a save is applied once";
+}
+
 TEST_F(HotReloadTest, ASaveThatDoesNotCompileKeepsTheOldCodeAndNamesTheLine) {
   auto host = load(kCounterV1);
   ASSERT_TRUE(host);
@@ -130,6 +146,13 @@ TEST_F(HotReloadTest, ASaveThatDoesNotCompileKeepsTheOldCodeAndNamesTheLine) {
   EXPECT_FALSE(reload.pollNow(time_s(), m_step).at(0).ok);
   EXPECT_EQ(host->errors().back().line, 2);
   steps(*host, 10);
+
+  // So is a table with a callback that is not a function.
+  save(file(), "return {on_update = 5}\n");
+  EXPECT_FALSE(reload.pollNow(time_s(), m_step).at(0).ok);
+  EXPECT_EQ(host->errors().back().message,
+            "reload failed, the previous code keeps running: field 'on_update' must be a function");
+  EXPECT_EQ(host->errors().back().file, "scenarios/s.lua");
 
   // Fixing the file makes the next save take effect.
   save(file(), kCounterV2);

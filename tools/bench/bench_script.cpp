@@ -1,5 +1,6 @@
-// Lua scripting costs (issue #6): one Lua -> C++ binding call, and the
-// per-frame cost of 100 bodies each driven from Lua in on_update.
+// Lua scripting costs (issue #6): one Lua -> C++ binding call, the
+// per-frame cost of 100 bodies each driven from Lua in on_update, and one
+// hot-reload scan of a mod folder.
 //
 //   build/bin/tumble_bench_script
 //
@@ -16,6 +17,7 @@
 #include <memory>
 #include <string>
 
+#include "core/file_watch.h"
 #include "physics/world.h"
 #include "script/mods.h"
 #include "script/scenario_host.h"
@@ -134,6 +136,14 @@ void BM_Entities100_WholeStep(benchmark::State& state) {
   }
 }
 
+// Hot reload's cost while playing: one scan of mods/base for saved .lua
+// files (done 4 times a second, not every frame).
+void BM_HotReload_PollModsBase(benchmark::State& state) {
+  FileWatch watch({TUMBLE_SOURCE_DIR "/mods/base"}, {".lua"});
+  for (auto _ : state) benchmark::DoNotOptimize(watch.poll());
+  state.counters["files"] = double(watch.fileCount());
+}
+
 BENCHMARK(BM_LuaCall_EmptyLuaFunction);
 BENCHMARK(BM_LuaCall_WorldBodyCount);
 BENCHMARK(BM_LuaCall_BodyPosition);
@@ -142,6 +152,7 @@ BENCHMARK(BM_LuaCall_TuneNumber);
 BENCHMARK(BM_LuaCall_TuneGet);
 BENCHMARK(BM_Entities100_ScriptPerFrame)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Entities100_WholeStep)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HotReload_PollModsBase)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace tumble
