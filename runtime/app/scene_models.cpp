@@ -19,6 +19,17 @@ Result<script::ModelBox> ModelCache::bounds(const std::string& file) {
   return script::ModelBox{box.min.cast<Real>(), box.max.cast<Real>()};
 }
 
+Result<script::ModelTriangles> ModelCache::triangles(const std::string& file) {
+  auto model = get(file);
+  if (!model) return makeError(model.error());
+  const render::FlatMesh flat = render::flattenModel(**model);
+  script::ModelTriangles out;
+  out.vertices_m.reserve(flat.positions.size());
+  for (const Eigen::Vector3f& p : flat.positions) out.vertices_m.push_back(p.cast<Real>());
+  out.triangles = flat.triangles;
+  return out;
+}
+
 namespace {
 
 render::ModelInstance instanceAt(const std::shared_ptr<const render::Model>& model, const Vec3& position,

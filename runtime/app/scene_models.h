@@ -25,6 +25,8 @@ class ModelCache {
   Result<std::shared_ptr<const render::Model>> get(const std::string& file);
   /// Bounds of the model's root covering box, for collision boxes.
   Result<script::ModelBox> bounds(const std::string& file);
+  /// Every triangle in model space (render::flattenModel).
+  Result<script::ModelTriangles> triangles(const std::string& file);
   std::size_t size() const { return m_models.size(); }
 
  private:

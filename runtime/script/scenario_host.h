@@ -61,6 +61,8 @@ struct ScenarioOptions {
   /// Bounds of a model file (world.add_static_model's collision box); the
   /// app provides it. Unset: static models cannot have collision = "box".
   ModelBoundsFn modelBounds;
+  /// Triangles of a model file (world.model_mass_properties); from the app.
+  ModelTrianglesFn modelTriangles;
 };
 
 class ScenarioHost {

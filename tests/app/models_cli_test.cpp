@@ -66,6 +66,11 @@ TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
   }
 }
 
+TEST(ModelsCli, MassPropertiesFromTheClosedMeshMatchTheSolidBox) {
+  auto r = runTumble(testMods() + " run models:mass_properties");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 TEST(ModelsCli, MistakesInOptionsSayWhatIsValid) {
   auto r = runTumble(testMods() + " run models:bad_options");
   EXPECT_EQ(r.exitCode, 0) << "every mistake refused with the right words:\n" << r.output;
