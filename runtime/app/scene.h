@@ -50,6 +50,8 @@ class Scene {
   void noteSubsystem(const std::string& name) { m_extraSubsystems.push_back(name); }
   /// A terrain exists only when asked for (--set terrain.*, terrainDefaults).
   bool hasTerrain() const { return m_terrain != nullptr; }
+  /// The terrain, or null without one.
+  const TerrainScene* terrainScene() const { return m_terrain.get(); }
   /// Registers every static body over the terrain in its tree of static
   /// objects (call after the scenario's on_start made them). No terrain: nothing.
   void registerStaticObjects();

@@ -16,7 +16,10 @@ namespace {
 // One fixed step: the scenario's on_update, then physics.
 void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   Stopwatch sw;
+  const std::size_t statics = scene.host().presentation().statics.size();
   scene.host().update(time_s, scene.options().dt_s, step);
+  // Static models placed during play go into the terrain's tree too.
+  if (scene.host().presentation().statics.size() != statics) scene.registerStaticObjects();
   double script = sw.seconds();
   scene.world().step(Real(scene.options().dt_s));
   double physics = sw.seconds() - script;
