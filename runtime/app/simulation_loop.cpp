@@ -132,8 +132,9 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   auto takeShot = [&](double time_s) {
     Stopwatch sw;
     render::FrameSnapshot frame;
+    director.update(scene, 1.0, 0.0f, renderer->camera());
     scene.snapshot(frame, 1.0);
-    director.update(scene, 1.0, 0.0f, renderer->camera(), frame);
+    director.decorate(scene, 1.0, renderer->camera(), frame);
     frame.simTime_s = time_s;
     render::Controls controls;
     shotStatus = renderer->drawFrame(frame, hudStats(scene, 0, RunTimings{}, time_s), controls,
@@ -220,9 +221,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     }
     double simWall = wall.seconds();
     frameCamera(scene, renderer.camera());
-    scene.snapshot(snap, 1.0);
     CameraDirector director;
-    director.update(scene, 1.0, 0.0f, renderer.camera(), snap);
+    director.update(scene, 1.0, 0.0f, renderer.camera());
+    scene.snapshot(snap, 1.0);
+    director.decorate(scene, 1.0, renderer.camera(), snap);
     snap.simTime_s = time_s;
     RunTimings perStep = total;
     perStep.physics_s /= double(std::max(1LL, steps));
@@ -270,11 +272,12 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
       time_s = double(step) * dt;
       accumulator -= dt;
     }
-    scene.snapshot(snap, accumulator / dt);
-    director.update(scene, accumulator / dt, float(elapsed), renderer.camera(), snap);
+    director.update(scene, accumulator / dt, float(elapsed), renderer.camera());
     if (!director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
       renderer.camera().target = dynamicCentroid(scene);
     }
+    scene.snapshot(snap, accumulator / dt);
+    director.decorate(scene, accumulator / dt, renderer.camera(), snap);
     snap.simTime_s = time_s;
     std::string shot;
     if (controls.screenshotRequested) {
