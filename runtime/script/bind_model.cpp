@@ -103,6 +103,8 @@ int bodySetModel(lua_State* L) {
     }
   }
   Presentation& p = host->presentation();
+  // Forget models of removed bodies, so spawning and removing keeps no garbage.
+  std::erase_if(p.attachments, [&](const ModelAttachment& m) { return !host->world().isValid(m.body); });
   auto it = std::find_if(p.attachments.begin(), p.attachments.end(),
                          [&](const ModelAttachment& m) { return m.body == id; });
   if (it != p.attachments.end()) *it = a;
