@@ -179,6 +179,7 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   for (const script::ModInfo& m : registry.mods()) so.modDirs[m.name] = m.dir;
   scene->m_models = std::make_unique<ModelCache>();
   so.modelBounds = [models = scene->m_models.get()](const std::string& file) { return models->bounds(file); };
+  so.modelTriangles = [models = scene->m_models.get()](const std::string& file) { return models->triangles(file); };
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());

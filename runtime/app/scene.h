@@ -61,6 +61,8 @@ class Scene {
   void noteSubsystem(const std::string& name) { m_extraSubsystems.push_back(name); }
   /// A terrain exists only when asked for (--set terrain.*, terrainDefaults).
   bool hasTerrain() const { return m_terrain != nullptr; }
+  /// The terrain, or null without one.
+  const TerrainScene* terrainScene() const { return m_terrain.get(); }
   /// Registers every static body over the terrain in its tree of static
   /// objects (call after the scenario's on_start made them). No terrain: nothing.
   void registerStaticObjects();
@@ -76,6 +78,10 @@ class Scene {
   void savePreviousState();
   /// A body's pose interpolated like the snapshot; nullopt for a removed body.
   std::optional<render::BodyPose> bodyPose(physics::BodyId id, double alpha) const;
+  /// The body whose model the snapshot leaves out (the car around a cockpit
+  /// camera; CameraDirector sets it), or none.
+  void hideModelOf(std::optional<physics::BodyId> body) { m_hiddenModelBody = body; }
+  const std::optional<physics::BodyId>& hiddenModelBody() const { return m_hiddenModelBody; }
   /// Model files scripts named (body:set_model, world.add_static_model);
   /// loading on first use does not change the scene, so const may load.
   ModelCache& models() const { return *m_models; }
@@ -91,6 +97,7 @@ class Scene {
   std::vector<Vec3> m_prevPosition;
   std::vector<Quat> m_prevOrientation;
   std::vector<std::string> m_extraSubsystems;
+  std::optional<physics::BodyId> m_hiddenModelBody;
 };
 
 }  // namespace tumble::app

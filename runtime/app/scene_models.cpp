@@ -19,6 +19,17 @@ Result<script::ModelBox> ModelCache::bounds(const std::string& file) {
   return script::ModelBox{box.min.cast<Real>(), box.max.cast<Real>()};
 }
 
+Result<script::ModelTriangles> ModelCache::triangles(const std::string& file) {
+  auto model = get(file);
+  if (!model) return makeError(model.error());
+  const render::FlatMesh flat = render::flattenModel(**model);
+  script::ModelTriangles out;
+  out.vertices_m.reserve(flat.positions.size());
+  for (const Eigen::Vector3f& p : flat.positions) out.vertices_m.push_back(p.cast<Real>());
+  out.triangles = flat.triangles;
+  return out;
+}
+
 namespace {
 
 render::ModelInstance instanceAt(const std::shared_ptr<const render::Model>& model, const Vec3& position,
@@ -36,6 +47,7 @@ render::ModelInstance instanceAt(const std::shared_ptr<const render::Model>& mod
 void appendModelInstances(const Scene& scene, double alpha, std::vector<render::ModelInstance>& out) {
   const script::Presentation& p = scene.host().presentation();
   for (const script::ModelAttachment& a : p.attachments) {
+    if (scene.hiddenModelBody() && *scene.hiddenModelBody() == a.body) continue;  // the cockpit's own car
     const auto pose = scene.bodyPose(a.body, alpha);
     if (!pose) continue;  // the body was removed
     auto model = scene.models().get(a.file);
@@ -50,8 +62,7 @@ void appendModelInstances(const Scene& scene, double alpha, std::vector<render::
   }
 }
 
-void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera,
-                            render::FrameSnapshot& frame) {
+void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera) {
   const script::CameraRequest& request = scene.host().presentation().camera;
   if (request.revision != m_revision) {
     m_revision = request.revision;
@@ -68,19 +79,26 @@ void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render:
     m_rig.reset();
     camera.vehicleModes = m_target.has_value();
   }
+  const bool cockpit = m_target && camera.mode == render::CameraMode::Cockpit;
+  scene.hideModelOf(cockpit ? m_target : std::nullopt);
   if (!m_target) return;
   const auto pose = scene.bodyPose(*m_target, alpha);
   if (!pose) return;  // the followed body is gone: the camera stays where it was
   m_rig.update(*pose, frameDt_s, camera);
-  if (camera.mode == render::CameraMode::Cockpit && !m_interior.empty()) {
-    if (auto model = scene.models().get(m_interior)) {
-      render::ModelInstance interior;
-      interior.model = *model;
-      interior.position = pose->position_m + pose->orientation * m_rig.settings.cockpitEye_m;
-      interior.orientation = pose->orientation;
-      frame.models.push_back(interior);
-    }
-  }
+}
+
+void CameraDirector::decorate(const Scene& scene, double alpha, const render::Camera& camera,
+                              render::FrameSnapshot& frame) const {
+  if (!m_target || camera.mode != render::CameraMode::Cockpit || m_interior.empty()) return;
+  const auto pose = scene.bodyPose(*m_target, alpha);
+  if (!pose) return;
+  auto model = scene.models().get(m_interior);
+  if (!model) return;
+  render::ModelInstance interior;
+  interior.model = *model;
+  interior.position = pose->position_m + pose->orientation * m_rig.settings.cockpitEye_m;
+  interior.orientation = pose->orientation;
+  frame.models.push_back(interior);
 }
 
 }  // namespace tumble::app

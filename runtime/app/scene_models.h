@@ -25,6 +25,8 @@ class ModelCache {
   Result<std::shared_ptr<const render::Model>> get(const std::string& file);
   /// Bounds of the model's root covering box, for collision boxes.
   Result<script::ModelBox> bounds(const std::string& file);
+  /// Every triangle in model space (render::flattenModel).
+  Result<script::ModelTriangles> triangles(const std::string& file);
   std::size_t size() const { return m_models.size(); }
 
  private:
@@ -37,11 +39,16 @@ void appendModelInstances(const Scene& scene, double alpha, std::vector<render::
 
 /// Applies camera.set_mode to the renderer's camera and moves it each drawn
 /// frame. Without a request the camera stays as the app framed it.
+/// Per frame: update() before Scene::snapshot, decorate() after it.
 class CameraDirector {
  public:
-  /// frameDt_s: real time since the last drawn frame (0 for a single shot).
+  /// Places the camera; frameDt_s is real time since the last drawn frame
+  /// (0 for a single shot). In Cockpit mode the followed body's own model is
+  /// hidden from the next snapshot (the eye is inside it) and decorate()
+  /// draws the interior instead.
+  void update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera);
   /// Adds the cockpit interior to `frame` in Cockpit mode.
-  void update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera, render::FrameSnapshot& frame);
+  void decorate(const Scene& scene, double alpha, const render::Camera& camera, render::FrameSnapshot& frame) const;
   /// True once a scenario named a body to follow.
   bool hasTarget() const { return m_target.has_value(); }
 

@@ -45,7 +45,10 @@ void stepParticles(Scene& scene, RunTimings& t) {
 void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   Stopwatch sw;
   scene.input().step();  // the actions every script reads in this step
+  const std::size_t statics = scene.host().presentation().statics.size();
   scene.host().update(time_s, scene.options().dt_s, step);
+  // Static models placed during play go into the terrain's tree too.
+  if (scene.host().presentation().statics.size() != statics) scene.registerStaticObjects();
   double script = sw.seconds();
   scene.world().step(Real(scene.options().dt_s));
   scene.stepDeformables(Real(scene.options().dt_s));
@@ -180,8 +183,9 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     Stopwatch sw;
     if (scene.host().vehiclesIfAny()) frameCamera(scene, renderer->camera());  // where the car is now
     render::FrameSnapshot frame;
+    director.update(scene, 1.0, 0.0f, renderer->camera());
     scene.snapshot(frame, 1.0);
-    director.update(scene, 1.0, 0.0f, renderer->camera(), frame);
+    director.decorate(scene, 1.0, renderer->camera(), frame);
     frame.simTime_s = time_s;
     render::Controls controls;
     shotStatus = renderer->drawFrame(frame, hudStats(scene, 0, RunTimings{}, time_s), controls,
@@ -271,9 +275,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     }
     double simWall = wall.seconds();
     frameCamera(scene, renderer.camera());
-    scene.snapshot(snap, 1.0);
     CameraDirector director;
-    director.update(scene, 1.0, 0.0f, renderer.camera(), snap);
+    director.update(scene, 1.0, 0.0f, renderer.camera());
+    scene.snapshot(snap, 1.0);
+    director.decorate(scene, 1.0, renderer.camera(), snap);
     snap.simTime_s = time_s;
     RunTimings perStep = total;
     perStep.physics_s /= double(std::max(1LL, steps));
@@ -341,11 +346,12 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
       time_s = double(step) * dt;
       accumulator -= dt;
     }
-    scene.snapshot(snap, accumulator / dt);
-    director.update(scene, accumulator / dt, float(elapsed), renderer.camera(), snap);
+    director.update(scene, accumulator / dt, float(elapsed), renderer.camera());
     if (!director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
       renderer.camera().target = dynamicCentroid(scene);
     }
+    scene.snapshot(snap, accumulator / dt);
+    director.decorate(scene, accumulator / dt, renderer.camera(), snap);
     snap.simTime_s = time_s;
     std::string shot;
     if (controls.screenshotRequested) {

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <optional>
 #include <set>
+#include <tuple>
 
+#include "physics/mass_properties.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -101,6 +103,8 @@ int bodySetModel(lua_State* L) {
     }
   }
   Presentation& p = host->presentation();
+  // Forget models of removed bodies, so spawning and removing keeps no garbage.
+  std::erase_if(p.attachments, [&](const ModelAttachment& m) { return !host->world().isValid(m.body); });
   auto it = std::find_if(p.attachments.begin(), p.attachments.end(),
                          [&](const ModelAttachment& m) { return m.body == id; });
   if (it != p.attachments.end()) *it = a;
@@ -195,6 +199,65 @@ int worldAddStaticModel(lua_State* L) {
   return 1;
 }
 
+/// @class MeshMassProperties
+/// @field mass number kg
+/// @field volume number m^3
+/// @field center Vec3 centre of mass in the model's frame (scaled), m
+/// @field inertia table inertia about the centre of mass, kg m^2: {xx=, yy=, zz=, xy=, yz=, zx=}
+
+/// @function world.model_mass_properties
+/// Mass, volume, centre of mass and inertia of a model of uniform density,
+/// computed from its closed triangle mesh (Mirtich's method). Every part
+/// of the model must be a closed surface; an open one is an error.
+/// @param path string "MOD:path/in/mod" or a path in this mod
+/// @param options? table {density = kg/m^3 (default 1000), scale = number or {x, y, z} (default 1)}
+/// @return MeshMassProperties the mass properties
+/// @example local p = world.model_mass_properties("base:assets/models/wheel.obj", {density = 1100})
+/// @example print(p.mass, p.inertia.xx)
+int worldModelMassProperties(lua_State* L) {
+  const char* fn = "world.model_mass_properties";
+  const std::string file = resolve(L, 1, fn);
+  Real density = 1000;
+  Vec3 scale = Vec3::Ones();
+  if (!lua_isnoneornil(L, 2)) {
+    if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": options must be a table {density=, scale=}");
+    checkOptionFields(L, 2, fn, {"density", "scale"});
+    try {
+      density = Real(optNumberField(L, 2, "density", density));
+      scale = readScale(L, 2);
+    } catch (const LuaArgError& e) {
+      throw LuaArgError(std::string(fn) + ": " + e.what());
+    }
+    if (!(density > 0)) throw LuaArgError(std::string(fn) + ": option 'density' must be > 0 kg/m^3");
+  }
+  const ModelTrianglesFn& triangles = ScenarioHost::from(L)->options().modelTriangles;
+  if (!triangles) throw LuaArgError(std::string(fn) + ": this run cannot read model meshes");
+  auto mesh = triangles(file);
+  if (!mesh) throw LuaArgError(std::string(fn) + ": " + mesh.error());
+  for (Vec3& v : mesh->vertices_m) v = v.cwiseProduct(scale);
+  if (!physics::isClosedMesh(mesh->vertices_m, mesh->triangles)) {
+    throw LuaArgError(std::string(fn) + ": " + file + " is not one closed surface (an edge with no partner or a "
+                      "face wound the wrong way); mass properties need a closed mesh");
+  }
+  const physics::MassProperties p = physics::massPropertiesOfMesh(mesh->vertices_m, mesh->triangles, density);
+  if (!p.valid) throw LuaArgError(std::string(fn) + ": " + file + " encloses no volume");
+  lua_createtable(L, 0, 4);
+  lua_pushnumber(L, p.mass_kg);
+  lua_setfield(L, -2, "mass");
+  lua_pushnumber(L, p.volume_m3);
+  lua_setfield(L, -2, "volume");
+  pushVec3(L, p.centerOfMass_m);
+  lua_setfield(L, -2, "center");
+  lua_createtable(L, 0, 6);
+  const Mat3& I = p.inertia_kgm2;
+  for (auto [name, r, c] : {std::tuple{"xx", 0, 0}, {"yy", 1, 1}, {"zz", 2, 2}, {"xy", 0, 1}, {"yz", 1, 2}, {"zx", 2, 0}}) {
+    lua_pushnumber(L, I(r, c));
+    lua_setfield(L, -2, name);
+  }
+  lua_setfield(L, -2, "inertia");
+  return 1;
+}
+
 const luaL_Reg kBodyModelMethods[] = {
     {"set_model", guarded<bodySetModel>},
     {"clear_model", guarded<bodyClearModel>},
@@ -213,6 +276,8 @@ void openModelBindings(lua_State* L, int envIndex) {
   lua_getfield(L, envIndex, "world");
   lua_pushcfunction(L, guarded<worldAddStaticModel>);
   lua_setfield(L, -2, "add_static_model");
+  lua_pushcfunction(L, guarded<worldModelMassProperties>);
+  lua_setfield(L, -2, "model_mass_properties");
   lua_pop(L, 1);
 }
 

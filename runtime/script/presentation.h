@@ -4,6 +4,7 @@
 // camera (camera.set_mode). Plain data the app reads each frame; script
 // never includes render (ARCHITECTURE.md), so loading a model's bounds for
 // a collision box goes through ModelBoundsFn, which the app provides.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -26,6 +27,14 @@ struct ModelBox {
 /// Loads (or finds in a cache) the model at an absolute path and returns its
 /// bounds, or an error naming the file and what is wrong with it.
 using ModelBoundsFn = std::function<Result<ModelBox>(const std::string& file)>;
+
+/// Every triangle of a model file in its own frame (before scale), for mass
+/// properties (world.model_mass_properties).
+struct ModelTriangles {
+  std::vector<Vec3> vertices_m;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+using ModelTrianglesFn = std::function<Result<ModelTriangles>(const std::string& file)>;
 
 /// body:set_model: drawn at body transform * translate(offset) * rotate(rotation) * scale.
 struct ModelAttachment {

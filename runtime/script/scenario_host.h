@@ -97,6 +97,8 @@ struct ScenarioOptions {
   /// --set physics.joint_solver: "lagrange" or "impulse" (checked by the
   /// app); empty: the scenario's joint_solver field, else lagrange.
   std::string jointSolver;
+  /// Triangles of a model file (world.model_mass_properties); from the app.
+  ModelTrianglesFn modelTriangles;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number

@@ -145,6 +145,12 @@ function Body:clear_model() end
 ---@field friction? number of the collision box (default 0.6)
 ---@field color? Vec3Arg colour of the collision box where models are not drawn (headless: unused)
 
+---@class MeshMassProperties
+---@field mass number kg
+---@field volume number m^3
+---@field center Vec3 centre of mass in the model's frame (scaled), m
+---@field inertia table inertia about the centre of mass, kg m^2: {xx=, yy=, zz=, xy=, yz=, zx=}
+
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
 local Random = {}
@@ -709,6 +715,19 @@ world = {}
 ---@param def? StaticModelDef placement and collision
 ---@return Body? # the collision body, or nil with collision = "none"
 function world.add_static_model(path, def) end
+
+---Mass, volume, centre of mass and inertia of a model of uniform density,
+---computed from its closed triangle mesh (Mirtich's method). Every part
+---of the model must be a closed surface; an open one is an error.
+---
+---```lua
+---local p = world.model_mass_properties("base:assets/models/wheel.obj", {density = 1100})
+---print(p.mass, p.inertia.xx)
+---```
+---@param path string "MOD:path/in/mod" or a path in this mod
+---@param options? table {density = kg/m^3 (default 1000), scale = number or {x, y, z} (default 1)}
+---@return MeshMassProperties # the mass properties
+function world.model_mass_properties(path, options) end
 
 ---Creates a box.
 ---

@@ -66,6 +66,11 @@ TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
   }
 }
 
+TEST(ModelsCli, MassPropertiesFromTheClosedMeshMatchTheSolidBox) {
+  auto r = runTumble(testMods() + " run models:mass_properties");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 TEST(ModelsCli, MistakesInOptionsSayWhatIsValid) {
   auto r = runTumble(testMods() + " run models:bad_options");
   EXPECT_EQ(r.exitCode, 0) << "every mistake refused with the right words:\n" << r.output;
@@ -105,12 +110,13 @@ TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
                            "/cockpit.png --width 320 --height 180");
   ASSERT_EQ(cockpit.exitCode, 0) << cockpit.output;
   const Picture inside = loadPicture(dir + "/cockpit.png");
-  // The interior is a model: dark dashboard across the bottom of the view,
-  // no red paint (the car's own body is around the eye, seen from inside
-  // only through the windscreen opening).
+  // The interior is a model: dark dashboard across the bottom of the view;
+  // the car's own body, which surrounds the eye, is left out, so no red
+  // paint covers the view.
   auto dark = [](int r, int g, int b) { return r < 60 && g < 60 && b < 60; };
   EXPECT_GT(inside.share(0.1, 0.85, 0.9, 1.0, dark), 0.8);
   EXPECT_LT(inside.share(0.3, 0.3, 0.7, 0.6, dark), 0.1) << "the view ahead is open";
+  EXPECT_LT(inside.share(0.0, 0.0, 1.0, 1.0, red), 0.01) << "the exterior is hidden in the cockpit";
 }
 
 }  // namespace tumble::test

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <string>
 
+#include <stb_image_write.h>
+
 #include "render/internal/camera_math.h"
 #include "render/model.h"
 #include "shared_assets.h"
@@ -121,6 +123,57 @@ TEST(ModelLoad, EmbeddedGlbTextureIsDecoded) {
   EXPECT_EQ(box->images[0].rgba.size(), std::size_t(box->images[0].width) * box->images[0].height * 4);
   EXPECT_EQ(box->triangleCount(), 12u);
   expectTreeBoundsHold(*box);
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t n = std::uint32_t(std::uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= std::uint8_t(bytes[i + 2]);
+    out += kAlphabet[(n >> 18) & 63];
+    out += kAlphabet[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
+  }
+  return out;
+}
+
+// A text glTF 2.0 file written here: one textured triangle, buffer and a
+// 2 x 2 red/green PNG as data URIs.
+TEST(ModelLoad, TextGltfWithDataUriTextureLoads) {
+  const fs::path dir = scratchDir("gltf");
+  const float data[] = {0, 0, 0, 1, 0, 0, 0, 1, 0,  // positions
+                        0, 0, 1, 0, 0, 1};           // uvs
+  const std::uint16_t indices[] = {0, 1, 2, 0};     // padded to 4 bytes
+  std::string buffer(reinterpret_cast<const char*>(data), sizeof data);
+  buffer.append(reinterpret_cast<const char*>(indices), sizeof indices);
+  const unsigned char pixels[] = {255, 0, 0, 0, 255, 0, 0, 255, 0, 255, 0, 0};
+  std::string png;
+  stbi_write_png_to_func([](void* ctx, void* d, int n) { static_cast<std::string*>(ctx)->append(static_cast<char*>(d), n); },
+                         &png, 2, 2, 3, pixels, 6);
+  std::ofstream(dir / "tri.gltf")
+      << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)"
+      << R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],)"
+      << R"("materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)"
+      << R"("textures": [{"source": 0}], "images": [{"uri": "data:image/png;base64,)" << base64(png) << R"("}],)"
+      << R"("buffers": [{"byteLength": )" << buffer.size() << R"(, "uri": "data:application/octet-stream;base64,)"
+      << base64(buffer) << R"("}],)"
+      << R"("bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24},)"
+      << R"({"buffer": 0, "byteOffset": 60, "byteLength": 6}],)"
+      << R"("accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},)"
+      << R"({"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"},)"
+      << R"({"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+  auto model = mustLoad((dir / "tri.gltf").string());
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->triangleCount(), 1u);
+  ASSERT_EQ(model->images.size(), 1u);
+  EXPECT_EQ(model->images[0].width, 2);
+  EXPECT_EQ(model->images[0].rgba[0], 255);  // top-left texel red
+  EXPECT_EQ(model->images[0].rgba[5], 255);  // top-right texel green
+  EXPECT_EQ(model->meshes[0].uvs.size(), 3u);
+  fs::remove_all(dir);
 }
 
 TEST(ModelLoad, TruncatedJeepIsAClearErrorNotACrash) {

@@ -30,7 +30,11 @@ return {
     end
     world.add_static_model(M .. "building.obj", {position = {-14, 0, 20}})
     world.add_static_model(M .. "checkpoint_arch.obj", {position = {0, 0, 2}, collision = "none"})
-    camera.set_mode(param("camera", "chase"), {target = car, interior = M .. "cockpit.obj"})
+    -- Eyes in the car body's frame (its centre is 0.87 m above the model's
+    -- origin): the driver's seat for the cockpit, above the bonnet for hood.
+    local mode = param("camera", "chase")
+    local eye = mode == "hood" and {0, 0.2, 1.6} or {0.35, 0.3, -0.1}
+    camera.set_mode(mode, {target = car, eye = eye, interior = M .. "cockpit.obj"})
   end,
   on_finish = function(ctx)
     -- The barriers' static boxes stopped the car before z = 8 - 0.2 - 2.05.

@@ -1,0 +1,75 @@
+// The app's side of models, in process: static models on a terrain are
+// registered in its tree of static objects with boxes that hold the model,
+// and the frame snapshot draws bodies with models as models, not shapes.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "app/scene.h"
+#include "app/scene_models.h"
+#include "app/terrain_scene.h"
+#include "render/model.h"
+
+namespace tumble::app {
+namespace {
+
+std::unique_ptr<Scene> makeScene(const std::string& ref) {
+  const char* source = std::getenv("TUMBLE_SOURCE_DIR");
+  SceneOptions options;
+  options.scenarioRef = ref;
+  options.modDirs = {std::string(source ? source : ".") + "/tests/app/mods"};
+  auto scene = Scene::create(options);
+  EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error());
+  return scene.ok() ? std::move(*scene) : nullptr;
+}
+
+TEST(SceneModels, StaticModelsGoIntoTheTerrainTree) {
+  auto scene = makeScene("models:terrain_scenery");
+  ASSERT_TRUE(scene);
+  scene->host().start();
+  scene->registerStaticObjects();
+  ASSERT_NE(scene->terrainScene(), nullptr);
+  const terrain::StaticObjects& registry = scene->terrainScene()->terrain().staticObjects();
+  const auto& statics = scene->host().presentation().statics;
+  ASSERT_EQ(statics.size(), 3u);
+  int registered = 0;
+  for (const script::StaticModel& s : statics) {
+    if (s.body.isNull()) continue;  // collision = "none"
+    ASSERT_TRUE(registry.contains(s.body.index));
+    ++registered;
+    // The registered box holds the placed model's bounds (checked at the
+    // model's own bounding-box corners, rotated and moved into place).
+    auto model = scene->models().get(s.file);
+    ASSERT_TRUE(model.ok());
+    const render::BoundingBox& local = (*model)->nodes[0].coverBox;
+    const terrain::Aabb& box = registry.boxOf(s.body.index);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 c((corner & 1 ? local.max : local.min).x(), (corner & 2 ? local.max : local.min).y(),
+                   (corner & 4 ? local.max : local.min).z());
+      const Vec3 world = s.position_m + s.rotation * c.cwiseProduct(s.scale);
+      EXPECT_TRUE((world.array() >= box.min.array() - 1e-3f).all() && (world.array() <= box.max.array() + 1e-3f).all())
+          << s.file << " corner " << corner;
+    }
+  }
+  EXPECT_EQ(registered, 2);
+  EXPECT_EQ(registry.size(), 2u);
+}
+
+TEST(SceneModels, BodiesWithModelsAreDrawnAsModels) {
+  auto scene = makeScene("base:showroom");
+  ASSERT_TRUE(scene);
+  scene->host().start();
+  scene->savePreviousState();
+  render::FrameSnapshot frame;
+  scene->snapshot(frame, 1.0);
+  // The car and 1 + 2 + 5 + 6 + 1 + 1 static models; trees and the arch
+  // have no body, the plane is the only plain shape left.
+  EXPECT_EQ(frame.models.size(), 1u + 2u + 5u + 6u + 1u + 1u);
+  ASSERT_EQ(frame.shapes.size(), 1u);
+  EXPECT_EQ(frame.shapes[0].kind, render::ShapeKind::Plane);
+  // The same model file is loaded once and shared.
+  EXPECT_EQ(frame.models[1].model.get(), frame.models[2].model.get());
+}
+
+}  // namespace
+}  // namespace tumble::app
