@@ -148,6 +148,7 @@ struct BodyIntegrationScratch {
   std::vector<std::uint32_t> parent, groupOf, members;
   std::vector<int> memberIndex;  ///< per body slot: index inside its group, -1 none
   std::vector<std::uint32_t> groupStart;
+  std::vector<std::uint32_t> springStart, springIndex, cursor;  ///< springs bucketed by group root
   std::vector<Vec3> dxFree, vFree;  ///< per body slot
   std::vector<std::uint8_t> advanced;
   GroupSystem system;
@@ -293,6 +294,22 @@ Eigen::Vector3d BodyIntegration::advance(BodyIntegrator method, const World& wor
   st.vFree.resize(n);
   st.advanced.assign(n, 0);
 
+  // Springs bucketed by the group of their moving end(s) (counting sort).
+  auto springRoot = [&](const Slot& s) -> std::int64_t {
+    if (!s.alive) return -1;
+    if (moving(s.def.a.index)) return find(s.def.a.index);
+    if (!s.def.b.isNull() && moving(s.def.b.index)) return find(s.def.b.index);
+    return -1;  // neither end moves: nothing to integrate
+  };
+  st.springStart.assign(n + 1, 0);
+  for (const Slot& s : m_springs)
+    if (const std::int64_t r = springRoot(s); r >= 0) ++st.springStart[std::size_t(r) + 1];
+  for (std::size_t i = 0; i < n; ++i) st.springStart[i + 1] += st.springStart[i];
+  st.springIndex.resize(st.springStart[n]);
+  st.cursor.assign(st.springStart.begin(), st.springStart.end() - 1);
+  for (std::uint32_t k = 0; k < m_springs.size(); ++k)
+    if (const std::int64_t r = springRoot(m_springs[k]); r >= 0) st.springIndex[st.cursor[std::size_t(r)]++] = k;
+
   Eigen::Vector3d externalImpulse = Eigen::Vector3d::Zero();
   const numerics::Method nm = toNumerics(method);
   for (std::uint32_t root = 0; root < n; ++root) {
@@ -311,9 +328,10 @@ Eigen::Vector3d BodyIntegration::advance(BodyIntegrator method, const World& wor
       st.y.segment<3>(3 * m) = d3(b.position_m);
       st.y.segment<3>(3 * sys.n + 3 * m) = d3(linear[st.members[begin + std::uint32_t(m)]]);
     }
-    // The group's springs: those with an end in it.
-    for (const Slot& s : m_springs) {
-      if (!s.alive) continue;
+    // The group's springs: those with an end in it (bucketed below, so the
+    // work is linear in springs + bodies).
+    for (std::uint32_t k = st.springStart[root]; k < st.springStart[root + 1]; ++k) {
+      const Slot& s = m_springs[st.springIndex[k]];
       const std::uint32_t ia = s.def.a.index;
       const bool bodyB = !s.def.b.isNull();
       const std::uint32_t ib = bodyB ? s.def.b.index : 0;

@@ -4,7 +4,8 @@
 // One step of length dt (see world.cpp for the derivation and the choices):
 //   broad phase (sweep and prune) -> narrow phase (contact manifolds, once per
 //   step, speculative so fast bodies do not tunnel) -> K substeps of
-//   { integrate velocities (gravity, forces, implicit gyroscopic term),
+//   { integrate velocities (gravity, forces, applied springs, implicit
+//     gyroscopic term; translation by WorldSettings::integrator, integrate.h),
 //     warm start, solve contacts with soft constraints, integrate positions,
 //     relax contacts without bias } -> restitution -> sleep.
 #include <cstdint>

@@ -36,7 +36,9 @@ function scenario.on_start(ctx)
   G = math.sqrt(gv.x ^ 2 + gv.y ^ 2 + gv.z ^ 2)
   world.plane{color = {0.55, 0.57, 0.6}}
   world.box{type = "static", size = {1, 1, 1}, position = {3, 0.5, 2}, color = {0.45, 0.5, 0.6}}
-  world.box{type = "static", size = {0.2, 6, 0.2}, position = {-2, 3, 0}, color = {0.4, 0.3, 0.2}}
+  -- A gallows: a post behind the hanging rope and an arm over its pin.
+  world.box{type = "static", size = {0.2, 6.2, 0.2}, position = {-2, 3.1, -0.4}, color = {0.4, 0.3, 0.2}}
+  world.box{type = "static", size = {0.15, 0.15, 0.9}, position = {-2, 6.12, -0.05}, color = {0.4, 0.3, 0.2}}
   hanging = deformable.rope{from = {-2, 6, 0.3}, to = {-2, 4, 0.3}, segments = N, mass = MASS, stiffness = K,
                             bend = 0, damping = 5, air_drag = 0.2, color = {0.95, 0.6, 0.2}}
   swinging = deformable.rope{from = {-1.8, 5.5, -0.5}, to = {1.2, 5.5, -0.5}, segments = 30, mass = 0.6,
