@@ -246,7 +246,7 @@ int worldModelMassProperties(lua_State* L) {
   lua_setfield(L, -2, "mass");
   lua_pushnumber(L, p.volume_m3);
   lua_setfield(L, -2, "volume");
-  pushVec3(L, p.centerOfMass_m);
+  pushVec3(L, p.centreOfMass_m);
   lua_setfield(L, -2, "center");
   lua_createtable(L, 0, 6);
   const Mat3& I = p.inertia_kgm2;
