@@ -21,6 +21,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
   }
   if (Status s = impl->sky.init(); !s) return makeError("renderer: " + s.error());
   if (Status s = impl->shapes.init(); !s) return makeError("renderer: " + s.error());
+  if (Status s = impl->convexMeshes.init(); !s) return makeError("renderer: " + s.error());
   if (Status s = impl->lines.init(); !s) return makeError("renderer: " + s.error());
   if (config.hud) {
     auto hud = Hud::create(impl->context->window(), impl->context->context());
@@ -87,6 +88,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   r.sky.draw(view, r.environment);
   drawTerrain(r, frame, view);
   r.shapes.draw(frame.shapes, view, r.environment);
+  r.convexMeshes.draw(frame.shapes, view, r.environment);
   r.lines.draw(frame.lines, view);
   r.targets.resolve();
   if (r.hud) r.hud->draw(hud, controls, r.camera.mode);
