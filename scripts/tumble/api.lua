@@ -45,6 +45,24 @@ function Body:speed() end
 ---@return number # translational plus rotational kinetic energy, J
 function Body:kinetic_energy() end
 
+---Angular momentum about the centre of mass, world frame (R I R^T w).
+---@return Vec3 # kg m^2/s
+function Body:angular_momentum() end
+
+---Principal moments of inertia about the body's own x, y and z axes
+---(through the centre of mass; 0 for static and kinematic bodies).
+---@return Vec3 # kg m^2
+function Body:inertia() end
+
+---One of the body's own axes in the world (unit).
+---
+---```lua
+---local spin_axis = top:axis("y")
+---```
+---@param which string "x", "y" or "z"
+---@return Vec3 # the axis, world frame
+function Body:axis(which) end
+
 ---@return boolean # false while the body sleeps (at rest, not simulated)
 function Body:is_awake() end
 
