@@ -337,7 +337,7 @@ void refuseZeroMass(lua_State* L, const char* fn) {
 /// The body's centre of mass is the hull's centroid: position and rotation
 /// place the frame the points are given in, and body:position() then reports
 /// where the centroid went.
-/// @field points Vec3Arg[] at least 4 points, not all on one plane, m; the hull is their convex hull
+/// @field points Vec3Arg[] 4 to 4096 points, not all on one plane, m; the hull is their convex hull
 
 /// @class ShapeDef
 /// A shape with its pose: a compound's child (pose relative to the compound's
@@ -361,8 +361,8 @@ void refuseZeroMass(lua_State* L, const char* fn) {
 
 /// @function world.hull
 /// Creates a convex hull of a point cloud (rocks, wedges, dice, tops).
-/// Refused with a clear error: fewer than 4 points, points all on one plane
-/// or line, non-finite coordinates, mass = 0.
+/// Refused with a clear error: fewer than 4 or more than 4096 points, points
+/// all on one plane or line, non-finite coordinates, mass = 0.
 /// @param def HullDef points and common body fields
 /// @return Body the new body
 /// @example local wedge = world.hull{points = {{0,0,0}, {2,0,0}, {0,0,1}, {2,0,1}, {0,1,0}, {0,1,1}}, position = {0, 1, 0}}

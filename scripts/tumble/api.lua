@@ -253,7 +253,7 @@ function Trigger:count() end
 ---place the frame the points are given in, and body:position() then reports
 ---where the centroid went.
 ---@class HullDef: BodyDef
----@field points Vec3Arg[] at least 4 points, not all on one plane, m; the hull is their convex hull
+---@field points Vec3Arg[] 4 to 4096 points, not all on one plane, m; the hull is their convex hull
 
 ---A shape with its pose: a compound's child (pose relative to the compound's
 ---frame) or the shape of a query (pose in the world).
@@ -512,8 +512,8 @@ function world.capsule(def) end
 function world.plane(def) end
 
 ---Creates a convex hull of a point cloud (rocks, wedges, dice, tops).
----Refused with a clear error: fewer than 4 points, points all on one plane
----or line, non-finite coordinates, mass = 0.
+---Refused with a clear error: fewer than 4 or more than 4096 points, points
+---all on one plane or line, non-finite coordinates, mass = 0.
 ---
 ---```lua
 ---local wedge = world.hull{points = {{0,0,0}, {2,0,0}, {0,0,1}, {2,0,1}, {0,1,0}, {0,1,1}}, position = {0, 1, 0}}
