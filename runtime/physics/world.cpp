@@ -827,6 +827,7 @@ void World::clampToStatic() {
     Body& b = m_bodies[i];
     if (!b.alive || !b.isDynamic() || !b.awake) continue;
     const Real r = b.shape.innerRadius();
+    if (!(r > 0)) continue;  // no sphere about the centre inside the shape (a compound whose centre is in no child)
     const Vec3 p0 = m_stepStartPosition[i];
     const Vec3 d = b.position_m - p0;
     const Real len2 = d.squaredNorm();
