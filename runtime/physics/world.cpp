@@ -436,6 +436,10 @@ void World::collide(Real dt) {
     for (Manifold& m : found) {
       m.a = ia;
       m.b = ib;
+      // Compounds: the touching child's shape decides. A round child off the
+      // centre of mass is still treated as round (anchor not turned in the
+      // substeps); its centre's own swing during one step is picked up by
+      // the next step's narrow phase.
       const Shape& shapeA = childShape(a.shape, m.childA);
       const Shape& shapeB = childShape(b.shape, m.childB);
       m.friction = std::sqrt(a.friction * b.friction);
