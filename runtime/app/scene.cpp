@@ -13,6 +13,8 @@
 #include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
 #include "script/mod_bindings.h"
+#include "physics/compound_shape.h"
+#include "physics/convex_hull.h"
 #include "script/mods.h"
 #include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
@@ -288,6 +290,18 @@ std::optional<render::BodyPose> Scene::bodyPose(physics::BodyId id, double alpha
   return render::BodyPose{p.cast<float>(), q.cast<float>()};
 }
 
+std::shared_ptr<const render::ConvexMeshData> Scene::meshOf(
+    const std::shared_ptr<const physics::ConvexHull>& hull) const {
+  auto it = m_hullMeshes.find(hull.get());
+  if (it != m_hullMeshes.end()) return it->second.mesh;
+  auto mesh = std::make_shared<render::ConvexMeshData>();
+  mesh->id = m_hullMeshes.size() + 1;
+  for (const Vec3& v : hull->vertices_m) mesh->vertices.push_back(v.cast<float>());
+  for (const auto& t : hull->triangles) mesh->indices.insert(mesh->indices.end(), t.begin(), t.end());
+  m_hullMeshes.emplace(hull.get(), HullMesh{hull, mesh});
+  return mesh;
+}
+
 void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
   out.shapes.clear();
   out.models.clear();
@@ -306,6 +320,31 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
 #if TUMBLE_HAVE_TERRAIN
   out.terrain = m_terrain ? &m_terrain->surface() : nullptr;
 #endif
+  // One draw shape per simple shape; compounds give one per child.
+  auto emit = [&](const physics::Shape& shape, render::DrawShape s) {
+    switch (shape.type) {
+      case physics::ShapeType::Box:
+        s.kind = render::ShapeKind::Box;
+        s.halfExtents = shape.halfExtents_m.cast<float>();
+        break;
+      case physics::ShapeType::Sphere:
+        s.kind = render::ShapeKind::Sphere;
+        s.radius_m = float(shape.radius_m);
+        break;
+      case physics::ShapeType::Capsule:
+        s.kind = render::ShapeKind::Capsule;
+        s.radius_m = float(shape.radius_m);
+        s.halfHeight_m = float(shape.halfHeight_m);
+        break;
+      case physics::ShapeType::Hull:
+        s.kind = render::ShapeKind::ConvexMesh;
+        s.convexMesh = meshOf(shape.hull);
+        break;
+      case physics::ShapeType::Plane: s.kind = render::ShapeKind::Plane; break;
+      case physics::ShapeType::Compound: return;  // children are emitted instead
+    }
+    out.shapes.push_back(std::move(s));
+  };
   m_world->forEachBody([&](physics::BodyId id, const physics::Body& b) {
     if (id.index < hasModel.size() && hasModel[id.index]) return;
     render::DrawShape s;
@@ -319,23 +358,13 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     s.orientation = q.cast<float>();
     s.color = m_host->colorOf(id);
     s.sleeping = !b.awake;
-    switch (b.shape.type) {
-      case physics::ShapeType::Box:
-        s.kind = render::ShapeKind::Box;
-        s.halfExtents = b.shape.halfExtents_m.cast<float>();
-        break;
-      case physics::ShapeType::Sphere:
-        s.kind = render::ShapeKind::Sphere;
-        s.radius_m = float(b.shape.radius_m);
-        break;
-      case physics::ShapeType::Capsule:
-        s.kind = render::ShapeKind::Capsule;
-        s.radius_m = float(b.shape.radius_m);
-        s.halfHeight_m = float(b.shape.halfHeight_m);
-        break;
-      case physics::ShapeType::Plane: s.kind = render::ShapeKind::Plane; break;
+    if (b.shape.type != physics::ShapeType::Compound) return emit(b.shape, s);
+    for (const physics::CompoundChild& c : b.shape.compound->children) {
+      render::DrawShape part = s;
+      part.position = (p + q * c.position_m).cast<float>();
+      part.orientation = (q * c.orientation).cast<float>();
+      emit(c.shape, part);
     }
-    out.shapes.push_back(s);
   });
   snapshotParticles(out, alpha);
 }

@@ -96,6 +96,14 @@ class Scene {
   std::unique_ptr<script::ScenarioHost> m_host;
   std::vector<Vec3> m_prevPosition;
   std::vector<Quat> m_prevOrientation;
+  /// Render meshes of the physics hulls seen so far (keyed by hull; the hull
+  /// is kept alive so its address is never reused by another one).
+  struct HullMesh {
+    std::shared_ptr<const physics::ConvexHull> hull;
+    std::shared_ptr<const render::ConvexMeshData> mesh;
+  };
+  mutable std::map<const physics::ConvexHull*, HullMesh> m_hullMeshes;
+  std::shared_ptr<const render::ConvexMeshData> meshOf(const std::shared_ptr<const physics::ConvexHull>& hull) const;
   std::vector<std::string> m_extraSubsystems;
   std::optional<physics::BodyId> m_hiddenModelBody;
 };

@@ -52,6 +52,9 @@ const Vec3& ConvexHull::support(const Vec3& dir) const {
 Result<ConvexHull> computeConvexHull(std::span<const Vec3> points) {
   if (points.size() < 4)
     return makeError("a convex hull needs at least 4 points that span a volume, got " + std::to_string(points.size()));
+  if (points.size() > std::size_t(kMaxHullPoints))
+    return makeError("a convex hull takes at most " + std::to_string(kMaxHullPoints) + " points, got " +
+                     std::to_string(points.size()) + " (simplify the cloud; collision hulls need tens of points)");
   std::vector<V3> p(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite())
@@ -138,15 +141,36 @@ Result<ConvexHull> computeConvexHull(std::span<const Vec3> points) {
   ConvexHull hull;
   std::vector<int> remap(p.size(), -1);
   for (Group& g : groups) {
-    // Order the face's vertices counter-clockwise about its normal.
+    // The face polygon: the 2-D convex hull of the group's points in the
+    // face plane (Andrew's monotone chain), counter-clockwise about the
+    // normal. Points inside the face or on its edges (added while the hull
+    // was smaller, now coplanar) drop out, so faces share exactly their corners.
     V3 c = V3::Zero();
     for (int v : g.verts) c += p[v];
     c /= double(g.verts.size());
     const V3 u = (p[g.verts[0]] - c).normalized();
     const V3 w = g.n.cross(u);
+    auto uv = [&](int v) { return Eigen::Vector2d((p[v] - c).dot(u), (p[v] - c).dot(w)); };
     std::sort(g.verts.begin(), g.verts.end(), [&](int a, int b) {
-      return std::atan2((p[a] - c).dot(w), (p[a] - c).dot(u)) < std::atan2((p[b] - c).dot(w), (p[b] - c).dot(u));
+      const Eigen::Vector2d pa = uv(a), pb = uv(b);
+      return pa.x() != pb.x() ? pa.x() < pb.x() : pa.y() < pb.y();
     });
+    auto cross2 = [&](int o, int a, int b) {
+      const Eigen::Vector2d po = uv(o), pa = uv(a) - po, pb = uv(b) - po;
+      return pa.x() * pb.y() - pa.y() * pb.x();
+    };
+    const double area2Tol = eps * size;  // collinear within the hull tolerance
+    std::vector<int> ring;
+    for (int pass = 0; pass < 2; ++pass) {
+      const std::size_t start = ring.size();
+      for (std::size_t k = 0; k < g.verts.size(); ++k) {
+        const int v = pass == 0 ? g.verts[k] : g.verts[g.verts.size() - 1 - k];
+        while (ring.size() >= start + 2 && cross2(ring[ring.size() - 2], ring.back(), v) <= area2Tol) ring.pop_back();
+        ring.push_back(v);
+      }
+      ring.pop_back();  // the last point starts the other chain
+    }
+    g.verts = ring;
     HullFace f;
     f.normal = g.n.cast<Real>();
     f.first = std::uint32_t(hull.faceVertices.size());
@@ -179,6 +203,15 @@ Result<ConvexHull> computeConvexHull(std::span<const Vec3> points) {
       hull.triangles.push_back({hull.faceVertices[f.first], hull.faceVertices[f.first + k],
                                 hull.faceVertices[f.first + k + 1]});
   }
+  // A closed convex polytope: every edge between two faces, V - E + F = 2.
+  // Round-off in a nearly degenerate cloud could break that; refuse it
+  // rather than hand the narrow phase a broken mesh.
+  const bool closed = std::all_of(hull.edges.begin(), hull.edges.end(),
+                                  [](const HullEdge& e) { return e.face0 != e.face1; }) &&
+                      hull.vertices_m.size() + hull.faces.size() == hull.edges.size() + 2;
+  if (!closed)
+    return makeError("convex hull points are too close to degenerate (nearly flat or with near-duplicates) to "
+                     "build a closed hull; spread them out");
   const MassProperties mp = massPropertiesOfMesh(hull.vertices_m, hull.triangles, 1);
   hull.volume_m3 = mp.volume_m3;
   hull.centroid_m = mp.centreOfMass_m;

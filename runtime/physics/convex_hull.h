@@ -64,8 +64,11 @@ struct ConvexHull {
   const Vec3& support(const Vec3& dir) const;
 };
 
+/// Largest point cloud computeConvexHull accepts (its cost is O(n F)).
+constexpr int kMaxHullPoints = 4096;
+
 /// The hull of `points_m`, in their frame. Refuses (message says why): fewer
-/// than 4 points, a non-finite coordinate (names the point, 1-based), and
+/// than 4 points, more than kMaxHullPoints, a non-finite coordinate (names the point, 1-based), and
 /// points that are all (nearly) on one plane, line or point.
 Result<ConvexHull> computeConvexHull(std::span<const Vec3> points_m);
 

@@ -46,8 +46,9 @@
 // soft: a flag in 10 m/s wind is far from stiff).
 //
 // Collisions after each substep: a particle (a sphere of the material's
-// radius) inside the ground, a static / kinematic shape or below the height
-// field is moved out along the contact normal; its approaching normal
+// radius) inside the ground, a static / kinematic shape (hulls: the face
+// plane it is farthest in front of; compounds: the deepest child) or below
+// the height field is moved out along the contact normal; its approaching normal
 // velocity is removed (no bounce) and its sliding velocity reduced by mu
 // times the normal velocity removed (Coulomb, at most to rest).
 #include "physics/deformable.h"
@@ -57,6 +58,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "physics/compound_shape.h"
+#include "physics/convex_hull.h"
 #include "physics/integrate.h"
 #include "physics/world.h"
 
@@ -94,11 +97,39 @@ Status validateMaterial(const DeformableMaterial& m, const char* what) {
 
 Eigen::Vector3d d3(const Vec3& v) { return v.cast<double>(); }
 
-/// Pushes a particle out of one shape: normal and depth (> 0) when inside.
-bool shapeContact(const Body& b, const Eigen::Vector3d& x, double r, Eigen::Vector3d* n, double* depth) {
-  const Eigen::Vector3d p = d3(b.position_m);
-  const Eigen::Quaterniond q = b.orientation.cast<double>();
-  switch (b.shape.type) {
+/// Pushes a particle out of one shape posed at (p, q): normal and depth (> 0) when inside.
+bool shapeContact(const Shape& shape, const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& x,
+                  double r, Eigen::Vector3d* n, double* depth) {
+  switch (shape.type) {
+    case ShapeType::Hull: {
+      // The face plane the particle is farthest in front of: the separating
+      // distance (exact over a face, a little short of the true distance
+      // near edges and corners, so contact comes early there, never late).
+      const Eigen::Vector3d local = q.conjugate() * (x - p);
+      double best = -1e300;
+      Eigen::Vector3d bestNormal = Eigen::Vector3d::UnitY();
+      for (const HullFace& f : shape.hull->faces) {
+        const Eigen::Vector3d fn = f.normal.cast<double>();
+        const double dist = fn.dot(local) - double(f.offset_m);
+        if (dist > best) best = dist, bestNormal = fn;
+      }
+      if (best >= r) return false;
+      *n = q * bestNormal;
+      *depth = r - best;
+      return true;
+    }
+    case ShapeType::Compound: {
+      // The deepest child.
+      bool any = false;
+      for (const CompoundChild& c : shape.compound->children) {
+        Eigen::Vector3d cn;
+        double cd;
+        if (!shapeContact(c.shape, p + q * d3(c.position_m), q * c.orientation.cast<double>(), x, r, &cn, &cd)) continue;
+        if (!any || cd > *depth) *n = cn, *depth = cd;
+        any = true;
+      }
+      return any;
+    }
     case ShapeType::Plane: {
       *n = q * Eigen::Vector3d::UnitY();
       *depth = r - n->dot(x - p);
@@ -106,7 +137,7 @@ bool shapeContact(const Body& b, const Eigen::Vector3d& x, double r, Eigen::Vect
     }
     case ShapeType::Sphere: {
       const Eigen::Vector3d d = x - p;
-      const double len = d.norm(), R = b.shape.radius_m + r;
+      const double len = d.norm(), R = shape.radius_m + r;
       if (len >= R) return false;
       *n = len > 1e-12 ? Eigen::Vector3d(d / len) : Eigen::Vector3d::UnitY();
       *depth = R - len;
@@ -114,16 +145,16 @@ bool shapeContact(const Body& b, const Eigen::Vector3d& x, double r, Eigen::Vect
     }
     case ShapeType::Capsule: {
       const Eigen::Vector3d axis = q * Eigen::Vector3d::UnitY();
-      const double t = std::clamp(axis.dot(x - p), -double(b.shape.halfHeight_m), double(b.shape.halfHeight_m));
+      const double t = std::clamp(axis.dot(x - p), -double(shape.halfHeight_m), double(shape.halfHeight_m));
       const Eigen::Vector3d d = x - (p + t * axis);
-      const double len = d.norm(), R = b.shape.radius_m + r;
+      const double len = d.norm(), R = shape.radius_m + r;
       if (len >= R) return false;
       *n = len > 1e-12 ? Eigen::Vector3d(d / len) : Eigen::Vector3d::UnitY();
       *depth = R - len;
       return true;
     }
     case ShapeType::Box: {
-      const Eigen::Vector3d e = b.shape.halfExtents_m.cast<double>();
+      const Eigen::Vector3d e = shape.halfExtents_m.cast<double>();
       const Eigen::Vector3d local = q.conjugate() * (x - p);
       const Eigen::Vector3d clamped = local.cwiseMax(-e).cwiseMin(e);
       const Eigen::Vector3d d = local - clamped;
@@ -411,7 +442,7 @@ void Deformable::collide(const DeformableEnvironment& env) {
         if (b.shape.type != ShapeType::Plane &&
             (m_x.segment<3>(3 * i) - d3(b.position_m)).norm() > b.shape.boundingRadius() + r)
           return;
-        if (shapeContact(b, m_x.segment<3>(3 * i), r, &n, &depth)) respond(i, n, depth);
+        if (shapeContact(b.shape, d3(b.position_m), b.orientation.cast<double>(), m_x.segment<3>(3 * i), r, &n, &depth)) respond(i, n, depth);
       });
     }
     if (env.heightField) {

@@ -23,6 +23,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
   }
   if (Status s = impl->sky.init(); !s) return makeError("renderer: " + s.error());
   if (Status s = impl->shapes.init(); !s) return makeError("renderer: " + s.error());
+  if (Status s = impl->convexMeshes.init(); !s) return makeError("renderer: " + s.error());
   if (Status s = impl->lines.init(); !s) return makeError("renderer: " + s.error());
   if (config.hud) {
     auto hud = Hud::create(impl->context->window(), impl->context->context());
@@ -94,6 +95,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
     log::warn("render: models not drawn: " + r.meshes.lastError() + " (reported once)");
     r.reportedMeshError = true;
   }
+  r.convexMeshes.draw(frame.shapes, view, r.environment);
   r.lines.draw(frame.lines, view);
   // Last in the scene: transparent, depth-tested, no depth writes.
   if (Status s = r.particles.draw(frame.particles, frame.additiveParticles, view); !s && !r.reportedParticleError) {

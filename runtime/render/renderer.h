@@ -7,6 +7,7 @@
 //   DrawShape, DebugLine, FrameSnapshot   what the renderer reads (plain data)
 //   DrawParticle                          one camera-facing particle billboard
 //   ModelInstance, MeshStats              models (model.h) placed in the frame; what was drawn
+//   ConvexMeshData                        a convex mesh (physics hull) drawn flat shaded
 //   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
 //   Camera, CameraMode                    orbit / follow camera
 //   HudStats, Controls                    the Dear ImGui HUD: shown / changed
@@ -32,7 +33,16 @@ union SDL_Event;  // render.h does not include SDL; hooks get events by referenc
 
 namespace tumble::render {
 
-enum class ShapeKind { Box, Sphere, Capsule, Plane };
+enum class ShapeKind { Box, Sphere, Capsule, Plane, ConvexMesh };
+
+/// Vertices and triangles of a convex mesh (a physics hull) in its shape's
+/// local frame. Drawn flat shaded (one normal per triangle), uploaded to the
+/// GPU once per id and dropped when no shape has used it for a while.
+struct ConvexMeshData {
+  std::uint64_t id = 0;                    // unique per distinct mesh while the renderer lives
+  std::vector<Eigen::Vector3f> vertices;   // m, local frame
+  std::vector<std::uint32_t> indices;      // triangle list, counter-clockwise seen from outside
+};
 
 struct DrawShape {
   ShapeKind kind = ShapeKind::Box;
@@ -44,6 +54,7 @@ struct DrawShape {
   // Capsule: half length of the core segment along local Y (caps excluded),
   // so the capsule's total height is 2 * (halfHeight_m + radius_m).
   float halfHeight_m = 0.5f;
+  std::shared_ptr<const ConvexMeshData> convexMesh;  // ConvexMesh: the mesh (shared; not copied per frame)
   Eigen::Vector3f color{0.8f, 0.8f, 0.8f};  // linear RGB 0..1; Plane: colour of the light squares
   bool sleeping = false;                    // drawn a little darker
 };

@@ -82,6 +82,36 @@ int bodyKineticEnergy(lua_State* L) {
                         0.5 * wl.dot(b.inertiaLocal_kgm2.cwiseProduct(wl)));
   return 1;
 }
+/// @function Body:angular_momentum
+/// Angular momentum about the centre of mass, world frame (R I R^T w).
+/// @return Vec3 kg m^2/s
+int bodyAngularMomentum(lua_State* L) {
+  const physics::Body& b = worldOf(L).body(checkBody(L, 1));
+  const Vec3 wl = b.orientation.conjugate() * b.angularVelocity_radps;
+  pushVec3(L, b.orientation * b.inertiaLocal_kgm2.cwiseProduct(wl));
+  return 1;
+}
+/// @function Body:inertia
+/// Principal moments of inertia about the body's own x, y and z axes
+/// (through the centre of mass; 0 for static and kinematic bodies).
+/// @return Vec3 kg m^2
+int bodyInertia(lua_State* L) {
+  pushVec3(L, worldOf(L).body(checkBody(L, 1)).inertiaLocal_kgm2);
+  return 1;
+}
+/// @function Body:axis
+/// One of the body's own axes in the world (unit).
+/// @param which string "x", "y" or "z"
+/// @return Vec3 the axis, world frame
+/// @example local spin_axis = top:axis("y")
+int bodyAxis(lua_State* L) {
+  const physics::Body& b = worldOf(L).body(checkBody(L, 1));
+  const std::string w = lua_isnoneornil(L, 2) ? "y" : lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "?";
+  if (w != "x" && w != "y" && w != "z")
+    throw LuaArgError("Body:axis: expected \"x\", \"y\" or \"z\", got \"" + w + "\"");
+  pushVec3(L, b.orientation * Vec3::Unit(w[0] - 'x'));
+  return 1;
+}
 /// @function Body:is_awake
 /// @return boolean false while the body sleeps (at rest, not simulated)
 int bodyIsAwake(lua_State* L) {
@@ -229,6 +259,9 @@ const luaL_Reg kMethods[] = {
     {"mass", guarded<bodyMass>},
     {"speed", guarded<bodySpeed>},
     {"kinetic_energy", guarded<bodyKineticEnergy>},
+    {"angular_momentum", guarded<bodyAngularMomentum>},
+    {"inertia", guarded<bodyInertia>},
+    {"axis", guarded<bodyAxis>},
     {"is_awake", guarded<bodyIsAwake>},
     {"is_valid", guarded<bodyIsValid>},
     {"set_position", guarded<bodySetPosition>},

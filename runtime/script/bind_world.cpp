@@ -4,6 +4,10 @@
 //   world.sphere{radius = 0.5, position = {0, 5, 0}, restitution = 0.6}
 //   world.capsule{radius = 0.3, length = 1.0, ...}   -- length: core segment, m
 //   world.plane{normal = {0, 1, 0}, point = {0, 0, 0}}   -- static ground
+//   world.hull{points = {{0,0,0}, {1,0,0}, {0,1,0}, {0,0,1}}, ...}   -- convex hull of the points
+//   world.compound{children = {{shape = "box", size = {2, 0.2, 0.2}}, ...}, ...}
+//   world.overlap{shape = "sphere", radius = 1, position = {...}}      -- bodies inside
+//   world.shape_cast{shape = "sphere", radius = 0.3, position = {...}, direction = {0, -1, 0}}
 //
 // Common fields: position {x,y,z} m, rotation {x,y,z} rotation vector (axis
 // times angle, rad) or orientation {w=,x=,y=,z=}, velocity m/s,
@@ -12,7 +16,10 @@
 // type "dynamic" | "static" | "kinematic", color {r,g,b} 0..1, sleep (bool).
 // Unknown fields are refused, so a typo is an error, not a silent default.
 #include <set>
+#include <vector>
 
+#include "physics/compound_shape.h"
+#include "physics/convex_hull.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -230,6 +237,286 @@ int worldPlane(lua_State* L) {
   return create(L, d, "world.plane", readColor(L, 1, "world.plane", {0.55f, 0.57f, 0.6f}));
 }
 
+/// Points {{x, y, z}, ...} of field `key` of the table at t.
+std::vector<Vec3> readPoints(lua_State* L, int t, const char* key) {
+  std::vector<Vec3> points;
+  if (lua_getfield(L, t, key) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    throw LuaArgError(std::string("field '") + key + "' must be a list of at least 4 points {{x, y, z}, ...}");
+  }
+  const lua_Integer n = luaL_len(L, -1);
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L, -1, i);
+    const std::string what = std::string("field '") + key + "', point " + std::to_string(i);
+    try {
+      points.push_back(checkVec3(L, -1, what.c_str()));
+    } catch (...) {
+      lua_pop(L, 2);
+      throw;
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return points;
+}
+
+/// The shape described by the table at t (field `shape` = "box", "sphere",
+/// "capsule" or "hull" and that shape's size fields), with where its body
+/// frame sits in the table's frame (hulls: centroid and principal axes).
+physics::Shape readShapeDef(lua_State* L, int t, physics::ShapeFrame* frame) {
+  *frame = {};
+  const std::string kind = optStringField(L, t, "shape", "");
+  if (kind == "box") {
+    Vec3 size = Vec3::Ones(), half;
+    if (optVec3Field(L, t, "half_extents", &half)) size = 2 * half;
+    optVec3Field(L, t, "size", &size);
+    return physics::Shape::box(size / 2);
+  }
+  if (kind == "sphere") return physics::Shape::sphere(Real(optNumberField(L, t, "radius", 0.5)));
+  if (kind == "capsule") {
+    Real hh = Real(optNumberField(L, t, "half_height", 0.5));
+    hh = Real(optNumberField(L, t, "length", 2 * hh)) / 2;
+    return physics::Shape::capsule(Real(optNumberField(L, t, "radius", 0.3)), hh);
+  }
+  if (kind == "hull") {
+    auto hull = physics::makeHullShape(readPoints(L, t, "points"), frame);
+    if (!hull) throw LuaArgError(hull.error());
+    return hull.value();
+  }
+  throw LuaArgError("field 'shape' must be \"box\", \"sphere\", \"capsule\" or \"hull\", got \"" + kind + "\"");
+}
+
+/// Optional pose fields position / rotation of the table at t.
+void readPose(lua_State* L, int t, Vec3* p, Quat* q) {
+  *p = Vec3::Zero();
+  *q = Quat::Identity();
+  optVec3Field(L, t, "position", p);
+  Vec3 rv;
+  if (optVec3Field(L, t, "rotation", &rv) && rv.norm() > 0) *q = Quat(Eigen::AngleAxis<Real>(rv.norm(), rv.normalized()));
+}
+
+void checkShapeFields(lua_State* L, int t, const std::string& fn, std::initializer_list<const char*> extra) {
+  static const char* kShapeFields[] = {"shape", "size", "half_extents", "radius", "length", "half_height", "points",
+                                       "position", "rotation"};
+  lua_pushnil(L);
+  while (lua_next(L, t) != 0) {
+    lua_pop(L, 1);
+    const char* key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : nullptr;
+    bool known = false;
+    if (key) {
+      for (const char* f : kShapeFields) known |= std::string(key) == f;
+      for (const char* f : extra) known |= std::string(key) == f;
+    }
+    if (!known) {
+      std::string bad = key ? key : luaL_typename(L, -1);
+      lua_pop(L, 1);
+      throw LuaArgError(fn + ": unknown field '" + bad +
+                        "' (valid: shape, size, half_extents, radius, length, half_height, points, position, rotation" +
+                        (extra.size() ? ", and the query's own fields" : "") + ")");
+    }
+  }
+}
+
+/// Placed body frame from a pose of the given frame and the shape's own frame.
+void placeBody(physics::BodyDef& d, const physics::ShapeFrame& frame) {
+  d.position_m = d.position_m + d.orientation * frame.centre_m;
+  d.orientation = (d.orientation * frame.rotation).normalized();
+}
+
+void refuseZeroMass(lua_State* L, const char* fn) {
+  if (lua_getfield(L, 1, "mass") != LUA_TNIL) {
+    const double m = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    if (!(m > 0)) throw LuaArgError(std::string(fn) + ": field 'mass' must be > 0 kg (leave it out to use density)");
+    return;
+  }
+  lua_pop(L, 1);
+}
+
+/// @class HullDef: BodyDef
+/// The body's centre of mass is the hull's centroid: position and rotation
+/// place the frame the points are given in, and body:position() then reports
+/// where the centroid went.
+/// @field points Vec3Arg[] 4 to 4096 points, not all on one plane, m; the hull is their convex hull
+
+/// @class ShapeDef
+/// A shape with its pose: a compound's child (pose relative to the compound's
+/// frame) or the shape of a query (pose in the world).
+/// @field shape string "box", "sphere", "capsule" or "hull"
+/// @field size? Vec3Arg box: full size, m (default {1, 1, 1})
+/// @field half_extents? Vec3Arg box: half size, m (instead of size)
+/// @field radius? number sphere (default 0.5) or capsule (default 0.3) radius, m
+/// @field length? number capsule: core segment along local Y, m (default 1)
+/// @field half_height? number capsule: half the core segment, m
+/// @field points? Vec3Arg[] hull: at least 4 points spanning a volume, m
+/// @field position? Vec3Arg the shape's origin, m (default {0, 0, 0})
+/// @field rotation? Vec3Arg rotation vector (axis times angle), rad
+
+/// @class CompoundDef: BodyDef
+/// One rigid body made of several shapes. Mass spreads over the children at
+/// one density; the centre of mass and principal axes are computed, so
+/// body:position() is the centre of mass, not the frame origin the children
+/// were given in (that frame is placed by position / rotation).
+/// @field children ShapeDef[] 1 to 64 children (box, sphere, capsule, hull)
+
+/// @function world.hull
+/// Creates a convex hull of a point cloud (rocks, wedges, dice, tops).
+/// Refused with a clear error: fewer than 4 or more than 4096 points, points
+/// all on one plane or line, non-finite coordinates, mass = 0.
+/// @param def HullDef points and common body fields
+/// @return Body the new body
+/// @example local wedge = world.hull{points = {{0,0,0}, {2,0,0}, {0,0,1}, {2,0,1}, {0,1,0}, {0,1,1}}, position = {0, 1, 0}}
+int worldHull(lua_State* L) {
+  checkTable(L, "world.hull", "{points = {{0,0,0}, {1,0,0}, {0,1,0}, {0,0,1}}, position = {0, 2, 0}}");
+  checkFields(L, 1, "world.hull", {"points"});
+  physics::BodyDef d = readCommon(L, 1, "world.hull");
+  refuseZeroMass(L, "world.hull");
+  physics::ShapeFrame frame;
+  try {
+    auto hull = physics::makeHullShape(readPoints(L, 1, "points"), &frame);
+    if (!hull) throw LuaArgError(hull.error());
+    d.shape = hull.value();
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.hull: ") + e.what());
+  }
+  placeBody(d, frame);
+  return create(L, d, "world.hull", readColor(L, 1, "world.hull", {0.6f, 0.55f, 0.5f}));
+}
+
+/// @function world.compound
+/// Creates one rigid body from several child shapes at fixed poses.
+/// @param def CompoundDef children and common body fields
+/// @return Body the new body
+/// @example local t = world.compound{children = {{shape = "box", size = {2, 0.2, 0.2}}, {shape = "capsule", radius = 0.1, length = 0.8, position = {0, 0, 0.6}, rotation = {math.pi / 2, 0, 0}}}, position = {0, 2, 0}}
+int worldCompound(lua_State* L) {
+  checkTable(L, "world.compound", "{children = {{shape = \"box\", size = {1, 1, 1}}}, position = {0, 2, 0}}");
+  checkFields(L, 1, "world.compound", {"children"});
+  physics::BodyDef d = readCommon(L, 1, "world.compound");
+  refuseZeroMass(L, "world.compound");
+  if (lua_getfield(L, 1, "children") != LUA_TTABLE)
+    throw LuaArgError("world.compound: field 'children' must be a list of shapes {{shape = \"box\", ...}, ...}");
+  std::vector<physics::CompoundChild> children;
+  const lua_Integer n = luaL_len(L, -1);
+  for (lua_Integer i = 1; i <= n; ++i) {
+    const std::string who = "world.compound: child " + std::to_string(i);
+    if (lua_rawgeti(L, -1, i) != LUA_TTABLE) throw LuaArgError(who + ": expected a table {shape = \"box\", ...}");
+    const int t = lua_absindex(L, -1);
+    physics::CompoundChild c;
+    try {
+      checkShapeFields(L, t, who, {});
+      physics::ShapeFrame frame;
+      c.shape = readShapeDef(L, t, &frame);
+      readPose(L, t, &c.position_m, &c.orientation);
+      c.position_m += c.orientation * frame.centre_m;
+      c.orientation = c.orientation * frame.rotation;
+    } catch (const LuaArgError& e) {
+      throw LuaArgError(who + ": " + e.what());
+    }
+    children.push_back(std::move(c));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  physics::ShapeFrame frame;
+  auto shape = physics::makeCompoundShape(children, &frame);
+  if (!shape) throw LuaArgError("world.compound: " + shape.error());
+  d.shape = shape.value();
+  placeBody(d, frame);
+  return create(L, d, "world.compound", readColor(L, 1, "world.compound", {0.7f, 0.5f, 0.8f}));
+}
+
+/// The query shape of world.overlap / world.shape_cast, placed in the world.
+physics::Shape readQueryShape(lua_State* L, const char* fn, std::initializer_list<const char*> extra, Vec3* p,
+                              Quat* q) {
+  if (!lua_istable(L, 1))
+    throw LuaArgError(std::string(fn) + ": expected a table, e.g. " + fn + "{shape = \"sphere\", radius = 1, position = {0, 1, 0}}");
+  try {
+    checkShapeFields(L, 1, fn, extra);
+    physics::ShapeFrame frame;
+    physics::Shape shape = readShapeDef(L, 1, &frame);
+    if (auto st = physics::validateShape(shape); !st) throw LuaArgError(st.error());
+    readPose(L, 1, p, q);
+    *p += *q * frame.centre_m;
+    *q = *q * frame.rotation;
+    return shape;
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what());
+  }
+}
+
+/// @function world.overlap
+/// Bodies whose shape overlaps a shape placed in the world (the height field
+/// is not included). Touching within 1 mm counts.
+/// @param def ShapeDef the shape and its pose in the world
+/// @return Body[] the overlapping bodies, in creation-slot order
+/// @example for _, b in ipairs(world.overlap{shape = "sphere", radius = 2, position = {0, 1, 0}}) do b:apply_impulse({0, 5, 0}) end
+int worldOverlap(lua_State* L) {
+  Vec3 p;
+  Quat q;
+  const physics::Shape shape = readQueryShape(L, "world.overlap", {}, &p, &q);
+  const std::vector<physics::BodyId> ids = worldOf(L).overlapShape(shape, p, q);
+  lua_createtable(L, int(ids.size()), 0);
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    pushBody(L, ids[i]);
+    lua_rawseti(L, -2, lua_Integer(i + 1));
+  }
+  return 1;
+}
+
+/// @class ShapeCastHit
+/// @field body Body? the body hit; nil when the shape hit the terrain
+/// @field distance number how far the shape moved along the unit direction before touching, m
+/// @field point Vec3Arg contact point, m
+/// @field normal Vec3Arg surface normal of what was hit, pointing back at the shape (unit)
+
+/// @class ShapeCastDef: ShapeDef
+/// @field direction Vec3Arg where to sweep (need not be unit, must not be zero)
+/// @field max_distance? number m (default 1000)
+/// @field ignore? Body a body to pass through (e.g. the car casting its own wheels)
+
+/// @function world.shape_cast
+/// Sweeps a shape along a straight line without turning it and returns the
+/// first body or terrain it touches (a fat ray: wheels, feet, sweeps).
+/// @param def ShapeCastDef the shape, its start pose, direction and limits
+/// @return ShapeCastHit? the first hit, or nil
+/// @example local hit = world.shape_cast{shape = "sphere", radius = 0.35, position = {0, 2, 0}, direction = {0, -1, 0}, max_distance = 1}
+int worldShapeCast(lua_State* L) {
+  Vec3 p;
+  Quat q;
+  const physics::Shape shape =
+      readQueryShape(L, "world.shape_cast", {"direction", "max_distance", "ignore"}, &p, &q);
+  Vec3 dir;
+  double maxd = 1000;
+  physics::BodyId ignore;
+  try {
+    if (!optVec3Field(L, 1, "direction", &dir)) throw LuaArgError("field 'direction' is required, e.g. {0, -1, 0}");
+    if (dir.norm() == 0) throw LuaArgError("field 'direction' must not be zero");
+    maxd = optNumberField(L, 1, "max_distance", maxd);
+    if (maxd < 0) throw LuaArgError("field 'max_distance' must be >= 0 m");
+    if (lua_getfield(L, 1, "ignore") != LUA_TNIL && !testBody(L, -1, &ignore))
+      throw LuaArgError(std::string("field 'ignore' must be a Body, got ") + luaL_typename(L, -1));
+    lua_pop(L, 1);
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.shape_cast: ") + e.what());
+  }
+  physics::ShapeCastHit hit;
+  if (!worldOf(L).shapeCast(shape, p, q, dir, Real(maxd), &hit, ignore)) {
+    lua_pushnil(L);
+    return 1;
+  }
+  lua_createtable(L, 0, 4);
+  if (!hit.body.isNull()) {
+    pushBody(L, hit.body);
+    lua_setfield(L, -2, "body");
+  }
+  lua_pushnumber(L, hit.distance_m);
+  lua_setfield(L, -2, "distance");
+  pushVec3(L, hit.point_m);
+  lua_setfield(L, -2, "point");
+  pushVec3(L, hit.normal);
+  lua_setfield(L, -2, "normal");
+  return 1;
+}
+
 /// @function world.set_gravity
 /// Sets the gravity acceleration for every body.
 /// @param g Vec3Arg m/s^2 (default {0, -9.81, 0})
@@ -347,6 +634,10 @@ const luaL_Reg kWorld[] = {
     {"sphere", guarded<worldSphere>},
     {"capsule", guarded<worldCapsule>},
     {"plane", guarded<worldPlane>},
+    {"hull", guarded<worldHull>},
+    {"compound", guarded<worldCompound>},
+    {"overlap", guarded<worldOverlap>},
+    {"shape_cast", guarded<worldShapeCast>},
     {"set_gravity", guarded<worldSetGravity>},
     {"gravity", guarded<worldGravity>},
     {"raycast", guarded<worldRaycast>},

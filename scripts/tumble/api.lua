@@ -45,6 +45,24 @@ function Body:speed() end
 ---@return number # translational plus rotational kinetic energy, J
 function Body:kinetic_energy() end
 
+---Angular momentum about the centre of mass, world frame (R I R^T w).
+---@return Vec3 # kg m^2/s
+function Body:angular_momentum() end
+
+---Principal moments of inertia about the body's own x, y and z axes
+---(through the centre of mass; 0 for static and kinematic bodies).
+---@return Vec3 # kg m^2
+function Body:inertia() end
+
+---One of the body's own axes in the world (unit).
+---
+---```lua
+---local spin_axis = top:axis("y")
+---```
+---@param which string "x", "y" or "z"
+---@return Vec3 # the axis, world frame
+function Body:axis(which) end
+
 ---@return boolean # false while the body sleeps (at rest, not simulated)
 function Body:is_awake() end
 
@@ -275,6 +293,43 @@ function Trigger:count() end
 ---@class PlaneDef: BodyDef
 ---@field normal? Vec3Arg the plane's normal (default {0, 1, 0})
 ---@field point? Vec3Arg a point on the plane, m (default {0, 0, 0})
+
+---The body's centre of mass is the hull's centroid: position and rotation
+---place the frame the points are given in, and body:position() then reports
+---where the centroid went.
+---@class HullDef: BodyDef
+---@field points Vec3Arg[] 4 to 4096 points, not all on one plane, m; the hull is their convex hull
+
+---A shape with its pose: a compound's child (pose relative to the compound's
+---frame) or the shape of a query (pose in the world).
+---@class ShapeDef
+---@field shape string "box", "sphere", "capsule" or "hull"
+---@field size? Vec3Arg box: full size, m (default {1, 1, 1})
+---@field half_extents? Vec3Arg box: half size, m (instead of size)
+---@field radius? number sphere (default 0.5) or capsule (default 0.3) radius, m
+---@field length? number capsule: core segment along local Y, m (default 1)
+---@field half_height? number capsule: half the core segment, m
+---@field points? Vec3Arg[] hull: at least 4 points spanning a volume, m
+---@field position? Vec3Arg the shape's origin, m (default {0, 0, 0})
+---@field rotation? Vec3Arg rotation vector (axis times angle), rad
+
+---One rigid body made of several shapes. Mass spreads over the children at
+---one density; the centre of mass and principal axes are computed, so
+---body:position() is the centre of mass, not the frame origin the children
+---were given in (that frame is placed by position / rotation).
+---@class CompoundDef: BodyDef
+---@field children ShapeDef[] 1 to 64 children (box, sphere, capsule, hull)
+
+---@class ShapeCastHit
+---@field body Body? the body hit; nil when the shape hit the terrain
+---@field distance number how far the shape moved along the unit direction before touching, m
+---@field point Vec3Arg contact point, m
+---@field normal Vec3Arg surface normal of what was hit, pointing back at the shape (unit)
+
+---@class ShapeCastDef: ShapeDef
+---@field direction Vec3Arg where to sweep (need not be unit, must not be zero)
+---@field max_distance? number m (default 1000)
+---@field ignore? Body a body to pass through (e.g. the car casting its own wheels)
 
 ---@class RayHit
 ---@field body Body the body hit
@@ -764,6 +819,46 @@ function world.capsule(def) end
 ---@param def? PlaneDef normal, point, friction, restitution, color
 ---@return Body # the new body
 function world.plane(def) end
+
+---Creates a convex hull of a point cloud (rocks, wedges, dice, tops).
+---Refused with a clear error: fewer than 4 or more than 4096 points, points
+---all on one plane or line, non-finite coordinates, mass = 0.
+---
+---```lua
+---local wedge = world.hull{points = {{0,0,0}, {2,0,0}, {0,0,1}, {2,0,1}, {0,1,0}, {0,1,1}}, position = {0, 1, 0}}
+---```
+---@param def HullDef points and common body fields
+---@return Body # the new body
+function world.hull(def) end
+
+---Creates one rigid body from several child shapes at fixed poses.
+---
+---```lua
+---local t = world.compound{children = {{shape = "box", size = {2, 0.2, 0.2}}, {shape = "capsule", radius = 0.1, length = 0.8, position = {0, 0, 0.6}, rotation = {math.pi / 2, 0, 0}}}, position = {0, 2, 0}}
+---```
+---@param def CompoundDef children and common body fields
+---@return Body # the new body
+function world.compound(def) end
+
+---Bodies whose shape overlaps a shape placed in the world (the height field
+---is not included). Touching within 1 mm counts.
+---
+---```lua
+---for _, b in ipairs(world.overlap{shape = "sphere", radius = 2, position = {0, 1, 0}}) do b:apply_impulse({0, 5, 0}) end
+---```
+---@param def ShapeDef the shape and its pose in the world
+---@return Body[] # the overlapping bodies, in creation-slot order
+function world.overlap(def) end
+
+---Sweeps a shape along a straight line without turning it and returns the
+---first body or terrain it touches (a fat ray: wheels, feet, sweeps).
+---
+---```lua
+---local hit = world.shape_cast{shape = "sphere", radius = 0.35, position = {0, 2, 0}, direction = {0, -1, 0}, max_distance = 1}
+---```
+---@param def ShapeCastDef the shape, its start pose, direction and limits
+---@return ShapeCastHit? # the first hit, or nil
+function world.shape_cast(def) end
 
 ---Sets the gravity acceleration for every body.
 ---

@@ -152,6 +152,39 @@ TEST(ConvexHull, RandomCloudContainsEveryPointAndSatisfiesEuler) {
   EXPECT_GT(hull->volume_m3, 0);
 }
 
+TEST(ConvexHull, GridWithManyCoplanarAndCollinearPointsIsACube) {
+  // 5 x 5 x 5 grid: most points lie on faces and edges of the hull.
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 125; ++i) pts.emplace_back(Real(i % 5), Real((i / 5) % 5), Real(i / 25));
+  auto hull = computeConvexHull(pts);
+  ASSERT_TRUE(hull.ok()) << hull.error();
+  EXPECT_EQ(hull->faces.size(), 6u);
+  EXPECT_NEAR(hull->volume_m3, 64, 1e-3);
+  EXPECT_LT((hull->centroid_m - Vec3::Constant(2)).norm(), 1e-5);
+}
+
+TEST(ConvexHull, ThousandPointsNearASphereGiveAClosedHullAroundThemAll) {
+  std::vector<Vec3> pts;
+  std::uint32_t seed = 99;
+  auto rnd = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return Real(seed >> 8) / Real(1 << 24) * 2 - 1;
+  };
+  while (pts.size() < 1000) {
+    Vec3 p(rnd(), rnd(), rnd());
+    if (p.norm() < Real(0.1) || p.norm() > 1) continue;
+    pts.push_back(p.normalized() * (1 + Real(1e-4) * rnd()));  // nearly cospherical: many thin triangles
+  }
+  auto hull = computeConvexHull(pts);
+  ASSERT_TRUE(hull.ok()) << hull.error();
+  for (const Vec3& p : pts)
+    for (const HullFace& f : hull->faces) ASSERT_LE(f.normal.dot(p) - f.offset_m, 1e-4);
+  EXPECT_EQ(int(hull->vertices_m.size()) - int(hull->edges.size()) + int(hull->faces.size()), 2);
+  // Close to the unit ball's volume 4/3 pi (a polytope inside it).
+  EXPECT_NEAR(hull->volume_m3, 4.18879, 0.1);
+  EXPECT_LT(hull->volume_m3, 4.19);
+}
+
 TEST(ConvexHull, RefusesTooFewCoplanarAndNonFinitePoints) {
   const std::vector<Vec3> three = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   auto a = computeConvexHull(three);

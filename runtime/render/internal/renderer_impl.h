@@ -5,6 +5,7 @@
 // them is still alive, the context and window last.
 #include <memory>
 
+#include "render/internal/convex_mesh_pass.h"
 #include "render/internal/environment.h"
 #include "render/internal/gl_context.h"
 #include "render/internal/hud.h"
@@ -25,6 +26,7 @@ struct Renderer::Impl {
   RenderTargets targets;
   SkyPass sky;
   ShapePass shapes;
+  ConvexMeshPass convexMeshes;  // no GPU memory until a frame has a ConvexMesh
   LinePass lines;
   TerrainPass terrain;       // creates nothing until the first frame with a terrain
   ParticlesPass particles;   // creates nothing until the first frame with particles

@@ -28,6 +28,7 @@ MeshData meshFor(ShapeKind kind) {
     case ShapeKind::Sphere: return buildSphereMesh(kRoundSlices, kSphereStacks);
     case ShapeKind::Capsule: return buildCapsuleMesh(kRoundSlices, kCapsuleStacksPerCap);
     case ShapeKind::Plane: return buildPlaneMesh();
+    case ShapeKind::ConvexMesh: break;  // drawn by ConvexMeshPass
   }
   return buildBoxMesh();
 }
@@ -79,6 +80,9 @@ ShapeInstance makeInstance(const DrawShape& shape) {
       instance.scale[0] = instance.scale[2] = kPlaneHalfSize_m;
       instance.scale[1] = 1.0f;
       break;
+    case ShapeKind::ConvexMesh:
+      instance.scale[0] = instance.scale[1] = instance.scale[2] = 1.0f;
+      break;
   }
   const float shade = shape.sleeping ? kSleepingShade : 1.0f;
   for (int i = 0; i < 3; ++i) instance.color[i] = std::clamp(shape.color[i], 0.0f, 1.0f) * shade;
@@ -128,6 +132,7 @@ void ShapePass::draw(const std::vector<DrawShape>& shapes, const FrameView& view
                      const Environment& environment) {
   for (Batch& batch : m_batches) batch.pending.clear();
   for (const DrawShape& shape : shapes) {
+    if (kindIndex(shape.kind) >= kKindCount) continue;  // ConvexMesh: ConvexMeshPass
     m_batches[kindIndex(shape.kind)].pending.push_back(makeInstance(shape));
   }
 
