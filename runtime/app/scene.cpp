@@ -402,8 +402,18 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
       dst.push_back(q);
     }
   });
-  // Vehicle wheels are ray casts, not bodies: drawn as spheres at their hubs
-  // until meshes land (render::DrawShape has no cylinder).
+  // Vehicle wheels are ray casts, not bodies: drawn with the shipped wheel
+  // model (axle along X, radius 0.35 m, width 0.25 m) at each hub, steered
+  // and turned by its accumulated spin; as spheres if the model is missing.
+  std::shared_ptr<const render::Model> wheelModel;
+  if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny(); vehicles && vehicles->count() > 0) {
+    const auto& dirs = m_host->options().modDirs;
+    if (auto base = dirs.find("base"); base != dirs.end()) {
+      auto loaded = m_models->get(base->second + "/assets/models/wheel.obj");
+      if (loaded) wheelModel = loaded.value();
+    }
+  }
+  constexpr float kWheelModelRadius_m = 0.35f, kWheelModelWidth_m = 0.25f;
   if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny())
     vehicles->forEach([&](vehicle::VehicleId id) {
       // Hubs ride with the chassis' interpolated pose, so they do not lag it.
@@ -417,9 +427,22 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
       }
       for (int i = 0; i < vehicles->wheelCount(id); ++i) {
         const vehicle::WheelTelemetry& w = vehicles->wheel(id, i);
+        const Vec3 hub = p + q * (b.orientation.conjugate() * (w.hub_m - b.position_m));
+        if (wheelModel) {
+          render::ModelInstance m;
+          m.model = wheelModel;
+          m.position = hub.cast<float>();
+          const Quat turn = q * Quat(Eigen::AngleAxis<Real>(w.steer_rad, Vec3::UnitY())) *
+                            Quat(Eigen::AngleAxis<Real>(w.rotation_rad, Vec3::UnitX()));
+          m.orientation = turn.cast<float>();
+          const float r = float(w.radius_m) / kWheelModelRadius_m;
+          m.scale = Eigen::Vector3f(float(w.width_m) / kWheelModelWidth_m, r, r);
+          out.models.push_back(std::move(m));
+          continue;
+        }
         render::DrawShape s;
         s.kind = render::ShapeKind::Sphere;
-        s.position = (p + q * (b.orientation.conjugate() * (w.hub_m - b.position_m))).cast<float>();
+        s.position = hub.cast<float>();
         s.radius_m = float(w.radius_m);
         s.color = Eigen::Vector3f(0.12f, 0.12f, 0.13f);
         out.shapes.push_back(s);

@@ -149,6 +149,159 @@ function Body:clear_model() end
 ---@field distance? number orbit / follow: distance of the eye from the target, m
 ---@field interior? string cockpit: interior model ("MOD:path"), drawn with the body; placed at the eye
 
+---@class RopeDef
+---@field from Vec3Arg first particle (m)
+---@field to Vec3Arg last particle (m)
+---@field segments? integer springs along the rope, 1..4096 (default 20)
+---@field mass? number total mass, kg (default 1)
+---@field stiffness? number each segment's spring, N/m (default 2e4)
+---@field bend? number springs over two segments, N/m (default stiffness / 1000)
+---@field damping? number along each spring, N s/m (default 0.5)
+---@field air_drag? number per particle against the wind-relative velocity, N s/m (default 0.01)
+---@field friction? number against the ground and shapes (default 0.5)
+---@field radius? number collision radius of the particles, m (default 0.02)
+---@field substeps? integer implicit steps per physics step, 1..64 (default 2)
+---@field pin_start? boolean hold the first particle where it is (default true)
+---@field pin_end? boolean hold the last particle where it is (default false)
+---@field wind? Vec3Arg wind velocity, m/s (default none)
+---@field color? Vec3Arg line colour, linear RGB 0..1
+
+---@class ClothDef
+---@field origin Vec3Arg the corner particle 1 (m)
+---@field u? Vec3Arg the first row, from origin to its last particle (m, default {2, 0, 0})
+---@field v? Vec3Arg the first column, from origin to its last particle (m, default {0, -1.5, 0})
+---@field columns? integer particles per row, 2..256 (default 16)
+---@field rows? integer particles per column, 2..256 (default 12)
+---@field mass? number total mass, kg (default 0.5)
+---@field stiffness? number structural springs, N/m (default 2e4)
+---@field shear? number diagonal springs, N/m (default stiffness / 4)
+---@field bend? number springs over two particles, N/m (default stiffness / 1000)
+---@field damping? number along each spring, N s/m (default 0.5)
+---@field drag? number pressure drag coefficient per triangle (default 1.2)
+---@field air_density? number kg/m^3 (default 1.2)
+---@field air_drag? number per particle, N s/m (default 0.01)
+---@field friction? number against the ground and shapes (default 0.5)
+---@field radius? number collision radius (thickness), m (default 0.02)
+---@field substeps? integer implicit steps per physics step (default 2)
+---@field pins? string "top" (the first row, default), "corners" (its two ends) or "none"
+---@field wind? Vec3Arg wind velocity, m/s
+---@field color? Vec3Arg line colour, linear RGB 0..1
+
+---A rope or cloth made by deformable.rope / deformable.cloth.
+---@class Deformable
+local Deformable = {}
+
+---@return integer # the number of particles
+function Deformable:count() end
+
+---Cloth particle index from its column and row (both from 0).
+---@param col integer 0..columns-1
+---@param row integer 0..rows-1
+---@return integer # the particle index (from 1)
+function Deformable:index(col, row) end
+
+---@param i integer particle index (from 1)
+---@return Vec3 # its position (m)
+function Deformable:position(i) end
+
+---@param i integer particle index (from 1)
+---@return Vec3 # its velocity (m/s)
+function Deformable:velocity(i) end
+
+---Holds a particle at a world point, or at the point of a body where it is
+---now (it then moves with the body).
+---@param i integer particle index (from 1)
+---@param target Body|Vec3Arg a body or a point (m)
+function Deformable:pin(i, target) end
+
+---@param i integer particle index (from 1)
+---@return boolean # true if it was pinned
+function Deformable:unpin(i) end
+
+---@param wind Vec3Arg wind velocity (m/s)
+function Deformable:set_wind(wind) end
+
+---Kinetic + gravitational (from y = 0) + spring energy.
+---@return number # J
+function Deformable:energy() end
+
+---@return number # the summed length of the structural springs now (m)
+---@return number # their summed rest length (m)
+function Deformable:length() end
+
+---@return number # the lowest particle surface, min of y - radius (m)
+function Deformable:lowest() end
+
+---@return table # {cg_iterations_max, cg_failures, nan_events, steps}
+function Deformable:stats() end
+
+---@return boolean # true if it was still there
+function Deformable:remove() end
+
+---Where an emitter sits: a fixed point, or a body (it then moves and turns
+---with the body, and its `direction` is in the body's frame).
+---@class EmitterAt
+---@field position? Vec3Arg a fixed point in the world, m
+---@field body? Body the body to attach to
+---@field offset? Vec3Arg with body: the point in the body's frame, m (default its centre)
+
+---A handle returned by particles.spawn / particles.burst. Methods on an
+---emitter that is gone raise an error, except :alive() and :count().
+---@class Emitter
+local Emitter = {}
+
+---Particles per second from now on (the fraction carries between steps).
+---
+---```lua
+---dust:set_rate(math.min(60, 80 * slip))
+---```
+---@param per_s number rate, 1/s (>= 0)
+function Emitter:set_rate(per_s) end
+
+---@return number # the current rate, particles per second
+function Emitter:rate() end
+
+---n particles at once, born at the start of the next step.
+---@param n integer how many (>= 0)
+function Emitter:burst(n) end
+
+---Moves a free emitter to a world point (particles born during the next
+---step are spread along the way), or, for an attached one, sets its offset
+---in the body's frame.
+---@param p Vec3Arg m
+function Emitter:set_position(p) end
+
+---@return Vec3 # where the emitter is now (world, m)
+function Emitter:position() end
+
+---The box around its live particles, in the world (for checks and game
+---logic: how high the smoke went, where the rain ends).
+---
+---```lua
+---local lo, hi = smoke:bounds()
+---if hi then hud_text(("smoke top: %.1f m"):format(hi.y)) end
+---```
+---@return Vec3? # lowest corner, m (nil when it has no particles)
+---@return Vec3? # highest corner, m
+function Emitter:bounds() end
+
+---The main direction particles fly in: world frame for a free emitter, the
+---body's frame for an attached one.
+---@param d Vec3Arg any non-zero length
+function Emitter:set_direction(d) end
+
+---Stops emitting; live particles finish their lives, then the emitter is gone.
+function Emitter:stop() end
+
+---Removes the emitter and its particles at once.
+function Emitter:remove() end
+
+---@return integer # its live particles (0 once it is gone)
+function Emitter:count() end
+
+---@return boolean # false once removed, or stopped with no particles left
+function Emitter:alive() end
+
 ---Placement of a model on a body, in the body's frame.
 ---@class ModelOptions
 ---@field offset? Vec3Arg model origin relative to the body's centre, m (default {0, 0, 0})
@@ -168,6 +321,45 @@ function Body:clear_model() end
 ---@field volume number m^3
 ---@field center Vec3 centre of mass in the model's frame (scaled), m
 ---@field inertia table inertia about the centre of mass, kg m^2: {xx=, yy=, zz=, xy=, yz=, zx=}
+
+---@class OdeSystemDef
+---@field state number[] the initial state vector y (any length >= 1)
+---@field derivative fun(t: number, y: number[]): number[] returns y' (same length)
+---@field jacobian? fun(t: number, y: number[]): number[][] returns df/dy as rows (implicit methods; default: finite differences)
+---@field energy? fun(y: number[]): number a conserved quantity, for OdeSystem:energy
+---@field method? string an integrator of ode.methods() (default "rk4"); "symplectic_euler" and "verlet" need state = {q..., v...} with derivative {v..., a...}
+---@field time? number the initial time t (s, default 0)
+
+---A system made by ode.system.
+---@class OdeSystem
+local OdeSystem = {}
+
+---Advances the state by dt, in n equal steps.
+---@param dt number seconds (> 0)
+---@param n? integer steps (default 1)
+---@return OdeSystem # the system (for chaining)
+function OdeSystem:step(dt, n) end
+
+---@return number[] # a copy of the state vector
+function OdeSystem:state() end
+
+---Replaces the state (same length), e.g. after a kick.
+---@param y number[]
+function OdeSystem:set_state(y) end
+
+---@param i integer index into the state (from 1)
+---@return number # y[i]
+function OdeSystem:get(i) end
+
+---@return number # the system's time t (s)
+function OdeSystem:time() end
+
+---@return number? # the def's energy(y) now, nil without one
+function OdeSystem:energy() end
+
+---What stepping cost so far.
+---@return table # {steps, derivative_calls, jacobian_calls, newton_failures, lua_seconds, method}
+function OdeSystem:stats() end
 
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
@@ -224,6 +416,14 @@ function Random:pick(list) end
 ---@return integer # the seed this generator started from
 function Random:seed() end
 
+---@class SpringDef
+---@field a Body the first end (its centre of mass)
+---@field b? Body the other end; without it the spring holds a to `anchor`
+---@field anchor? Vec3Arg fixed world point for the other end (m), when b is absent
+---@field stiffness number k > 0 (N/m)
+---@field damping? number along the spring, >= 0 (N s/m, default 0)
+---@field rest_length? number >= 0 (m); default: the distance now
+
 ---A handle returned by timer.after and timer.every.
 ---@class Timer
 local Timer = {}
@@ -258,6 +458,182 @@ function Trigger:contains(body) end
 
 ---@return integer # the number of bodies inside after the last step
 function Trigger:count() end
+
+---@class VehicleSpawn
+---@field position? Vec3Arg the ground point under the vehicle's centre, m (default {0, 0, 0}); the vehicle is placed resting on its springs
+---@field heading? number yaw, rad: 0 faces +Z, positive turns towards +X (default 0)
+
+---What mods/<mod>/vehicles/<name>.lua returns (docs/vehicles.md explains
+---each field). Every field is optional; a misspelt one is an error.
+---Chassis frame: origin at the box centre, +Z forward, +Y up, +X left.
+---@class VehicleDefinition
+---@field name? string shown to the player
+---@field description? string the feel, in a sentence
+---@field chassis? VehicleChassis body, mass, drag
+---@field axles? VehicleAxle[] 2 to 8 axles, front first; an axle copies the fields it leaves out from the one before (except steered, driven, handbrake, drive_share)
+---@field tyre? VehicleTyre slip curves and rolling resistance
+---@field engine? VehicleEngine torque curve and speeds
+---@field gearbox? VehicleGearbox ratios and shift points
+---@field steering? VehicleSteering angles and rate
+
+---@class VehicleChassis
+---@field mass? number kg, whole vehicle (default 1200)
+---@field size? number[] {width, height, length} of the collision box, m (default {1.7, 0.6, 4.0})
+---@field com? number[] centre of mass from the box centre, m (default {0, 0, 0})
+---@field drag_area? number drag coefficient times frontal area, m^2 (default 0.7)
+---@field air_density? number kg/m^3 (default 1.2)
+---@field friction? number chassis contact friction (default 0.4)
+---@field restitution? number 0..1 (default 0.1)
+---@field mesh? string visual mesh, a path inside the mod
+
+---@class VehicleAxle
+---@field position? number[] left hub at full bump {x, y, z}, m; x is half the track (default {0.75, -0.2, 1.3})
+---@field radius? number wheel radius, m (default 0.31)
+---@field width? number wheel width, m (default 0.2)
+---@field inertia? number one wheel, kg m^2 (default 1.0)
+---@field steered? boolean (default false)
+---@field driven? boolean (default false)
+---@field brake? number N m per wheel at full brake (default 1500)
+---@field handbrake? number N m per wheel at full handbrake (default 0)
+---@field drive_share? number fraction of the drive torque, 0..1 (default: equal among driven axles)
+---@field differential? string "open" or "limited_slip" (default "open")
+---@field lsd_bias? number limited slip: largest torque ratio between the wheels, >= 1 (default 2)
+---@field suspension? VehicleSuspension springs and dampers
+
+---@class VehicleSuspension
+---@field travel? number hub travel from full bump to full droop, m (default 0.2)
+---@field rest_length? number spring length at zero force, m (default 0.3)
+---@field stiffness? number N/m per wheel (default: from frequency)
+---@field frequency? number natural frequency with the static load, Hz (default 1.5)
+---@field bump? number compression damping, N s/m (default: from bump_ratio)
+---@field rebound? number extension damping, N s/m (default: from rebound_ratio)
+---@field bump_ratio? number fraction of critical damping (default 0.3)
+---@field rebound_ratio? number fraction of critical damping (default 0.5)
+---@field anti_roll? number anti-roll bar, N per m of compression difference (default 0)
+
+---@class VehicleTyre
+---@field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
+---@field lateral? number[][] {{slip angle rad, friction}, ...}
+---@field rolling_resistance? number C_rr (default 0.012)
+---@field soft_ground_drag? number extra C_rr per unit of (1 - surface friction) (default 0.08)
+
+---@class VehicleEngine
+---@field torque? number[][] {{rpm, N m}, ...} at full throttle
+---@field idle_rpm? number rpm (default 900)
+---@field max_rpm? number rev limiter, rpm (default 6800)
+---@field launch_rpm? number the automatic clutch holds about this pulling away, rpm (default 2500)
+---@field inertia? number kg m^2 (default 0.2)
+---@field braking_torque? number engine braking at max rpm, N m (default 30)
+
+---@class VehicleGearbox
+---@field ratios? number[] forward gear ratios (default {3.5, 2.1, 1.4, 1.05, 0.85})
+---@field reverse? number ratio (default 3.3)
+---@field final_drive? number ratio (default 4.0)
+---@field efficiency? number 0..1 (default 0.9)
+---@field shift_up_rpm? number for the automatic gearbox, rpm (default 6200)
+---@field shift_down_rpm? number rpm (default 2600)
+---@field shift_time? number clutch open during a shift, s (default 0.25)
+
+---@class VehicleSteering
+---@field max_angle? number at standstill, rad (default 0.55)
+---@field speed_sensitivity? number the largest angle is max / (1 + this * v), s/m (default 0.02)
+---@field rate? number how fast the wheels turn, rad/s (default 2.5)
+
+---A handle to a vehicle made by vehicle.spawn. Methods refuse a removed
+---vehicle with a clear error.
+---@class Vehicle
+local Vehicle = {}
+
+---Sets what the driver asks for; absent fields keep their value.
+---
+---```lua
+---car:set_controls{throttle = 0.8, steer = 0.2}
+---```
+---@param controls VehicleControls
+function Vehicle:set_controls(controls) end
+
+---@return VehicleControls # what the driver asks for now (clamped)
+function Vehicle:controls() end
+
+---@return number # speed along the vehicle's forward axis, m/s (negative backwards)
+function Vehicle:speed() end
+
+---@return number # engine speed, rpm
+function Vehicle:rpm() end
+
+---@return integer # the gear engaged (-1 reverse, 0 neutral, 1..N)
+---@return integer # the number of forward gears
+function Vehicle:gear() end
+
+---@return VehicleTelemetry # the state after the last step
+function Vehicle:telemetry() end
+
+---@return Body # the chassis (position, velocity, contacts like any body)
+function Vehicle:body() end
+
+---@return Vec3 # the chassis' centre of mass, m
+function Vehicle:position() end
+
+---@return Vec3 # the unit forward axis of the chassis, world
+function Vehicle:forward() end
+
+---Puts the vehicle upright, at rest, on the ground point given (default:
+---where it was spawned), engine idling.
+---@param opts? VehicleSpawn where and which way
+function Vehicle:reset(opts) end
+
+---@return VehicleDefinition # the vehicle's current definition, in the file's format
+function Vehicle:definition() end
+
+---Changes parameters while running (for tunables): the table is merged
+---into the current definition (records merged field by field; lists such
+---as curves, gear ratios and `axles` entries by index), then validated
+---and applied without a restart. A bad value is an error naming the field;
+---the vehicle keeps its old parameters then.
+---
+---```lua
+---car:tune{engine = {max_rpm = 7200}, axles = {[2] = {suspension = {frequency = 2.0}}}}
+---```
+---@param changes VehicleDefinition part of a definition
+function Vehicle:tune(changes) end
+
+---@return string # "mod:vehicle" it was spawned from
+function Vehicle:name() end
+
+---@return boolean # false once removed
+function Vehicle:is_valid() end
+
+---Removes the vehicle and its chassis body.
+function Vehicle:remove() end
+
+---@class VehicleControls
+---@field throttle? number 0..1
+---@field brake? number 0..1
+---@field steer? number -1 full left .. +1 full right
+---@field handbrake? number 0..1
+---@field gear? integer -1 reverse, 0 neutral, 1..N (clamped to the gearbox)
+
+---@class WheelTelemetry
+---@field contact boolean the tyre touches something
+---@field load number suspension force on the tyre, N
+---@field slip_ratio number (w r - v) / max(|v|, 0.5 m/s); > 0 spinning, < 0 locking
+---@field slip_angle number rad, signed
+---@field slip_speed number speed of the contact patch over the ground, m/s (dust)
+---@field surface_friction number friction of what the tyre touches (terrain drag map or body)
+---@field spin number wheel angular velocity, rad/s (+ rolling forward)
+---@field steer number steering angle, rad (+ to the left)
+---@field spring_length number hub below full bump, m (0..travel)
+---@field position Vec3 hub, world, m
+---@field radius number m
+
+---@class VehicleTelemetry
+---@field speed number m/s along the forward axis
+---@field rpm number engine, rpm
+---@field gear integer engaged gear
+---@field shifting boolean clutch open for a gear change
+---@field engine_torque number at the crank, N m (negative: engine braking)
+---@field drive_torque number at the wheels, N m, total
+---@field wheels WheelTelemetry[] axle by axle, left then right
 
 ---Fields shared by world.box, world.sphere, world.capsule and world.plane.
 ---Unknown fields are refused, so a typo is an error, not a silent default.
@@ -355,6 +731,8 @@ function Trigger:count() end
 ---@class Scenario
 ---@field title string shown in the window title and the HUD
 ---@field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
+---@field joint_solver string "lagrange" (default; formulation A, Lagrange multipliers before the step) or "impulse" (formulation B, impulses solved with the contacts); --set physics.joint_solver=... overrides it
+---@field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
 ---@field on_start fun(ctx: Ctx) called once before the first step
 ---@field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 ---@field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
@@ -386,6 +764,71 @@ function camera.set_mode(mode, options) end
 
 ---@return string # the mode last set by camera.set_mode ("orbit" before any)
 function camera.mode() end
+
+---Mass-spring ropes and cloth. Each is stepped with implicit (backward)
+---Euler, one linearised step per substep solved by sparse conjugate
+---gradients (Baraff & Witkin), so stiff springs stay stable at 60 Hz.
+---They collide with the ground, static and kinematic shapes and the
+---terrain (one way: bodies do not feel them), and are drawn as lines.
+---Particle indices start at 1; cloth particle (col, row) is
+---row * columns + col + 1 with col, row from 0 (see Deformable:index).
+deformable = {}
+
+---A rope: a chain of springs between equal particles.
+---
+---```lua
+---local rope = deformable.rope{from = {0, 4, 0}, to = {3, 4, 0}, segments = 30, mass = 1.5}
+---```
+---@param def RopeDef
+---@return Deformable # the rope
+function deformable.rope(def) end
+
+---A cloth: a grid of particles with structural, shear and bend springs.
+---
+---```lua
+---local flag = deformable.cloth{origin = {0, 4, 0}, u = {0, -1, 0}, v = {1.5, 0, 0}, wind = {0, 0, 8}}
+---```
+---@param def ClothDef
+---@return Deformable # the cloth
+function deformable.cloth(def) end
+
+---Particle emitters: dust, smoke, fire, rain, sparks ... Each is defined in
+---a mod's emitters/NAME.lua (fields in docs/emitters.md) and spawned here,
+---at a point or attached to a body. Particles are simulated after physics
+---every step and drawn as camera-facing billboards; they never push bodies.
+particles = {}
+
+---Starts an emitter from a definition file. It runs until :stop() (or its
+---`duration` runs out) and :remove(). Fields in `overrides` replace the
+---file's (same names and units, e.g. {rate = 0, color = {1, 0, 0}}).
+---
+---```lua
+---local smoke = particles.spawn("base:smoke", {position = {0, 0.5, 0}})
+---local dust = particles.spawn("base:dust", {body = car, offset = {0.8, -0.3, 1.2}}, {rate = 0})
+---dust:set_rate(40 * slip)   -- per step, from the wheel's slip
+---```
+---@param name string "mod:name" (mods/<mod>/emitters/<name>.lua), or "name" (this mod, then base)
+---@param at EmitterAt {position = {x, y, z}} or {body = b, offset = {x, y, z}}
+---@param overrides? table emitter fields to change for this emitter
+---@return Emitter # the emitter
+function particles.spawn(name, at, overrides) end
+
+---A one-shot: `count` particles at once, then the emitter stops and frees
+---itself when they are gone (sparks from an impact). The definition's own
+---rate and bursts are not used.
+---
+---```lua
+---particles.burst("base:sparks", 40, {position = point})
+---```
+---@param name string "mod:name" or "name", as for particles.spawn
+---@param count integer particles to emit (>= 0)
+---@param at EmitterAt where, as for particles.spawn
+---@param overrides? table emitter fields to change
+---@return Emitter # the emitter (alive until its last particle dies)
+function particles.burst(name, count, at, overrides) end
+
+---@return integer # live particles of every emitter (0 before the first spawn)
+function particles.count() end
 
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
@@ -540,6 +983,25 @@ function input.pointer() end
 ---@return Vec3? # unit direction
 function input.pointer_ray() end
 
+---Generic ODE systems for reduced-coordinate (Lagrangian) models: write
+---the state vector and its derivative in Lua, pick an integrator, step it.
+---Computed in double. Draw the result with kinematic bodies
+---(Body:set_position) or draw_line.
+ode = {}
+
+---A system y' = f(t, y) stepped in double by a numerics integrator.
+---
+---```lua
+---local osc = ode.system{state = {1, 0}, method = "verlet",
+---  derivative = function(t, y) return {y[2], -4 * y[1]} end}
+---```
+---@param def OdeSystemDef
+---@return OdeSystem # the system
+function ode.system(def) end
+
+---@return string[] # every integrator name, in report order
+function ode.methods() end
+
 ---Deterministic random numbers. `random.new(seed)` makes an independent
 ---generator; the functions random.float, random.int, random.normal,
 ---random.chance and random.pick use the scenario's own generator, seeded
@@ -586,6 +1048,29 @@ function random.chance(p) end
 ---@param list table a non-empty sequence
 ---@return any
 function random.pick(list) end
+
+---Per-mod save data as JSON in the user's data folder ($TUMBLE_SAVE_DIR,
+---else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves), one
+---folder per mod, written atomically.
+save = {}
+
+---
+---```lua
+---local best = (save.read("time_trial") or {}).best_s
+---```
+---@param name string 1 to 64 letters, digits, '_' or '-'
+---@return table? # the saved table, or nil when nothing was saved yet
+---@return string? # why it could not be read (a broken file), else nil
+function save.read(name) end
+
+---Saves a table (strings, numbers, booleans, nested tables) atomically.
+---
+---```lua
+---save.write("time_trial", {best_s = 61.4, car = "base:buggy"})
+---```
+---@param name string 1 to 64 letters, digits, '_' or '-'
+---@param data table what to save (at most 1 MB as JSON)
+function save.write(name, data) end
 
 ---The height map a scenario builds in `terrain.build(map)`, before
 ---on_start. It starts flat at 0, `terrain.size` samples per side. Positions
@@ -754,6 +1239,37 @@ function tune.choice(name, default, opts) end
 ---@return number|boolean|string # the live value
 function tune.get(name) end
 
+---Wheeled vehicles. Definitions live in mods/<mod>/vehicles/<name>.lua
+---(docs/vehicles.md lists every field with its unit); controllers (an
+---automatic gearbox, traction control, an autopilot, the player) are Lua
+---in scripts/tumble/drive.lua and run at the fixed rate; suspension, tyres
+---and drivetrain run in C++ in every physics substep.
+vehicle = {}
+
+---Creates a vehicle from a definition file.
+---
+---```lua
+---local car = vehicle.spawn("base:buggy", {position = {0, 0, 10}, heading = math.pi / 2})
+---```
+---@param name string "mod:vehicle", e.g. "base:hatchback"
+---@param opts? VehicleSpawn where and which way
+---@return Vehicle # the new vehicle
+function vehicle.spawn(name, opts) end
+
+---The definition of a vehicle as a table in the file's format (every
+---field filled in), e.g. to read its parameters or to tune a copy.
+---@param name string "mod:vehicle"
+---@return VehicleDefinition # the definition
+function vehicle.definition(name) end
+
+---The terrain under (x, z): its height and its friction (the drag map:
+---mud 0.3, grass 0.6, rock 0.8). Nothing when there is no terrain there.
+---@param x number m
+---@param z number m
+---@return number? # height, m
+---@return number? # friction coefficient
+function vehicle.surface(x, z) end
+
 ---The physics world of the scenario: create and remove bodies, set gravity,
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.
 world = {}
@@ -783,6 +1299,23 @@ function world.add_static_model(path, def) end
 ---@param options? table {density = kg/m^3 (default 1000), scale = number or {x, y, z} (default 1)}
 ---@return MeshMassProperties # the mass properties
 function world.model_mass_properties(path, options) end
+
+---An applied spring-damper between centres of mass (no torque). Stiff
+---springs (k/m of 1e5 and more at 60 Hz) need an implicit integrator:
+---integrator = "sdirk2" in the scenario, or --integrator sdirk2; with the
+---default symplectic Euler they blow up (the body is frozen and counted
+---in the report's nan_events).
+---
+---```lua
+---world.spring{a = bob, anchor = {0, 5, 0}, stiffness = 400, damping = 2}
+---```
+---@param def SpringDef
+---@return integer # the spring's id (for world.remove_spring)
+function world.spring(def) end
+
+---@param id integer what world.spring returned
+---@return boolean # true if the spring was still there
+function world.remove_spring(id) end
 
 ---Creates a box.
 ---
@@ -912,6 +1445,13 @@ function world.raycast_all(origin, dir, max_distance) end
 ---@param body Body the body to remove
 ---@return boolean # true if the body was removed now, false if it was already gone
 function world.remove(body) end
+
+---Draws a line this frame (cleared before each on_update): a rod, a
+---wire, a trajectory. At most 65536 lines per frame.
+---@param a Vec3Arg one end (m)
+---@param b Vec3Arg the other end (m)
+---@param color? Vec3Arg linear RGB 0..1 (default yellow)
+function draw_line(a, b, color) end
 
 ---Creates the default human (11 parts, 10 joints; Winter's anthropometric
 ---table, see ragdoll.cpp) with its feet at `position` when standing.

@@ -193,10 +193,11 @@ Effects.__index = Effects
 --           (surface friction < 0.7) twice that, 0 without contact
 --   smoke = opts.smoke_idle (default 4) + opts.smoke_throttle (default 60)
 --           * throttle * rpm / max_rpm
--- When the particles module exists (a global `particles`), update() spawns
--- "base:dust" at each wheel and "base:exhaust" at the back once, and sets
--- their rates every step; without it, update() only computes self.dust[i]
--- and self.smoke (scenarios and tests read them).
+-- update() spawns "base:dust" at each wheel's contact patch and
+-- "base:exhaust" at the back once, and sets their rates (and the dust
+-- positions) every step; self.dust[i] and self.smoke hold the rates
+-- (scenarios and tests read them). Without a particles module (a build
+-- without it) only the rates are computed.
 function drive.effects(car, opts)
   opts = opts or {}
   local def = car:definition()
@@ -215,12 +216,19 @@ function Effects:update(dt)
   self.smoke = self.smoke_idle + self.smoke_throttle * car:controls().throttle * t.rpm / self.max_rpm
   if type(particles) == "table" and particles.spawn then
     if not self.emitters then
-      self.emitters = {exhaust = particles.spawn("base:exhaust", {body = car:body(), offset = {0.3, -0.2, self.rear}})}
+      self.emitters = {exhaust = particles.spawn("base:exhaust", {body = car:body(), offset = {0.3, -0.2, self.rear}},
+                                                 {rate = 0})}
       for i, w in ipairs(t.wheels) do
-        self.emitters[i] = particles.spawn("base:dust", {body = car:body(), offset = {0, 0, 0}})
+        self.emitters[i] = particles.spawn("base:dust", {position = w.position}, {rate = 0})
       end
     end
-    for i = 1, #t.wheels do self.emitters[i]:set_rate(self.dust[i]) end
+    -- Dust rises where the tyre meets the ground (world space, moved each
+    -- step, so it passes on the wheel's velocity and stays behind the car).
+    for i, w in ipairs(t.wheels) do
+      local p = w.position
+      self.emitters[i]:set_position({p.x, p.y - w.radius, p.z})
+      self.emitters[i]:set_rate(self.dust[i])
+    end
     self.emitters.exhaust:set_rate(self.smoke)
   end
 end
@@ -236,10 +244,16 @@ function drive.show(car)
     camera.set_mode("chase", {target = car:body()})
     done = done + 1
   end
-  local mesh = car:definition().chassis.mesh
+  local def = car:definition()
+  local mesh = def.chassis.mesh
   local body = car:body()
   if mesh and body.set_model then
-    body:set_model(mesh)
+    -- The shipped models stand on their origin (the ground) with the front
+    -- along +Z; the body's frame is the centre of mass. Put the model's
+    -- ground where the tyres touch it at rest.
+    local com, axle = def.chassis.com, def.axles[1]
+    local ground = axle.position[2] - axle.suspension.rest_length - axle.radius
+    body:set_model(mesh, {offset = {-com[1], ground - com[2], -com[3]}})
     done = done + 1
   end
   return done
