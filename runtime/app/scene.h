@@ -42,6 +42,8 @@ class Scene {
   script::ScenarioHost& host() { return *m_host; }
   const script::ScenarioHost& host() const { return *m_host; }
   const SceneOptions& options() const { return m_options; }
+  /// The fixed step now (s): --dt, or what the script asked for (world.set_dt).
+  double dt_s() const { return m_host->requestedDt_s() > 0 ? m_host->requestedDt_s() : m_options.dt_s; }
   std::string name() const { return m_modName + ":" + m_scenarioName; }
   std::vector<std::string> subsystems() const;
   void noteSubsystem(const std::string& name) { m_extraSubsystems.push_back(name); }

@@ -13,14 +13,16 @@ namespace tumble::app {
 namespace {
 
 // One fixed step: the scenario's on_update, then physics.
+// The step length can change while running (world.set_dt): read it per step.
 void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   Stopwatch sw;
-  scene.host().update(time_s, scene.options().dt_s, step);
+  const double dt = scene.dt_s();
+  scene.host().update(time_s, dt, step);
   double script = sw.seconds();
-  scene.world().step(Real(scene.options().dt_s));
+  scene.world().step(Real(dt));
   double physics = sw.seconds() - script;
   // Contact events and trigger volumes (no Lua call when nothing listens).
-  scene.host().afterStep(time_s + scene.options().dt_s, step);
+  scene.host().afterStep(time_s + dt, step);
   double total = sw.seconds();
   t.script_s += total - physics;
   t.physics_s += physics;
@@ -136,14 +138,23 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     t.render_s += sw.seconds();
   };
   double time_s = 0;
-  for (long long i = 0; i < steps; ++i) {
+  // Time is base + (steps since the last dt change) * dt, so that without a
+  // change it is exactly (i + 1) * dt as before. With --seconds (or the
+  // scenario's duration) a changed dt still ends the run at that time.
+  const double endTime_s = double(steps) * dt;
+  double baseTime_s = 0, stepDt = dt;
+  long long baseStep = 0, done = 0;
+  for (long long i = 0; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
     if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
+    if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
     fixedStep(scene, time_s, i, t);
-    time_s = double(i + 1) * dt;
+    time_s = baseTime_s + double(i + 1 - baseStep) * stepDt;
+    done = i + 1;
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
     if (const physics::JointSystem* joints = scene.host().jointsIfAny())
       counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
   }
+  steps = done;
   if (renderer && !shotTaken) takeShot(time_s);
   {
     Stopwatch sw;
@@ -250,19 +261,20 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     last = now;
     if (!controls.paused) accumulator += elapsed * controls.timeScale;
     if (controls.stepOnce) {
-      accumulator += dt;
+      accumulator += scene.dt_s();
       controls.stepOnce = false;
     }
     frame = RunTimings{};
-    while (accumulator >= dt) {
+    while (accumulator >= scene.dt_s()) {  // the step may change while playing (world.set_dt)
+      const double h = scene.dt_s();
       scene.savePreviousState();
       fixedStep(scene, time_s, step, frame);
       ++step;
-      time_s = double(step) * dt;
-      accumulator -= dt;
+      time_s += h;
+      accumulator -= h;
     }
     if (renderer.camera().mode == render::CameraMode::Follow) renderer.camera().target = dynamicCentroid(scene);
-    scene.snapshot(snap, accumulator / dt);
+    scene.snapshot(snap, accumulator / scene.dt_s());
     snap.simTime_s = time_s;
     std::string shot;
     if (controls.screenshotRequested) {

@@ -116,6 +116,13 @@ class ScenarioHost {
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
+  /// Switches the joint formulation (world.set_joint_solver), also while running.
+  void setJointSolver(bool impulse);
+  /// The fixed step (s): the app's, or what world.set_dt asked for (the app
+  /// reads requestedDt_s() before every step; 0 = no request).
+  double dt_s() const { return m_requestedDt_s > 0 ? m_requestedDt_s : m_dt_s; }
+  void requestDt(double dt_s) { m_requestedDt_s = dt_s; }
+  double requestedDt_s() const { return m_requestedDt_s; }
   /// "lagrange" or "impulse": the formulation joints() uses (the report's joint_solver).
   const char* jointSolverName() const { return m_impulseJoints ? "impulse" : "lagrange"; }
   const ModInfo& mod() const { return m_mod; }
@@ -215,6 +222,8 @@ class ScenarioHost {
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
+  double m_dt_s = 1.0 / 60.0;       ///< the step of the last update()
+  double m_requestedDt_s = 0;       ///< world.set_dt, 0 = none
   bool m_impulseJoints = false;  ///< joints() uses formulation B (joint_solver / --set physics.joint_solver)
 };
 
@@ -231,5 +240,7 @@ void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);
 /// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
 void openRagdollBindings(lua_State* L, int envIndex);
+/// world.joint, world.grab, ... and the Joint type (bind_joint.cpp); after openWorldBindings.
+void openJointBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

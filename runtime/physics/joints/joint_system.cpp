@@ -283,6 +283,25 @@ const JointDef& JointSystem::jointDef(JointId id) const {
   TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
   return m_slots[id.index].def;
 }
+bool JointSystem::setMotor(JointId id, Real speed_radps, Real maxTorque_Nm) {
+  if (!isValid(id) || !std::isfinite(speed_radps) || !std::isfinite(maxTorque_Nm) || maxTorque_Nm < 0) return false;
+  JointDef& d = m_slots[id.index].def;
+  d.enableMotor = maxTorque_Nm > 0;
+  d.motorSpeed_radps = speed_radps;
+  d.maxMotorTorque_Nm = maxTorque_Nm;
+  if (m_world.isValid(d.bodyA)) m_world.wake(d.bodyA);
+  return true;
+}
+
+bool JointSystem::setWorldAnchor(JointId id, const Vec3& anchor_m) {
+  if (!isValid(id) || !anchor_m.allFinite()) return false;
+  JointDef& d = m_slots[id.index].def;
+  if (!d.bodyB.isNull()) return false;
+  d.localAnchorB_m = anchor_m;
+  if (m_world.isValid(d.bodyA)) m_world.wake(d.bodyA);
+  return true;
+}
+
 Vec3 JointSystem::lastForce_N(JointId id) const {
   TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
   return m_slots[id.index].force_N;
@@ -369,10 +388,10 @@ double JointSystem::swingAngle_rad(JointId id) const {
   return std::acos(c);
 }
 
-double JointSystem::anchorError_m() const {
+double JointSystem::anchorError_m(bool includeSprings) const {
   double worst = 0;
   for (const Slot& s : m_slots) {
-    if (!s.alive || !m_world.isValid(s.def.bodyA)) continue;
+    if (!s.alive || !m_world.isValid(s.def.bodyA) || (!includeSprings && s.def.linearStiffness_Npm > 0)) continue;
     const Body& a = m_world.body(s.def.bodyA);
     V3 pa = wide3(a.position_m) + (a.orientation * s.def.localAnchorA_m).cast<double>();
     V3 pb = wide3(s.def.localAnchorB_m);
@@ -386,7 +405,8 @@ double JointSystem::anchorError_m() const {
   return worst;
 }
 
-void JointSystem::measureError() { m_maxAnchorError_m = std::max(m_maxAnchorError_m, anchorError_m()); }
+// Springs (grabs among them) stretch by design: not an error.
+void JointSystem::measureError() { m_maxAnchorError_m = std::max(m_maxAnchorError_m, anchorError_m(false)); }
 
 // ---- elimination order ---------------------------------------------------------------
 
