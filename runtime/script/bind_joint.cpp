@@ -169,7 +169,7 @@ int worldJoint(lua_State* L) {
 /// @param body Body a dynamic body
 /// @param local_point Vec3Arg the grabbed point in the body's frame (from its centre of mass), m
 /// @param target Vec3Arg where the point is pulled to, world, m
-/// @param hertz? number spring frequency, Hz (default 4); damping is critical
+/// @param hertz? number spring frequency, Hz (default 4); damping ratio 0.5 at the centre of mass
 /// @return Joint the grab (a Joint: set_target, release, force)
 /// @example local g = world.grab(crate, {0, 0.5, 0}, {0, 3, 0})
 /// @example g:set_target({2, 3, 0})
@@ -182,14 +182,7 @@ int worldGrab(lua_State* L) {
   if (!(hz > 0 && hz <= 60)) throw LuaArgError("world.grab: hertz must be in (0, 60]");
   const physics::Body& b = host.world().body(body);
   if (b.type != physics::BodyType::Dynamic) throw LuaArgError("world.grab: the body must be dynamic");
-  physics::JointDef d;
-  d.type = physics::JointType::Ball;
-  d.bodyA = body;
-  d.localAnchorA_m = local;
-  d.localAnchorB_m = target;
-  const double omega = 2 * M_PI * hz;
-  d.linearStiffness_Npm = Real(b.mass_kg * omega * omega);
-  d.linearDamping_Nspm = Real(2 * b.mass_kg * omega);
+  const physics::JointDef d = physics::makeGrabDef(host.world(), body, local, target, Real(hz));
   auto id = host.joints().createJoint(d);
   if (!id) throw LuaArgError("world.grab: " + id.error());
   host.world().wake(body);

@@ -499,7 +499,7 @@ function world.joint(def) end
 ---@param body Body a dynamic body
 ---@param local_point Vec3Arg the grabbed point in the body's frame (from its centre of mass), m
 ---@param target Vec3Arg where the point is pulled to, world, m
----@param hertz? number spring frequency, Hz (default 4); damping is critical
+---@param hertz? number spring frequency, Hz (default 4); damping ratio 0.5 at the centre of mass
 ---@return Joint # the grab (a Joint: set_target, release, force)
 function world.grab(body, local_point, target, hertz) end
 
