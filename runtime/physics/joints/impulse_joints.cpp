@@ -174,20 +174,25 @@ struct Ctx {
   Vel& v;
   Real& change;  ///< sum of squared impulse changes
   Real& total;   ///< sum of squared accumulated impulses
-  void linear(const Side& sa, const Side& sb, const Vec3& P) {
+  // Inlined by hand (always_inline): three calls per joint and sweep, in
+  // the hot loop; as calls they cost 8% of ragdolls_100 (perf).
+  [[gnu::always_inline]] void linear(const Side& sa, const Side& sb, const Vec3& P) {
     v.vA -= j.mA * P;
     v.wA -= j.iA * sa.r.cross(P);
     v.vB += j.mB * P;
     v.wB += j.iB * sb.r.cross(P);
   }
-  void angular(const Vec3& L) {
+  [[gnu::always_inline]] void angular(const Vec3& L) {
     v.wA -= j.iA * L;
     v.wB += j.iB * L;
   }
   /// One inequality row about axis n (impulse +n lambda on B), lambda >= 0.
-  void limit(const Vec3& n, Real k, Real C, Real cdot, Real& acc, bool useBias, Real invH, Real biasRate,
-             Real massScale, Real impulseScale) {
+  [[gnu::always_inline]] void limit(const Vec3& n, Real k, Real C, Real cdot, Real& acc, bool useBias, Real invH,
+                                    Real biasRate, Real massScale, Real impulseScale) {
     if (!(k > 0)) return;
+    // Ahead of its stop and not closing the gap within this substep: no
+    // impulse (the speculative row would compute zero), none to take back.
+    if (C > 0 && acc == 0 && cdot * (1 / invH) + C >= 0) return;
     Real bias = 0, ms = 1, is = 0;
     if (C > 0) bias = C * invH;  // speculative: may close the gap in this substep
     else if (useBias) bias = biasRate * C, ms = massScale, is = impulseScale;
