@@ -18,6 +18,8 @@ local ANGLE = math.rad(60)
 local scenario = {
   title = "Chain: N links swinging from a world anchor",
   duration = 6,  -- seconds, when run without --seconds/--steps
+  -- Joints solved with the contacts (formulation B); --set physics.joint_solver=lagrange tries A.
+  joint_solver = "impulse",
   actions = {},
 }
 

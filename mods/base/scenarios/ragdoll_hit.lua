@@ -12,6 +12,8 @@
 local scenario = {
   title = "Rag-doll hit by a heavy box",
   duration = 5,  -- seconds, when run without --seconds/--steps
+  -- Joints solved with the contacts (formulation B); --set physics.joint_solver=lagrange tries A.
+  joint_solver = "impulse",
 }
 
 local doll, box

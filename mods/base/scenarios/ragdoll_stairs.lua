@@ -13,6 +13,8 @@ local RISE, TREAD, WIDTH = 0.3, 0.45, 2.0  -- m
 local scenario = {
   title = "Rag-doll down the stairs",
   duration = 10,  -- seconds, when run without --seconds/--steps
+  -- Joints solved with the contacts (formulation B); --set physics.joint_solver=lagrange tries A.
+  joint_solver = "impulse",
 }
 
 local doll
