@@ -655,8 +655,9 @@ physics::JointSystem& ScenarioHost::joints() {
     // position projection fights the contacts: parts keep moving at
     // ~0.3 m/s); see JointSettings::projectPositions. Measured limit of A
     // (issue 4, second session): a free chain whose links do not collide
-    // with each other blows up under A at 60 Hz with either projection and
-    // any Baumgarte gains tried; formulation B holds it (base:chain).
+    // with each other blows up under A with the World's 8 substeps, with
+    // either projection and any Baumgarte gains tried, but holds with 1
+    // substep; formulation B holds it (base:chain).
     physics::JointSettings js;
     js.projectPositions = false;
     js.solver = m_impulseJoints ? physics::JointSolverKind::Impulse : physics::JointSolverKind::Lagrange;
