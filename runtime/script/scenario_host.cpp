@@ -656,8 +656,9 @@ physics::JointSystem& ScenarioHost::joints() {
     // ~0.3 m/s); see JointSettings::projectPositions. Measured limit of A
     // (issue 4, second session): a free chain whose links do not collide
     // with each other blows up under A with the World's 8 substeps, with
-    // either projection and any Baumgarte gains tried, but holds with 1
-    // substep; formulation B holds it (base:chain).
+    // either projection and any Baumgarte gains tried (with 1 substep a
+    // 60-degree release holds, a horizontal one does not); formulation B
+    // holds it (base:chain).
     physics::JointSettings js;
     js.projectPositions = false;
     js.solver = m_impulseJoints ? physics::JointSolverKind::Impulse : physics::JointSolverKind::Lagrange;
