@@ -168,6 +168,7 @@ struct BodyState {
   M3 R = M3::Identity(), invI = M3::Zero();
   V3 Qf = V3::Zero(), Qt = V3::Zero();  ///< applied force / torque incl. gravity, gyroscopic, springs
   V3 Fc = V3::Zero(), Tc = V3::Zero();  ///< constraint force / torque (result)
+  V3 Tm = V3::Zero();  ///< hinge motor torque (an applied torque the World does not know)
 };
 
 struct Row {
@@ -687,6 +688,7 @@ static void deriveStates(std::vector<BodyState>& states, const JointSettings& js
     if (includeExternal) s.Qf += s.extForce, s.Qt += s.extTorque;
     s.Fc.setZero();
     s.Tc.setZero();
+    s.Tm.setZero();
   }
 }
 
@@ -706,8 +708,10 @@ static void addMotorTorques(const Evaluation& ev, std::vector<BodyState>& st, co
     if (!(kinv > 0)) continue;
     const double maxT = d.maxMotorTorque_Nm;
     const double tau = std::clamp((d.motorSpeed_radps - (wB - wA).dot(a1)) / kinv * js.damping_per_s, -maxT, maxT);
-    if (A && A->dynamic) A->Qt -= tau * a1;
-    if (B && B->dynamic) B->Qt += tau * a1;
+    // In Q (the rows see it; integrateFree integrates Q) and in Tm, which
+    // applyConstraintForces applies with the constraint torque.
+    if (A && A->dynamic) A->Qt -= tau * a1, A->Tm -= tau * a1;
+    if (B && B->dynamic) B->Qt += tau * a1, B->Tm += tau * a1;
   }
 }
 
@@ -929,11 +933,11 @@ void JointSystem::applyConstraintForces() {
   std::vector<JointBreakEvent> events = solveConstraints(im, m_settings, g, true, m_stats);
   recordForces();
   for (const BodyState& s : im.states) {
-    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0)) continue;
+    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0 && s.Tm.squaredNorm() == 0)) continue;
     // wake = false: the joint forces alone must not keep an island awake
     // (they never vanish on a resting rag-doll: gravity keeps them busy).
     m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>(), false);
-    m_world.applyTorque(s.id, s.Tc.cast<Real>(), false);
+    m_world.applyTorque(s.id, (s.Tc + s.Tm).cast<Real>(), false);
   }
   finishBreaks(events);
   m_stats.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
