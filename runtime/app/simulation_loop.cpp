@@ -219,9 +219,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     long long steps = std::llround(seconds / dt);
     Stopwatch wall;
     for (; step < steps; ++step) {
+      const double h = scene.dt_s();  // world.set_dt may change it
       scene.savePreviousState();
       fixedStep(scene, time_s, step, total);
-      time_s = double(step + 1) * dt;
+      time_s = h == dt ? double(step + 1) * dt : time_s + h;
     }
     double simWall = wall.seconds();
     frameCamera(scene, renderer.camera());
