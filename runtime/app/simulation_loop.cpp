@@ -218,11 +218,13 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     double seconds = std::min(o.offscreenSeconds, scene.host().duration_s());
     long long steps = std::llround(seconds / dt);
     Stopwatch wall;
+    bool dtChanged = false;
     for (; step < steps; ++step) {
       const double h = scene.dt_s();  // world.set_dt may change it
+      dtChanged = dtChanged || h != dt;
       scene.savePreviousState();
       fixedStep(scene, time_s, step, total);
-      time_s = h == dt ? double(step + 1) * dt : time_s + h;
+      time_s = dtChanged ? time_s + h : double(step + 1) * dt;
     }
     double simWall = wall.seconds();
     frameCamera(scene, renderer.camera());
