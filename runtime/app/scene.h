@@ -54,6 +54,8 @@ class Scene {
   input::InputSystem& input() { return *m_input; }
   const script::ScenarioHost& host() const { return *m_host; }
   const SceneOptions& options() const { return m_options; }
+  /// The fixed step now (s): --dt, or what the script asked for (world.set_dt).
+  double dt_s() const { return m_host->requestedDt_s() > 0 ? m_host->requestedDt_s() : m_options.dt_s; }
   std::string name() const { return m_modName + ":" + m_scenarioName; }
   /// The integrator the world runs (the run report's `integrator`).
   std::string integratorName() const { return physics::bodyIntegratorName(m_world->settings().integrator); }

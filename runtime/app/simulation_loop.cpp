@@ -37,24 +37,26 @@ void stepParticles(Scene& scene, RunTimings& t) {
                        b.linearVelocity_mps.cast<float>(), b.angularVelocity_radps.cast<float>());
   });
   ps->setGravity(world.settings().gravity_mps2.cast<float>());
-  ps->step(float(scene.options().dt_s));
+  ps->step(float(scene.dt_s()));
   t.particles_s += sw.seconds();
 }
 
 // One fixed step: the scenario's on_update, then physics, then particles.
+// The step length can change while running (world.set_dt): read it per step.
 void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
   Stopwatch sw;
+  const double dt = scene.dt_s();
   scene.input().step();  // the actions every script reads in this step
   const std::size_t statics = scene.host().presentation().statics.size();
-  scene.host().update(time_s, scene.options().dt_s, step);
+  scene.host().update(time_s, dt, step);
   // Static models placed during play go into the terrain's tree too.
   if (scene.host().presentation().statics.size() != statics) scene.registerStaticObjects();
   double script = sw.seconds();
-  scene.world().step(Real(scene.options().dt_s));
-  scene.stepDeformables(Real(scene.options().dt_s));
+  scene.world().step(Real(dt));
+  scene.stepDeformables(Real(dt));
   double physics = sw.seconds() - script;
   // Contact events and trigger volumes (no Lua call when nothing listens).
-  scene.host().afterStep(time_s + scene.options().dt_s, step);
+  scene.host().afterStep(time_s + dt, step);
   double total = sw.seconds();
   t.script_s += total - physics;
   t.physics_s += physics;
@@ -194,15 +196,24 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
     t.render_s += sw.seconds();
   };
   double time_s = 0;
-  for (long long i = 0; i < steps; ++i) {
+  // Time is base + (steps since the last dt change) * dt, so that without a
+  // change it is exactly (i + 1) * dt as before. With --seconds (or the
+  // scenario's duration) a changed dt still ends the run at that time.
+  const double endTime_s = double(steps) * dt;
+  double baseTime_s = 0, stepDt = dt;
+  long long baseStep = 0, done = 0;
+  for (long long i = 0; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
     if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
+    if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
     fixedStep(scene, time_s, i, t);
-    time_s = double(i + 1) * dt;
+    time_s = baseTime_s + double(i + 1 - baseStep) * stepDt;
+    done = i + 1;
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
     if (const physics::JointSystem* joints = scene.host().jointsIfAny())
       counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
     counts.particlesMax = std::max(counts.particlesMax, particleCount(scene));
   }
+  steps = done;
   if (renderer && !shotTaken) takeShot(time_s);
   {
     Stopwatch sw;
@@ -268,10 +279,13 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     double seconds = std::min(o.offscreenSeconds, scene.host().duration_s());
     long long steps = std::llround(seconds / dt);
     Stopwatch wall;
+    bool dtChanged = false;
     for (; step < steps; ++step) {
+      const double h = scene.dt_s();  // world.set_dt may change it
+      dtChanged = dtChanged || h != dt;
       scene.savePreviousState();
       fixedStep(scene, time_s, step, total);
-      time_s = double(step + 1) * dt;
+      time_s = dtChanged ? time_s + h : double(step + 1) * dt;
     }
     double simWall = wall.seconds();
     frameCamera(scene, renderer.camera());
@@ -335,23 +349,24 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     last = now;
     if (!controls.paused) accumulator += elapsed * controls.timeScale;
     if (controls.stepOnce) {
-      accumulator += dt;
+      accumulator += scene.dt_s();
       controls.stepOnce = false;
     }
     frame = RunTimings{};
-    while (accumulator >= dt) {
+    while (accumulator >= scene.dt_s()) {  // the step may change while playing (world.set_dt)
+      const double h = scene.dt_s();
       scene.savePreviousState();
       fixedStep(scene, time_s, step, frame);
       ++step;
-      time_s = double(step) * dt;
-      accumulator -= dt;
+      time_s += h;
+      accumulator -= h;
     }
-    director.update(scene, accumulator / dt, float(elapsed), renderer.camera());
+    director.update(scene, accumulator / scene.dt_s(), float(elapsed), renderer.camera());
     if (!director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
       renderer.camera().target = dynamicCentroid(scene);
     }
-    scene.snapshot(snap, accumulator / dt);
-    director.decorate(scene, accumulator / dt, renderer.camera(), snap);
+    scene.snapshot(snap, accumulator / scene.dt_s());
+    director.decorate(scene, accumulator / scene.dt_s(), renderer.camera(), snap);
     snap.simTime_s = time_s;
     std::string shot;
     if (controls.screenshotRequested) {

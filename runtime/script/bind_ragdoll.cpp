@@ -58,11 +58,11 @@ int spawnRagdoll(lua_State* L) {
 }
 
 /// @function joints_error
-/// @return number the largest joint anchor separation now (m), 0 without joints
+/// @return number the largest joint anchor separation now (m), 0 without joints; springs (grabs) do not count
 /// @return number the largest seen since the start (m)
 int jointsError(lua_State* L) {
   physics::JointSystem* j = ScenarioHost::from(L)->jointsIfAny();
-  lua_pushnumber(L, j ? j->anchorError_m() : 0.0);
+  lua_pushnumber(L, j ? j->anchorError_m(false) : 0.0);
   lua_pushnumber(L, j ? j->maxAnchorError_m() : 0.0);
   return 2;
 }

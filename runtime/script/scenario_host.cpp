@@ -487,6 +487,7 @@ void ScenarioHost::buildEnvironment() {
   openDeformableBindings(L, env);
   openOdeBindings(L, env);
   openSpringBindings(L, env);
+  openJointBindings(L, env);
   lua_pushvalue(L, env);
   lua_setfield(L, env, "_G");
   guardTable(L, env, std::begin(kForbiddenGlobals), std::end(kForbiddenGlobals));
@@ -830,6 +831,7 @@ void ScenarioHost::start() {
 void ScenarioHost::update(double time_s, double dt_s, std::int64_t step) {
   m_now_s = time_s;
   m_scriptLines.clear();
+  m_dt_s = dt_s;
   if (!m_timers.empty() && m_timers.front().due_s <= time_s + 1e-9) runTimers(time_s, dt_s, step);
   if (hasUpdate()) {
     pushCtx(time_s, dt_s, step);
@@ -852,7 +854,12 @@ physics::JointSystem& ScenarioHost::joints() {
     // Velocity-only projection: with the World's separate contact solver a
     // rag-doll lying on the ground then comes to rest and sleeps (the
     // position projection fights the contacts: parts keep moving at
-    // ~0.3 m/s); see JointSettings::projectPositions.
+    // ~0.3 m/s); see JointSettings::projectPositions. Measured limit of A
+    // (issue 4, second session): a free chain whose links do not collide
+    // with each other blows up under A with the World's 8 substeps, with
+    // either projection and any Baumgarte gains tried (with 1 substep a
+    // 60-degree release holds, a horizontal one does not); formulation B
+    // holds it (base:chain).
     physics::JointSettings js;
     js.projectPositions = false;
     js.solver = m_impulseJoints ? physics::JointSolverKind::Impulse : physics::JointSolverKind::Lagrange;
@@ -963,6 +970,12 @@ void ScenarioHost::forgetEmitterDefinitions() {
   lua_State* L = m_vm.state();
   lua_newtable(L);
   lua_rawseti(L, LUA_REGISTRYINDEX, m_emitterTablesRef);
+}
+
+void ScenarioHost::setJointSolver(bool impulse) {
+  m_impulseJoints = impulse;
+  if (m_joints)
+    m_joints->setSolver(impulse ? physics::JointSolverKind::Impulse : physics::JointSolverKind::Lagrange);
 }
 
 double ScenarioHost::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }

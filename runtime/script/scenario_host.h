@@ -230,6 +230,13 @@ class ScenarioHost {
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
+  /// Switches the joint formulation (world.set_joint_solver), also while running.
+  void setJointSolver(bool impulse);
+  /// The fixed step (s): the app's, or what world.set_dt asked for (the app
+  /// reads requestedDt_s() before every step; 0 = no request).
+  double dt_s() const { return m_requestedDt_s > 0 ? m_requestedDt_s : m_dt_s; }
+  void requestDt(double dt_s) { m_requestedDt_s = dt_s; }
+  double requestedDt_s() const { return m_requestedDt_s; }
   /// "lagrange" or "impulse": the formulation joints() uses (the report's joint_solver).
   const char* jointSolverName() const { return m_impulseJoints ? "impulse" : "lagrange"; }
   const ModInfo& mod() const { return m_mod; }
@@ -351,6 +358,8 @@ class ScenarioHost {
   std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
   Presentation m_presentation;
+  double m_dt_s = 1.0 / 60.0;       ///< the step of the last update()
+  double m_requestedDt_s = 0;       ///< world.set_dt, 0 = none
   bool m_impulseJoints = false;  ///< joints() uses formulation B (joint_solver / --set physics.joint_solver)
   std::unique_ptr<physics::DeformableSystem> m_deformables;  ///< see deformables()
   std::map<int, Eigen::Vector3f> m_deformableColors;
@@ -388,5 +397,7 @@ void openDeformableBindings(lua_State* L, int envIndex);
 void openOdeBindings(lua_State* L, int envIndex);
 /// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
 void openSpringBindings(lua_State* L, int envIndex);
+/// world.joint, world.grab, ... and the Joint type (bind_joint.cpp); after openWorldBindings.
+void openJointBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

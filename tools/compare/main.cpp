@@ -70,6 +70,7 @@ json measured(const RunResult& r) {
   // End / start; null when the scene starts at rest.
   j["kinetic_energy_ratio"] = r.kineticEnergyStart_J > 0 ? json(r.kineticEnergyEnd_J / r.kineticEnergyStart_J) : json(nullptr);
   j["sleeping_at_end"] = r.sleepingAtEnd;
+  j["joint_error_max_m"] = r.jointErrorMax_m;
   return j;
 }
 
@@ -130,7 +131,10 @@ int main(int argc, char** argv) {
   int bulletIterations = 40;
   bool noBulletDefault = false;
   bool sleep = false;
+  std::string jointSolver = "impulse";
   app.add_option("scene", sceneName, "scene name, or 'list'")->required();
+  app.add_option("--joint-solver", jointSolver, "Tumble's joint formulation for scenes with joints: impulse (B) or lagrange (A)")
+      ->check(CLI::IsMember({"impulse", "lagrange"}));
   app.add_option("--steps", steps, "steps to run (default: 300 for boxes_3000, 600 otherwise)")
       ->check(CLI::Range(1, 1000000));
   app.add_option("--dt", dt, "time step in seconds (default 1/60)")->check(CLI::PositiveNumber);
@@ -186,8 +190,9 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "tumble_compare: %s, %zu bodies, %d steps of %.6g s\n", scene.name.c_str(),
                scene.bodies.size(), steps, dt);
   std::fprintf(stderr, "  tumble ...\n");
-  json tumble = measured(runTumble(scene, steps, dt, sleep));
+  json tumble = measured(runTumble(scene, steps, dt, sleep, jointSolver));
   tumble.update(tumbleSettings(sleep));
+  if (!scene.joints.empty()) tumble["joint_solver"] = jointSolver;
   std::fprintf(stderr, "  bullet (%d iterations) ...\n", bulletIterations);
   BulletConfig peer;
   peer.iterations = bulletIterations;
@@ -201,6 +206,7 @@ int main(int argc, char** argv) {
   report["steps"] = steps;
   report["dt"] = dt;
   report["bodies"] = scene.bodies.size();
+  report["joints"] = scene.joints.size();
   report["gravity_mps2"] = {scene.gravity_mps2.x(), scene.gravity_mps2.y(), scene.gravity_mps2.z()};
   report["friction"] = scene.friction;
   report["restitution"] = scene.restitution;

@@ -34,8 +34,10 @@ struct BulletWorld {
       std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), broadphase.get(), solver.get(), config.get());
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<std::unique_ptr<btTypedConstraint>> constraints;
 
   ~BulletWorld() {
+    for (auto& c : constraints) world->removeConstraint(c.get());
     for (auto& b : bodies) world->removeRigidBody(b.get());
   }
 };
@@ -52,7 +54,9 @@ btCollisionShape* shapeFor(BulletWorld& bw, const BodySpec& s) {
         static_cast<btSphereShape*>(sh.get())->getRadius() == btScalar(s.radius_m))
       return sh.get();
   }
-  if (s.shape == BodyShape::Box)
+  if (s.shape == BodyShape::Capsule)  // not shared: rag-doll parts differ in size anyway
+    bw.shapes.push_back(std::make_unique<btCapsuleShape>(btScalar(s.radius_m), btScalar(2 * s.halfHeight_m)));
+  else if (s.shape == BodyShape::Box)
     bw.shapes.push_back(std::make_unique<btBoxShape>(
         btVector3(btScalar(s.halfExtents_m.x()), btScalar(s.halfExtents_m.y()), btScalar(s.halfExtents_m.z()))));
   else
@@ -83,6 +87,68 @@ double kineticEnergy(const BulletWorld& bw) {
   return e;
 }
 
+btTransform worldFrame(const V3& anchor, const Eigen::Quaterniond& q) {
+  btTransform t;
+  t.setOrigin(btVector3(btScalar(anchor.x()), btScalar(anchor.y()), btScalar(anchor.z())));
+  t.setRotation(btQuaternion(btScalar(q.x()), btScalar(q.y()), btScalar(q.z()), btScalar(q.w())));
+  return t;
+}
+
+/// The scene's joints as Bullet's RagdollDemo builds them: btConeTwistConstraint
+/// (twist about the frame's X, swing spans about Y and Z) and
+/// btHingeConstraint (hinge about the frame's Z). Frames are the joint frame
+/// at the start pose expressed in each body; the linked pair does not collide
+/// (addConstraint(c, true)). Differences: Bullet's twist limit is symmetric,
+/// so it gets the larger of |twist_lower| and twist_upper.
+void addJoints(BulletWorld& bw, const SceneSpec& scene) {
+  for (const JointSpec& j : scene.joints) {
+    btRigidBody& A = *bw.bodies[j.a];
+    btRigidBody& B = *bw.bodies[j.b];
+    const Eigen::Quaterniond frame = Eigen::Quaterniond::FromTwoVectors(V3::UnitX(), j.axis);
+    std::unique_ptr<btTypedConstraint> c;
+    if (j.type == JointSpec::Type::ConeTwist) {
+      const btTransform f = worldFrame(j.anchor_m, frame);
+      auto ct = std::make_unique<btConeTwistConstraint>(A, B, A.getWorldTransform().inverse() * f,
+                                                        B.getWorldTransform().inverse() * f);
+      ct->setLimit(btScalar(j.swingLimit_rad), btScalar(j.swingLimit_rad),
+                   btScalar(std::max(-j.twistLower_rad, j.twistUpper_rad)));
+      c = std::move(ct);
+    } else {
+      // Bullet's hinge axis is the frame's Z: (X', Y', Z') = (Y, Z, X) of ours,
+      // which keeps the angle's sign (both measure B relative to A).
+      Eigen::Matrix3d m;
+      const Eigen::Matrix3d F = frame.toRotationMatrix();
+      m << F.col(1), F.col(2), F.col(0);
+      const btTransform f = worldFrame(j.anchor_m, Eigen::Quaterniond(m));
+      auto h = std::make_unique<btHingeConstraint>(A, B, A.getWorldTransform().inverse() * f,
+                                                   B.getWorldTransform().inverse() * f);
+      h->setLimit(btScalar(j.lower_rad), btScalar(j.upper_rad));
+      c = std::move(h);
+    }
+    bw.world->addConstraint(c.get(), true);
+    bw.constraints.push_back(std::move(c));
+  }
+}
+
+/// Largest separation of the two frames' origins over every joint, m.
+double jointError(const BulletWorld& bw) {
+  double worst = 0;
+  for (const auto& c : bw.constraints) {
+    btTransform fa, fb;
+    if (c->getConstraintType() == CONETWIST_CONSTRAINT_TYPE) {
+      auto* ct = static_cast<const btConeTwistConstraint*>(c.get());
+      fa = ct->getRigidBodyA().getWorldTransform() * ct->getAFrame();
+      fb = ct->getRigidBodyB().getWorldTransform() * ct->getBFrame();
+    } else {
+      auto* h = static_cast<const btHingeConstraint*>(c.get());
+      fa = h->getRigidBodyA().getWorldTransform() * h->getAFrame();
+      fb = h->getRigidBodyB().getWorldTransform() * h->getBFrame();
+    }
+    worst = std::max(worst, double((fa.getOrigin() - fb.getOrigin()).length()));
+  }
+  return worst;
+}
+
 }  // namespace
 
 const char* bulletPrecision() { return sizeof(btScalar) == 4 ? "float" : "double"; }
@@ -109,6 +175,8 @@ RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletCo
     ci.m_startWorldTransform.setIdentity();
     ci.m_startWorldTransform.setOrigin(
         btVector3(btScalar(s.position_m.x()), btScalar(s.position_m.y()), btScalar(s.position_m.z())));
+    ci.m_startWorldTransform.setRotation(btQuaternion(btScalar(s.orientation.x()), btScalar(s.orientation.y()),
+                                                      btScalar(s.orientation.z()), btScalar(s.orientation.w())));
     ci.m_friction = friction;
     ci.m_restitution = restitution;
     auto body = std::make_unique<btRigidBody>(ci);
@@ -123,6 +191,8 @@ RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletCo
     bw.bodies.push_back(std::move(body));
   }
 
+  addJoints(bw, scene);
+
   RunResult r;
   r.kineticEnergyStart_J = kineticEnergy(bw);
   r.stepMs.reserve(steps);
@@ -132,6 +202,7 @@ RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletCo
     auto t1 = std::chrono::steady_clock::now();
     r.stepMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     r.penetrationMax_m = std::max(r.penetrationMax_m, deepestOverlap(*bw.dispatcher));
+    r.jointErrorMax_m = std::max(r.jointErrorMax_m, jointError(bw));
   }
   r.kineticEnergyEnd_J = kineticEnergy(bw);
   std::vector<V3> end;

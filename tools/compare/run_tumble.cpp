@@ -1,8 +1,11 @@
 // Tumble side of the comparison: the scene in a physics::World with its
 // default settings (8 substeps x (4 solve + 1 relax) iterations), gravity
-// from the scene.
+// from the scene; joints in a JointSystem (formulation B by default).
+#include <algorithm>
 #include <chrono>
+#include <memory>
 
+#include "physics/joints/joint_system.h"
 #include "physics/world.h"
 #include "scenes.h"
 
@@ -31,7 +34,7 @@ double kineticEnergy(const World& w, const std::vector<BodyId>& ids) {
 
 }  // namespace
 
-RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep) {
+RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep, const std::string& jointSolver) {
   WorldSettings settings;
   settings.gravity_mps2 = scene.gravity_mps2.cast<Real>();
   settings.enableSleep = sleep;
@@ -41,8 +44,11 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep) {
   for (const BodySpec& s : scene.bodies) {
     BodyDef def;
     def.type = s.isStatic() ? BodyType::Static : BodyType::Dynamic;
-    def.shape = s.shape == BodyShape::Box ? Shape::box(s.halfExtents_m.cast<Real>()) : Shape::sphere(Real(s.radius_m));
+    def.shape = s.shape == BodyShape::Box      ? Shape::box(s.halfExtents_m.cast<Real>())
+                : s.shape == BodyShape::Sphere ? Shape::sphere(Real(s.radius_m))
+                                               : Shape::capsule(Real(s.radius_m), Real(s.halfHeight_m));
     def.position_m = s.position_m.cast<Real>();
+    def.orientation = s.orientation.cast<Real>();
     def.linearVelocity_mps = s.velocity_mps.cast<Real>();
     def.mass_kg = Real(s.mass_kg);
     // Tumble combines sqrt(fa fb) and max(ea, eb): equal per-body values give
@@ -54,15 +60,38 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep) {
     ids.push_back(*id);
   }
 
+  // Joints (rag-dolls): the scene's joints in a JointSystem, as spawn_ragdoll builds them.
+  physics::JointSettings js;
+  js.projectPositions = false;  // what the scenario host uses for A
+  physics::parseJointSolver(jointSolver, &js.solver);
+  std::unique_ptr<physics::JointSystem> joints;
+  if (!scene.joints.empty()) joints = std::make_unique<physics::JointSystem>(world, js);
+  for (const JointSpec& j : scene.joints) {
+    const bool hinge = j.type == JointSpec::Type::Hinge;
+    physics::JointDef d = physics::makeJointDef(world, hinge ? physics::JointType::Hinge : physics::JointType::ConeTwist,
+                                                ids[j.a], ids[j.b], j.anchor_m.cast<Real>(), j.axis.cast<Real>());
+    d.enableLimit = hinge;
+    d.lowerAngle_rad = Real(j.lower_rad);
+    d.upperAngle_rad = Real(j.upper_rad);
+    d.swingLimit_rad = Real(j.swingLimit_rad);
+    d.twistLower_rad = Real(j.twistLower_rad);
+    d.twistUpper_rad = Real(j.twistUpper_rad);
+    auto id = joints->createJoint(d);
+    TUMBLE_ASSERT(id.ok(), "comparison scene joint refused by Tumble");
+    world.disableCollision(ids[j.a], ids[j.b]);
+  }
+
   RunResult r;
   r.kineticEnergyStart_J = kineticEnergy(world, ids);
   r.stepMs.reserve(steps);
   const Real h = Real(dt);
   for (int i = 0; i < steps; ++i) {
     auto t0 = std::chrono::steady_clock::now();
+    if (joints) joints->beforeWorldStep();  // as the scenario host does (A's solve; B's bookkeeping)
     world.step(h);
     auto t1 = std::chrono::steady_clock::now();
     r.stepMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (joints) r.jointErrorMax_m = std::max(r.jointErrorMax_m, joints->anchorError_m());
   }
   r.penetrationMax_m = world.errorStats().penetrationMax_m;
   r.nanEvents = world.errorStats().nanEvents;

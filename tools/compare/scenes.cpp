@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "physics/joints/ragdoll.h"
 #include "scenes.h"
 
 namespace tumble::compare {
@@ -158,6 +159,52 @@ void highspeed1000(SceneSpec& s) {
       }
 }
 
+/// 100 rag-dolls of 11 parts and 10 joints (Tumble's default human, 1.75 m,
+/// 75 kg: capsules and boxes; 8 cone-twist joints at waist, neck, shoulders
+/// and hips, 2 hinges at the knees... as physics::defaultHuman lays them
+/// out), lying face down in a 10 x 10 grid 2.5 m apart, dropped from 0.5 to
+/// 1.4 m (rows at alternating heights) onto the ground box. Bullet's own
+/// RagdollDemo builds its doll the same way (capsules, btConeTwistConstraint
+/// and btHingeConstraint).
+void ragdolls100(SceneSpec& s) {
+  s.description = "100 rag-dolls (11 parts, 10 joints each) dropped on a ground box";
+  s.friction = 0.6;
+  s.restitution = 0;
+  s.defaultSteps = 300;
+  addGroundBox(s);
+  physics::RagdollDesc desc = physics::defaultHuman(Real(1.75), Real(75));
+  const Eigen::Quaterniond lying(Eigen::AngleAxisd(M_PI / 2, V3::UnitX()));
+  for (int k = 0; k < 100; ++k) {
+    const V3 origin((k % 10 - 4.5) * 2.5, 0.5 + 0.3 * (k % 4), (k / 10 - 4.5) * 2.5 - 0.9);
+    const int first = int(s.bodies.size());
+    for (const physics::RagdollPart& p : desc.parts) {
+      BodySpec b;
+      b.shape = p.shape == physics::RagdollShape::Box ? BodyShape::Box : BodyShape::Capsule;
+      b.halfExtents_m = p.halfExtents_m.cast<double>();
+      b.radius_m = p.radius_m;
+      b.halfHeight_m = p.halfHeight_m;
+      b.mass_kg = p.mass_kg;
+      b.position_m = origin + lying * p.position_m.cast<double>();
+      b.orientation = lying * p.orientation.cast<double>();
+      s.bodies.push_back(b);
+    }
+    for (const physics::RagdollJoint& j : desc.joints) {
+      JointSpec js;
+      js.type = j.type == physics::JointType::Hinge ? JointSpec::Type::Hinge : JointSpec::Type::ConeTwist;
+      js.a = first + j.partA;
+      js.b = first + j.partB;
+      js.anchor_m = origin + lying * j.anchor_m.cast<double>();
+      js.axis = (lying * j.axis.cast<double>()).normalized();
+      js.swingLimit_rad = j.swingLimit_rad;
+      js.twistLower_rad = j.twistLower_rad;
+      js.twistUpper_rad = j.twistUpper_rad;
+      js.lower_rad = j.lowerAngle_rad;
+      js.upper_rad = j.upperAngle_rad;
+      s.joints.push_back(js);
+    }
+  }
+}
+
 struct Entry {
   const char* name;
   void (*build)(SceneSpec&);
@@ -167,6 +214,7 @@ constexpr Entry kScenes[] = {
     {"boxes_3000_stacked", boxes3000Stacked},
     {"pyramid_20", pyramid20},
     {"highspeed_1000", highspeed1000},
+    {"ragdolls_100", ragdolls100},
 };
 
 }  // namespace

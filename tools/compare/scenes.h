@@ -10,21 +10,38 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace tumble::compare {
 
 using V3 = Eigen::Vector3d;
 
-enum class BodyShape { Box, Sphere };
+enum class BodyShape { Box, Sphere, Capsule };
 
 struct BodySpec {
   BodyShape shape = BodyShape::Box;
   V3 halfExtents_m = V3::Constant(0.5);  ///< Box
-  double radius_m = 0.5;                 ///< Sphere
+  double radius_m = 0.5;                 ///< Sphere, Capsule
+  double halfHeight_m = 0.5;             ///< Capsule: half length of the core along local Y
   V3 position_m = V3::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   V3 velocity_mps = V3::Zero();
   double mass_kg = 1;  ///< 0 = static
   bool isStatic() const { return mass_kg == 0; }
+};
+
+/// A joint between two bodies of the scene, as both engines' rag-doll demos
+/// build them: cone-twist (Bullet btConeTwistConstraint) or hinge (Bullet
+/// btHingeConstraint). Frames: +X of the joint frame is the twist / hinge
+/// axis, given in the world at the start pose; the bodies are held as they
+/// start, and the pair does not collide.
+struct JointSpec {
+  enum class Type { ConeTwist, Hinge } type = Type::ConeTwist;
+  int a = 0, b = 0;  ///< body indices (a: child, b: parent)
+  V3 anchor_m = V3::Zero();
+  V3 axis = V3::UnitX();  ///< world, unit
+  double swingLimit_rad = 0.8, twistLower_rad = -0.4, twistUpper_rad = 0.4;  ///< ConeTwist
+  double lower_rad = 0, upper_rad = 0;                                      ///< Hinge
 };
 
 struct SceneSpec {
@@ -45,6 +62,7 @@ struct SceneSpec {
   double containHalf_m = 0;
   int defaultSteps = 600;
   std::vector<BodySpec> bodies;
+  std::vector<JointSpec> joints;
 };
 
 /// Names of every scene, in the order `list` prints them.
@@ -64,6 +82,7 @@ struct RunResult {
   double kineticEnergyEnd_J = 0;
   int sleepingAtEnd = 0;          ///< dynamic bodies asleep / deactivated at the end
   int nanEvents = 0;              ///< Tumble only: bodies frozen for non-finite state
+  double jointErrorMax_m = 0;     ///< largest anchor separation after any step (scenes with joints)
 };
 
 /// Bullet solver configuration for one run.
@@ -77,7 +96,9 @@ struct BulletConfig {
 /// settled scene times an idle world and the two engines' sleep policies
 /// (Tumble 0.5 s, Bullet 2 s) instead of their solvers. --sleep turns each
 /// engine's default sleeping on.
-RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep);
+/// jointSolver: "impulse" (formulation B, default) or "lagrange" (A).
+RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep,
+                    const std::string& jointSolver = "impulse");
 RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletConfig& config);
 /// "float" or "double": how the linked Bullet stores btScalar.
 const char* bulletPrecision();

@@ -30,13 +30,14 @@ function scenario.on_finish(ctx)
       fastest = math.max(fastest, part:speed())
     end
   end
-  local now, _ = joints_error()
   expect("every body finite", finite, {min = 1})
-  -- Joints hold (m). The issue's target is 5 cm; NOT met yet: with 3 dolls
-  -- piled, the anchors end 10.6 cm apart (contact forces are not in the
-  -- Lagrange solve's Q, so loaded joints stretch). This bound only catches
-  -- joints coming apart; tighten it to 0.05 once the joints are fixed.
-  expect("joints hold", now, {max = 0.15})
+  -- Joints hold (m): the largest anchor separation of the run. Formulation
+  -- A (the default, joint_solver = "lagrange") cannot see the contacts: with
+  -- 3 dolls piled its worst joint opens 10.3 cm. Formulation B
+  -- (--set physics.joint_solver=impulse) solves joints with the contacts:
+  -- 1.7 cm; tests/scenarios hold it to the issue's 5 cm (--set max_error=0.05).
+  local _, worst = joints_error()
+  expect("joints hold", worst, {max = param("max_error", 0.15)})
   -- At rest: every part slower than 1 cm/s (m/s).
   expect("all parts at rest", fastest, {max = 0.01})
 end

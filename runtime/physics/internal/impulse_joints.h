@@ -37,6 +37,14 @@ class ImpulseJoints final : public ConstraintSolver {
   /// Clears the broken flags (after the JointSystem removed those joints).
   void clearBroken();
 
+  /// Current pose of one joint side.
+  struct Side {
+    Vec3 r = Vec3::Zero();      ///< anchor offset from the centre (world)
+    Vec3 p = Vec3::Zero();      ///< anchor point
+    Mat3 F = Mat3::Identity();  ///< joint frame axes (columns), world
+    Quat q = Quat::Identity();  ///< joint frame, world
+  };
+
   /// Accumulated impulses, kept between steps for warm starting; and the
   /// per-step data of one joint.
   struct Accum {
@@ -59,12 +67,24 @@ class ImpulseJoints final : public ConstraintSolver {
     bool soft = false;
     Real gammaLin = 0, betaLin = 0, gammaAng = 0, betaAng = 0;
     bool angularFree = false;  ///< soft joint without angular spring: no angular rows
+    // Geometry of the current solve phase (refreshGeometry).
+    Side sa, sb;
+    Mat3 pointKinv = Mat3::Zero();  ///< (K + gamma)^-1 of the point rows
+    bool pointOk = false;
+    Real angle = 0;         ///< hinge angle or twist angle, rad
+    Real limitK = 0;        ///< limitAxis.(IA^-1 + IB^-1) limitAxis
+    Real swingAngle = 0, swingK = 0;
+    bool swingActive = false;  ///< near enough to the cone for its row
     // Axes of the last sweep (for the torque report).
     Vec3 limitAxis = Vec3::Zero(), swingAxis = Vec3::Zero();
   };
 
  private:
+  /// Anchors, frames and the point rows' inverse mass from the poses now.
+  void refreshGeometry(const Body* bodies);
+
   const JointSystem& m_system;
+  bool m_relaxing = false;  ///< in the relax sweeps (geometry refreshed after the positions moved)
   double m_hertz, m_zeta;
   Real m_h = 0, m_invH = 0;
   Real m_biasRate = 0, m_massScale = 1, m_impulseScale = 0;

@@ -102,6 +102,14 @@ struct JointDef {
 JointDef makeJointDef(const World& world, JointType type, BodyId a, BodyId b, const Vec3& anchor_m,
                       const Vec3& axis = Vec3::UnitX());
 
+/// A grab: a soft ball joint from localPoint_m (body frame, from the centre
+/// of mass) of a dynamic body to the world point target_m, whose stiffness
+/// follows the body's mass (k = m (2 pi hertz)^2, damping c = m 2 pi hertz,
+/// see joint.cpp), so every body follows at the same rate. Move the target
+/// with JointSystem::setWorldAnchor. What dragging with the mouse makes.
+JointDef makeGrabDef(const World& world, BodyId body, const Vec3& localPoint_m, const Vec3& target_m,
+                     Real hertz = 4);
+
 /// Refuses definitions that cannot work: stale bodies, A == B, both bodies
 /// without mass, limits out of range, negative stiffness. The message names
 /// the field and what would be valid.

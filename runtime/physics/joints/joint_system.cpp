@@ -168,6 +168,7 @@ struct BodyState {
   M3 R = M3::Identity(), invI = M3::Zero();
   V3 Qf = V3::Zero(), Qt = V3::Zero();  ///< applied force / torque incl. gravity, gyroscopic, springs
   V3 Fc = V3::Zero(), Tc = V3::Zero();  ///< constraint force / torque (result)
+  V3 Tm = V3::Zero();  ///< hinge motor torque (an applied torque the World does not know)
 };
 
 struct Row {
@@ -283,6 +284,25 @@ const JointDef& JointSystem::jointDef(JointId id) const {
   TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
   return m_slots[id.index].def;
 }
+bool JointSystem::setMotor(JointId id, Real speed_radps, Real maxTorque_Nm) {
+  if (!isValid(id) || !std::isfinite(speed_radps) || !std::isfinite(maxTorque_Nm) || maxTorque_Nm < 0) return false;
+  JointDef& d = m_slots[id.index].def;
+  d.enableMotor = maxTorque_Nm > 0;
+  d.motorSpeed_radps = speed_radps;
+  d.maxMotorTorque_Nm = maxTorque_Nm;
+  if (m_world.isValid(d.bodyA)) m_world.wake(d.bodyA);
+  return true;
+}
+
+bool JointSystem::setWorldAnchor(JointId id, const Vec3& anchor_m) {
+  if (!isValid(id) || !anchor_m.allFinite()) return false;
+  JointDef& d = m_slots[id.index].def;
+  if (!d.bodyB.isNull()) return false;
+  d.localAnchorB_m = anchor_m;
+  if (m_world.isValid(d.bodyA)) m_world.wake(d.bodyA);
+  return true;
+}
+
 Vec3 JointSystem::lastForce_N(JointId id) const {
   TUMBLE_ASSERT(isValid(id), "stale or null JointId; check JointSystem::isValid first");
   return m_slots[id.index].force_N;
@@ -369,10 +389,10 @@ double JointSystem::swingAngle_rad(JointId id) const {
   return std::acos(c);
 }
 
-double JointSystem::anchorError_m() const {
+double JointSystem::anchorError_m(bool includeSprings) const {
   double worst = 0;
   for (const Slot& s : m_slots) {
-    if (!s.alive || !m_world.isValid(s.def.bodyA)) continue;
+    if (!s.alive || !m_world.isValid(s.def.bodyA) || (!includeSprings && s.def.linearStiffness_Npm > 0)) continue;
     const Body& a = m_world.body(s.def.bodyA);
     V3 pa = wide3(a.position_m) + (a.orientation * s.def.localAnchorA_m).cast<double>();
     V3 pb = wide3(s.def.localAnchorB_m);
@@ -386,7 +406,8 @@ double JointSystem::anchorError_m() const {
   return worst;
 }
 
-void JointSystem::measureError() { m_maxAnchorError_m = std::max(m_maxAnchorError_m, anchorError_m()); }
+// Springs (grabs among them) stretch by design: not an error.
+void JointSystem::measureError() { m_maxAnchorError_m = std::max(m_maxAnchorError_m, anchorError_m(false)); }
 
 // ---- elimination order ---------------------------------------------------------------
 
@@ -667,6 +688,7 @@ static void deriveStates(std::vector<BodyState>& states, const JointSettings& js
     if (includeExternal) s.Qf += s.extForce, s.Qt += s.extTorque;
     s.Fc.setZero();
     s.Tc.setZero();
+    s.Tm.setZero();
   }
 }
 
@@ -686,8 +708,10 @@ static void addMotorTorques(const Evaluation& ev, std::vector<BodyState>& st, co
     if (!(kinv > 0)) continue;
     const double maxT = d.maxMotorTorque_Nm;
     const double tau = std::clamp((d.motorSpeed_radps - (wB - wA).dot(a1)) / kinv * js.damping_per_s, -maxT, maxT);
-    if (A && A->dynamic) A->Qt -= tau * a1;
-    if (B && B->dynamic) B->Qt += tau * a1;
+    // In Q (the rows see it; integrateFree integrates Q) and in Tm, which
+    // applyConstraintForces applies with the constraint torque.
+    if (A && A->dynamic) A->Qt -= tau * a1, A->Tm -= tau * a1;
+    if (B && B->dynamic) B->Qt += tau * a1, B->Tm += tau * a1;
   }
 }
 
@@ -909,11 +933,11 @@ void JointSystem::applyConstraintForces() {
   std::vector<JointBreakEvent> events = solveConstraints(im, m_settings, g, true, m_stats);
   recordForces();
   for (const BodyState& s : im.states) {
-    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0)) continue;
+    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0 && s.Tm.squaredNorm() == 0)) continue;
     // wake = false: the joint forces alone must not keep an island awake
     // (they never vanish on a resting rag-doll: gravity keeps them busy).
     m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>(), false);
-    m_world.applyTorque(s.id, s.Tc.cast<Real>(), false);
+    m_world.applyTorque(s.id, (s.Tc + s.Tm).cast<Real>(), false);
   }
   finishBreaks(events);
   m_stats.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

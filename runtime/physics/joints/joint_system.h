@@ -138,6 +138,13 @@ class JointSystem {
   int jointCount() const { return m_jointCount; }
   /// The definition the joint was created with. Asserts on a stale handle.
   const JointDef& jointDef(JointId id) const;
+  /// Hinge motor: target rate (rad/s) and torque bound (N m, >= 0; 0 turns
+  /// the motor off). False for a stale handle or a bad value.
+  bool setMotor(JointId id, Real speed_radps, Real maxTorque_Nm);
+  /// Joints to the world (bodyB null): moves the world anchor (m), e.g. a
+  /// grab spring's target. False for a stale handle, a two-body joint or a
+  /// non-finite point.
+  bool setWorldAnchor(JointId id, const Vec3& anchor_m);
   /// Anchor force (N, world) and angular-row torque (N m, world) on body A
   /// in the last solve. Asserts on a stale handle.
   Vec3 lastForce_N(JointId id) const;
@@ -170,9 +177,11 @@ class JointSystem {
   /// given scheme, in double, and writes the state back to the World.
   void integrateFree(JointIntegrator method, double dt_s);
 
-  /// Largest anchor separation (m) over all joints now.
-  double anchorError_m() const;
-  /// Largest anchor separation (m) seen since creation or resetErrorStats()
+  /// Largest anchor separation (m) over all joints now. includeSprings =
+  /// false leaves out soft joints (grabs among them), which stretch by design.
+  double anchorError_m(bool includeSprings = true) const;
+  /// Largest anchor separation (m) of the hard joints (not springs) seen
+  /// since creation or resetErrorStats()
   /// (measured at every applyConstraintForces, step and integrateFree). This
   /// is the run report's joint_error_max_m.
   double maxAnchorError_m() const { return m_maxAnchorError_m; }
