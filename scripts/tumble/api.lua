@@ -302,6 +302,60 @@ function Emitter:count() end
 ---@return boolean # false once removed, or stopped with no particles left
 function Emitter:alive() end
 
+---What world.joint takes. Angles in rad, lengths in m.
+---@class JointDef
+---@field type string "ball", "hinge", "cone_twist" or "fixed"
+---@field a Body the first body (must not be static unless b is dynamic)
+---@field b? Body the second body; nil joins a to the world
+---@field anchor Vec3Arg the joint point in the world, m (the bodies are held as they are now)
+---@field axis? Vec3Arg hinge axis (hinge) or twist axis (cone_twist), world; default {1, 0, 0}
+---@field lower_angle? number hinge: lower limit, rad (with upper_angle: turns the limit on)
+---@field upper_angle? number hinge: upper limit, rad
+---@field motor_speed? number hinge: motor target rate of b relative to a about the axis, rad/s
+---@field max_motor_torque? number hinge: motor torque bound, N m (> 0 turns the motor on)
+---@field swing_limit? number cone_twist: largest angle between the twist axes, rad (default pi/4)
+---@field twist_lower? number cone_twist: twist limit, rad in (-pi, 0] (default -pi/4)
+---@field twist_upper? number cone_twist: twist limit, rad in [0, pi) (default pi/4)
+---@field stiffness? number > 0 makes the joint a spring: N/m on the anchors
+---@field damping? number spring damping, N s/m
+---@field angular_stiffness? number spring on the angular rows (hinge, fixed), N m/rad
+---@field angular_damping? number N m s/rad
+---@field break_force? number the joint breaks above this anchor force, N (0: never)
+---@field break_torque? number likewise for the angular torque, N m
+---@field collide? boolean whether a and b still collide with each other (default false)
+
+---A handle returned by world.joint and world.grab. Methods other than
+---is_valid fail on a joint that was removed or broke.
+---@class Joint
+local Joint = {}
+
+---@return boolean # false once the joint was removed, released or broke (or a body of it removed)
+function Joint:is_valid() end
+
+---Removes the joint (grab:release() does the same).
+---@return boolean # true if it was still there
+function Joint:remove() end
+
+---Lets go of a grab (the same as remove).
+---@return boolean # true if it was still there
+function Joint:release() end
+
+---Moves the world end of a joint held to the world (a grab's target).
+---@param p Vec3Arg the new target, m
+function Joint:set_target(p) end
+
+---Hinge motor: drive the angle's rate towards speed with at most max_torque.
+---@param speed number rad/s
+---@param max_torque number N m (0 turns the motor off)
+function Joint:set_motor(speed, max_torque) end
+
+---@return number # hinge angle or cone-twist twist angle now, rad (0 for other types)
+function Joint:angle() end
+
+---@return number # the constraint force on the anchor in the last step, N
+---@return number # the constraint torque of the angular rows, N m
+function Joint:force() end
+
 ---Placement of a model on a body, in the body's frame.
 ---@class ModelOptions
 ---@field offset? Vec3Arg model origin relative to the body's centre, m (default {0, 0, 0})
@@ -1274,6 +1328,53 @@ function vehicle.surface(x, z) end
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.
 world = {}
 
+---Joins two bodies (or a body and the world) where they are now. Solved by
+---the scene's joint formulation (Scenario.joint_solver). The two bodies stop
+---colliding with each other unless `collide = true`.
+---
+---```lua
+---local hinge = world.joint{type = "hinge", a = lid, b = box, anchor = {0, 1, -0.5}, axis = {1, 0, 0},
+---  lower_angle = 0, upper_angle = 2}
+---```
+---@param def JointDef type, bodies, anchor, limits, motor, spring, breaking
+---@return Joint # the joint
+function world.joint(def) end
+
+---Grabs a body at a point with a spring towards a target (what dragging
+---with the mouse does): a soft ball joint to the world whose stiffness
+---follows the body's mass, so every body follows at the same rate. Move the
+---target with grab:set_target(p), let go with grab:release().
+---
+---```lua
+---local g = world.grab(crate, {0, 0.5, 0}, {0, 3, 0})
+---g:set_target({2, 3, 0})
+---```
+---@param body Body a dynamic body
+---@param local_point Vec3Arg the grabbed point in the body's frame (from its centre of mass), m
+---@param target Vec3Arg where the point is pulled to, world, m
+---@param hertz? number spring frequency, Hz (default 4); damping ratio 0.5 at the centre of mass
+---@return Joint # the grab (a Joint: set_target, release, force)
+function world.grab(body, local_point, target, hertz) end
+
+---@return string # the scene's joint formulation now: "lagrange" or "impulse"
+function world.joint_solver() end
+
+---Switches the joint formulation while running ("lagrange": Lagrange
+---multipliers before the step; "impulse": impulses with the contacts).
+---@param name string "lagrange" or "impulse"
+function world.set_joint_solver(name) end
+
+---Changes the fixed time step from the next step on (also while playing).
+---
+---```lua
+---world.set_dt(1 / 120)
+---```
+---@param dt number the step, s, in [0.0005, 0.1]
+function world.set_dt(dt) end
+
+---@return number # the fixed time step in use, s
+function world.dt() end
+
 ---Places a static model: scenery such as rocks, trees, buildings and
 ---barriers. With collision = "box" (the default) a static box body is made
 ---around the model's bounds; static bodies are never tested against each
@@ -1468,7 +1569,7 @@ function draw_line(a, b, color) end
 ---@return table # the part Bodies keyed by part name (pelvis, torso, head,
 function spawn_ragdoll(def) end
 
----@return number # the largest joint anchor separation now (m), 0 without joints
+---@return number # the largest joint anchor separation now (m), 0 without joints; springs (grabs) do not count
 ---@return number # the largest seen since the start (m)
 function joints_error() end
 
