@@ -183,8 +183,16 @@ std::unique_ptr<JointRig> lagrangeChain(World& w, const std::vector<BodyId>& bod
   return rig;
 }
 
+/// Formulation B: the same joints as velocity-level impulses solved with the
+/// contacts inside the World's substeps (physics/joints/impulse_joints.cpp).
+std::unique_ptr<JointRig> impulseChain(World& w, const std::vector<BodyId>& bodies, const std::vector<Vec3>& anchors) {
+  auto rig = lagrangeChain(w, bodies, anchors);
+  static_cast<LagrangeRig&>(*rig).joints.setSolver(physics::JointSolverKind::Impulse);
+  return rig;
+}
+
 std::vector<JointFormulation>& formulationRegistry() {
-  static std::vector<JointFormulation> registry{{"A", lagrangeChain}};
+  static std::vector<JointFormulation> registry{{"A", lagrangeChain}, {"B", impulseChain}};
   return registry;
 }
 

@@ -40,11 +40,11 @@ class JointRig {
 
 /// A joint formulation the chain cases run: `chain` joins bodies[i] to
 /// bodies[i + 1] at anchors[i + 1] with ball joints and bodies[0] to the
-/// world at anchors[0]. Formulation A (Lagrange multipliers,
-/// physics/joints) is registered here; formulation B registers itself with
-/// registerJointFormulation({"B", ...}) before the report runs (e.g. from
-/// cmd_report.cpp), and the chain problem and case then run once per
-/// formulation: chain_10_links_B, chain_100_links_B.
+/// world at anchors[0]. Formulations A (Lagrange multipliers) and B
+/// (impulses in the contact loop), both physics/joints, are registered here,
+/// and the chain problem and case run once per formulation: chain_10_links_A,
+/// chain_10_links_B, chain_100_links_A, chain_100_links_B. Another one can
+/// join with registerJointFormulation before the report runs.
 struct JointFormulation {
   std::string name;  ///< "A", "B": suffix of the case and problem names
   std::function<std::unique_ptr<JointRig>(physics::World& world, const std::vector<physics::BodyId>& bodies,
