@@ -99,7 +99,7 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
 // Bindings of base and of the scenario's mod with everything it depends on,
 // in load order. Problems are reported and the valid rest is used: a typo in
 // one binding must not stop the game.
-std::unique_ptr<input::InputSystem> loadInput(const script::ModRegistry& registry, const script::ModInfo& mod) {
+script::ModBindings readBindings(const script::ModRegistry& registry, const script::ModInfo& mod) {
   std::set<std::string> wanted{"base", mod.name};
   for (bool grew = true; grew;) {
     grew = false;
@@ -112,7 +112,11 @@ std::unique_ptr<input::InputSystem> loadInput(const script::ModRegistry& registr
   std::vector<script::ModInfo> mods;
   for (const script::ModInfo& m : registry.mods())
     if (wanted.count(m.name)) mods.push_back(m);
-  script::ModBindings bindings = script::loadBindings(mods);
+  return script::loadBindings(mods);
+}
+
+std::unique_ptr<input::InputSystem> loadInput(const script::ModRegistry& registry, const script::ModInfo& mod) {
+  script::ModBindings bindings = readBindings(registry, mod);
   for (const script::ModProblem& p : bindings.problems) log::warn("bindings: " + p.text());
   return std::make_unique<input::InputSystem>(std::move(bindings.set));
 }
@@ -230,6 +234,23 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
 }
 
 Scene::~Scene() = default;
+
+Status Scene::reloadBindings() {
+  script::ModRegistry registry = script::ModRegistry::discover(modSearchDirs(m_options.modDirs));
+  const script::ModInfo* mod = registry.find(m_modName);
+  if (!mod) return makeError("bindings: mod \"" + m_modName + "\" is no longer found");
+  script::ModBindings bindings = readBindings(registry, *mod);
+  if (!bindings.problems.empty()) {
+    std::string text;
+    for (const script::ModProblem& p : bindings.problems) {
+      if (!text.empty()) text += '\n';
+      text += p.text();
+    }
+    return makeError(text + "\n(the previous bindings stay)");
+  }
+  m_input->redefine(std::move(bindings.set));
+  return Ok{};
+}
 
 void Scene::stepDeformables(Real dt_s) {
   physics::DeformableSystem* d = m_host->deformablesIfAny();

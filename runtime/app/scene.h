@@ -76,6 +76,11 @@ class Scene {
   void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
   /// Steps the scenario's ropes and cloth, if it made any (after World::step).
   void stepDeformables(Real dt_s);
+  /// Hot reload of a saved bindings.lua: the mods' bindings are read again
+  /// and replace the actions (the player's overrides and the contexts'
+  /// on/off state are kept). With a problem nothing changes and the error
+  /// names the file and line.
+  Status reloadBindings();
   /// Remembers the current state as "previous" (call before each step).
   void savePreviousState();
   /// A body's pose interpolated like the snapshot; nullopt for a removed body.

@@ -327,6 +327,13 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   // Emitters, bindings and vehicles reload through hooks registered here:
   //   hotReload.addHook(script::ModFileKind::Emitter, [&](const std::string& path, const std::string& rel) {...});
   script::HotReload hotReload(scene.host());
+  // Emitter files change the running emitters made from them; bindings.lua
+  // replaces the actions (keeping the player's overrides).
+  hotReload.addHook(script::ModFileKind::Emitter, [&scene](const std::string&, const std::string& rel) {
+    return scene.host().reloadEmitterFile(rel);
+  });
+  hotReload.addHook(script::ModFileKind::Bindings,
+                    [&scene](const std::string&, const std::string&) { return scene.reloadBindings(); });
   render::TuningPanel tuning;
   tuning.title = scene.name();
   tuning.overridesPath = script::tuneOverridesPath(scene.host().mod().name);

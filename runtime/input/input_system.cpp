@@ -42,6 +42,30 @@ InputSystem::InputSystem(BindingSet definitions) : m_defs(std::move(definitions)
   rebuildOwnership();
 }
 
+void InputSystem::redefine(BindingSet definitions) {
+  const Overrides kept = overrides();
+  const std::map<std::string, bool> contextsWere = m_contextOn;
+  std::unordered_map<std::string, ActionState> stateWas;
+  for (std::size_t i = 0; i < m_defs.actions.size(); ++i) stateWas[m_defs.actions[i].name] = m_state[i];
+  m_defs = std::move(definitions);
+  m_index.clear();
+  m_bindings.clear();
+  m_state.assign(m_defs.actions.size(), ActionState{});
+  for (std::size_t i = 0; i < m_defs.actions.size(); ++i) {
+    m_index[m_defs.actions[i].name] = int(i);
+    m_bindings.push_back(m_defs.actions[i].bindings);
+    if (auto it = stateWas.find(m_defs.actions[i].name); it != stateWas.end()) m_state[i] = it->second;
+  }
+  m_contextOn.clear();
+  for (const ContextDef& c : m_defs.contexts) {
+    auto was = contextsWere.find(c.name);
+    m_contextOn[c.name] = was != contextsWere.end() ? was->second : c.enabled;
+  }
+  m_foreign = {};
+  rebuildOwnership();
+  (void)applyOverrides(kept);  // bindings that no longer parse were reported when saved
+}
+
 InputSystem::~InputSystem() {
   // After an SDL_Quit the controllers are gone already; closing them again
   // would touch freed memory.

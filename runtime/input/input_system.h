@@ -46,6 +46,12 @@ class InputSystem {
   InputSystem& operator=(const InputSystem&) = delete;
 
   const BindingSet& definitions() const { return m_defs; }
+  /// Hot reload of bindings.lua: new definitions (actions, default bindings,
+  /// contexts) replace the old. The player's overrides are kept (applied
+  /// again over the new defaults), and so are the enabled flags of contexts
+  /// that still exist (scripts switch them); an action keeps its state
+  /// (held, injected) when it still exists under the same name.
+  void redefine(BindingSet definitions);
   int actionCount() const { return int(m_defs.actions.size()); }
   /// Index of the action, -1 if there is none.
   int find(std::string_view name) const;

@@ -19,6 +19,20 @@ void ParticlePool::removeSwap(std::uint32_t i) {
 
 ParticleSystem::ParticleSystem(std::uint64_t seed) : m_seed(seed) {}
 
+bool ParticleSystem::redefine(EmitterId id, const EmitterDef& def) {
+  assert(validate(def) && "EmitterDef must pass particles::validate() before redefine()");
+  Emitter* e = get(id);
+  if (!e) return false;
+  const bool scriptRate = e->rate_per_s != e->def.rate_per_s;
+  e->def = def;
+  std::sort(e->def.bursts.begin(), e->def.bursts.end(),
+            [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+  if (!scriptRate) e->rate_per_s = def.rate_per_s;
+  if (std::size_t(def.maxCount) > e->pool.px.size()) e->pool.reserve(std::size_t(def.maxCount));
+  e->nextBurst = std::min(e->nextBurst, e->def.bursts.size());
+  return true;
+}
+
 EmitterId ParticleSystem::create(const EmitterDef& def, const Eigen::Vector3f& position_m,
                                  const Eigen::Quaternionf& rotation) {
   assert(validate(def) && "EmitterDef must pass particles::validate() before create()");

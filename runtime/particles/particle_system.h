@@ -108,6 +108,12 @@ class ParticleSystem {
   EmitterId create(const EmitterDef& def, const Eigen::Vector3f& position_m,
                    const Eigen::Quaternionf& rotation = Eigen::Quaternionf::Identity());
   bool isValid(EmitterId id) const;
+  /// Hot reload: a new definition for a running emitter. Live particles stay
+  /// (the pool grows if max_count grew; with a smaller max_count no new
+  /// particle is born until the count is under it); a rate the script set
+  /// with setRate is kept, otherwise the new definition's rate applies.
+  /// False for a stale id.
+  bool redefine(EmitterId id, const EmitterDef& def);
   /// Removes the emitter and its particles at once. False for a stale id.
   bool remove(EmitterId id);
   /// Stops emitting (rate, bursts, pending burst); live particles finish, then

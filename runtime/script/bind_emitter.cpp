@@ -138,7 +138,10 @@ particles::EmitterId spawnAt(lua_State* L, const char* fn, int nameIdx, int atId
 /// @example local dust = particles.spawn("base:dust", {body = car, offset = {0.8, -0.3, 1.2}}, {rate = 0})
 /// @example dust:set_rate(40 * slip)   -- per step, from the wheel's slip
 int particlesSpawn(lua_State* L) {
-  pushEmitter(L, spawnAt(L, "particles.spawn", 1, 2, lua_gettop(L) >= 3 ? 3 : 0));
+  const int overridesIdx = lua_gettop(L) >= 3 && lua_istable(L, 3) ? 3 : 0;
+  const particles::EmitterId id = spawnAt(L, "particles.spawn", 1, 2, overridesIdx);
+  ScenarioHost::from(L)->rememberEmitterSource(id, lua_tostring(L, 1), overridesIdx);  // for hot reload
+  pushEmitter(L, id);
   return 1;
 }
 

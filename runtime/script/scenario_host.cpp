@@ -966,6 +966,56 @@ void ScenarioHost::addScriptLine(const ScriptLine& line) {
   if (m_scriptLines.size() < kMaxScriptLines) m_scriptLines.push_back(line);
 }
 
+void ScenarioHost::rememberEmitterSource(particles::EmitterId id, const std::string& ref, int overridesIdx) {
+  lua_State* L = m_vm.state();
+  // Drop the sources of emitters that are gone (bounded: one entry per live emitter).
+  if (m_particles)
+    std::erase_if(m_emitterSources, [&](const EmitterSource& e) {
+      if (m_particles->isValid(e.id)) return false;
+      if (e.overridesRef) luaL_unref(L, LUA_REGISTRYINDEX, e.overridesRef);
+      return true;
+    });
+  EmitterSource source{id, ref, 0};
+  if (overridesIdx) {
+    overridesIdx = lua_absindex(L, overridesIdx);
+    lua_newtable(L);  // a shallow copy: the script may change its table later
+    lua_pushnil(L);
+    while (lua_next(L, overridesIdx) != 0) {
+      lua_pushvalue(L, -2);
+      lua_insert(L, -2);
+      lua_settable(L, -4);
+    }
+    source.overridesRef = luaL_ref(L, LUA_REGISTRYINDEX);
+  }
+  m_emitterSources.push_back(std::move(source));
+}
+
+Status ScenarioHost::reloadEmitterFile(const std::string& relPath) {
+  // "emitters/smoke.lua" -> "smoke"
+  std::string name = fs::path(relPath).stem().string();
+  forgetEmitterDefinitions();
+  // Read it now, so a broken file is reported at once (and nothing changes).
+  if (auto def = emitterDef(m_mod.name + ":" + name, 0); !def) return makeError(def.error());
+  if (!m_particles) return Ok{};
+  lua_State* L = m_vm.state();
+  const std::string qualified = m_mod.name + ":" + name;
+  for (const EmitterSource& e : m_emitterSources) {
+    if (!m_particles->isValid(e.id)) continue;
+    // "name" means this mod first, so it resolves to this file too.
+    if (e.ref != qualified && e.ref != name) continue;
+    int idx = 0;
+    if (e.overridesRef) {
+      lua_rawgeti(L, LUA_REGISTRYINDEX, e.overridesRef);
+      idx = lua_gettop(L);
+    }
+    auto def = emitterDef(e.ref, idx);
+    if (idx) lua_pop(L, 1);
+    if (!def) return makeError(def.error());
+    m_particles->redefine(e.id, *def);
+  }
+  return Ok{};
+}
+
 void ScenarioHost::forgetEmitterDefinitions() {
   lua_State* L = m_vm.state();
   lua_newtable(L);

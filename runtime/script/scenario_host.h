@@ -227,6 +227,14 @@ class ScenarioHost {
   /// Forgets the cached emitter files, so the next spawn reads them again
   /// (hot reload). Emitters already running keep their definitions.
   void forgetEmitterDefinitions();
+  /// particles.spawn remembers which file (and overrides) an emitter came
+  /// from, so a saved emitter file can change it while it runs.
+  void rememberEmitterSource(particles::EmitterId id, const std::string& ref, int overridesIdx);
+  /// Hot reload of emitters/<name>.lua of this mod: the file is read again
+  /// and every running emitter spawned from it takes the new definition
+  /// (with its spawn overrides on top). A broken file changes nothing and
+  /// the error names the file and field.
+  Status reloadEmitterFile(const std::string& relPath);
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
@@ -353,6 +361,12 @@ class ScenarioHost {
   std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
   std::unique_ptr<particles::ParticleSystem> m_particles;  ///< see particles()
   int m_emitterTablesRef = 0;  ///< registry table: "mod:name" -> the file's returned table
+  struct EmitterSource {
+    particles::EmitterId id;
+    std::string ref;       ///< as given to particles.spawn
+    int overridesRef = 0;  ///< registry ref of a copy of the overrides table, 0 = none
+  };
+  std::vector<EmitterSource> m_emitterSources;  ///< see rememberEmitterSource
   std::unique_ptr<input::InputSystem> m_ownInput;  ///< when options.input is null
   input::InputSystem* m_input = nullptr;
   std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first

@@ -343,3 +343,38 @@ TEST(InputCapture, TheMenuCapturesTheNextKeyInsteadOfActing) {
 }
 
 }  // namespace tumble::test
+
+namespace tumble::test {
+
+// Hot reload of bindings.lua (issue 6 item 7): new defaults apply at once;
+// an action the player rebound keeps the player's binding; a context a
+// script switched on stays on; a new action appears.
+TEST(InputReload, RedefineKeepsThePlayersOverridesAndTheContexts) {
+  InputSystem in(vehicleSet());
+  ASSERT_TRUE(in.setContextEnabled("vehicle", false).ok());  // a script turned it off
+  const int reset = in.find("reset");
+  auto f5 = input::parseBinding("key:F5");
+  ASSERT_TRUE(f5.ok());
+  in.setBindings(reset, {f5.value()});  // the player rebinds reset
+
+  input::BindingSet edited = vehicleSet();
+  edited.actions[0] = actionDef("throttle", ActionType::Button, "vehicle", {"key:Up"});  // a new default
+  edited.actions.push_back(actionDef("horn", ActionType::Button, "vehicle", {"key:H"}));
+  in.redefine(std::move(edited));
+
+  EXPECT_FALSE(in.contextEnabled("vehicle")) << "the script's switch stays";
+  ASSERT_TRUE(in.setContextEnabled("vehicle", true).ok());
+  const int throttle = in.find("throttle");
+  in.handleEvent(keyEvent(SDL_SCANCODE_UP, true));
+  in.step();
+  EXPECT_EQ(in.value(throttle), 1) << "the new default key drives the action";
+  in.handleEvent(keyEvent(SDL_SCANCODE_UP, false));
+  in.handleEvent(keyEvent(SDL_SCANCODE_W, true));
+  in.step();
+  EXPECT_EQ(in.value(throttle), 0) << "the old default no longer does";
+  ASSERT_GE(in.find("horn"), 0);
+  ASSERT_EQ(in.bindings(in.find("reset")).size(), 1u);
+  EXPECT_EQ(in.bindings(in.find("reset"))[0], f5.value()) << "the player's rebinding is kept";
+}
+
+}  // namespace tumble::test

@@ -162,3 +162,46 @@ TEST_F(Emitters, AnEmitterFileIsDataAndCannotReachTheWorld) {
 }
 
 }  // namespace tumble::test
+
+namespace tumble::test {
+
+// Hot reload (issue 6 item 7): a saved emitter file changes the emitters
+// running from it, with their spawn overrides still on top; a broken save
+// changes nothing and names the file and field.
+TEST_F(Emitters, ASavedEmitterFileChangesTheRunningEmitters) {
+  auto host = load(R"(
+    return {on_start = function()
+      world.plane{}
+      a = particles.spawn("fx:puff", {position = {0, 1, 0}})
+      b = particles.spawn("puff", {position = {2, 1, 0}}, {speed = 3})
+      c = particles.spawn("fx:broken_later", {position = {4, 1, 0}})
+    end}
+  )", {}, "fx", 1,
+                   {{"emitters/puff.lua", "return {rate = 10, lifetime = {0.5, 0.5}, speed = 1}\n"},
+                    {"emitters/broken_later.lua", "return {rate = 7, lifetime = 1, speed = 1}\n"}});
+  ASSERT_TRUE(host);
+  runWithParticles(*host, 5);
+  particles::ParticleSystem* ps = host->particlesIfAny();
+  ASSERT_NE(ps, nullptr);
+  std::vector<particles::EmitterId> ids;
+  ps->forEach([&](particles::EmitterId id, const particles::Emitter&) { ids.push_back(id); });
+  ASSERT_EQ(ids.size(), 3u);
+
+  writeFile(m_root / "fx/emitters/puff.lua", "return {rate = 40, lifetime = {0.5, 0.5}, speed = 2, max_count = 900}\n");
+  ASSERT_TRUE(host->reloadEmitterFile("emitters/puff.lua").ok());
+  EXPECT_FLOAT_EQ(ps->get(ids[0])->def.rate_per_s, 40);
+  EXPECT_FLOAT_EQ(ps->get(ids[0])->rate_per_s, 40) << "no set_rate: the new rate applies";
+  EXPECT_FLOAT_EQ(ps->get(ids[0])->def.speedMax_mps, 2);
+  EXPECT_FLOAT_EQ(ps->get(ids[1])->def.rate_per_s, 40) << "\"puff\" is this mod's file too";
+  EXPECT_FLOAT_EQ(ps->get(ids[1])->def.speedMax_mps, 3) << "the spawn's overrides stay on top";
+  EXPECT_FLOAT_EQ(ps->get(ids[2])->def.rate_per_s, 7) << "another file's emitter is untouched";
+
+  writeFile(m_root / "fx/emitters/puff.lua", "return {rate = -1, lifetime = 1}\n");
+  auto st = host->reloadEmitterFile("emitters/puff.lua");
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().find("puff.lua"), std::string::npos) << st.error();
+  EXPECT_NE(st.error().find("rate"), std::string::npos) << st.error();
+  EXPECT_FLOAT_EQ(ps->get(ids[0])->def.rate_per_s, 40) << "a broken save keeps the running definition";
+}
+
+}  // namespace tumble::test
