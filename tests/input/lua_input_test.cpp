@@ -164,3 +164,78 @@ TEST_F(LuaInput, ThePointerRayFeedsWorldRaycastToPickWhatIsUnderTheMouse) {
 }
 
 }  // namespace tumble::test
+
+namespace tumble::test {
+
+// scripts/tumble/interact.lua, the rag-doll paper's hands: with the pointer
+// over a box, holding "grab" drags it towards the cursor's point (a spring),
+// and "impulse" kicks what is under the cursor along the ray.
+TEST(Interact, GrabDragsTheBodyUnderThePointerAndImpulseKicksIt) {
+  input::BindingSet s;
+  s.contexts = {{"interact", 5, false}};
+  for (const char* name : {"grab", "impulse", "dt_up", "dt_down"})
+    s.actions.push_back(actionDef(name, input::ActionType::Button, "interact", {"key:G"}));
+  input::InputSystem in(s);
+  physics::World world;
+  const fs::path dir = fs::path(TUMBLE_TEST_TMP) / "Interact" / "m";
+  fs::create_directories(dir / "scenarios");
+  std::ofstream(dir / "mod.lua") << "return {name = \"m\", version = \"1.0.0\", api = 1}\n";
+  std::ofstream(dir / "scenarios" / "s.lua") << R"(
+    local interact = require "tumble.interact"
+    local hands, crate, kicked, held
+    return {
+      on_start = function()
+        world.set_gravity({0, 0, 0})
+        hands = interact.new{kick = 2}
+        crate = world.box{size = {1, 1, 1}, position = {0, 0, -10}, mass = 3}
+        kicked = world.box{size = {1, 1, 1}, position = {5, 0, -10}, mass = 2}
+      end,
+      on_update = function(ctx)
+        held = hands:update()
+        if ctx.step == 10 then expect("the crate is held", held == crate) end
+      end,
+      on_finish = function()
+        -- Grabbed at its front face (z = -9.5), pulled towards the cursor's
+        -- point 9.5 m out along the ray, now aimed 2 m to the left: x = -2.
+        expect("dragged towards the cursor", crate:position().x, {max = -1.5})
+        -- 2 kg kicked with mass * 2 m/s along the ray (towards -z).
+        expect("kick speed", kicked:velocity().z, {min = -2.01, max = -1.99})
+      end,
+    }
+  )";
+  script::ModInfo mod;
+  mod.name = "m";
+  mod.version = "1.0.0";
+  mod.dir = dir.string();
+  script::ScenarioOptions o;
+  o.input = &in;
+  o.scriptsDir = std::string(TUMBLE_SOURCE_DIR) + "/scripts";
+  auto host = script::ScenarioHost::load(mod, "s", world, o);
+  ASSERT_TRUE(host) << host.error();
+  script::ScenarioHost& h = **host;
+  h.start();
+  const int grab = in.find("grab"), impulse = in.find("impulse");
+  auto step = [&](int i) {
+    in.step();
+    h.update(i / 60.0, 1.0 / 60, i);
+    world.step(Real(1.0 / 60));
+  };
+  in.setPointerRay(Vec3(0, 0, 0), Vec3(0, 0, -1));  // the camera looks at the crate
+  in.inject(grab, 1);
+  for (int i = 0; i < 5; ++i) step(i);
+  in.setPointerRay(Vec3(0, 0, 0), Vec3(-2, 0, -9.5).normalized());  // the cursor moves left, still held
+  for (int i = 5; i < 120; ++i) step(i);
+  in.inject(grab, 0);
+  step(120);
+  in.setPointerRay(Vec3(5, 0, 0), Vec3(0, 0, -1));  // over the second box
+  in.inject(impulse, 1);
+  step(121);
+  in.inject(impulse, 0);
+  step(122);
+  h.finish(123 / 60.0, 123);
+  ASSERT_FALSE(h.expectations().empty());
+  for (const auto& e : h.expectations()) EXPECT_TRUE(e.ok) << e.name << " = " << e.value;
+  for (const auto& e : h.errors()) ADD_FAILURE() << e.summary();
+}
+
+}  // namespace tumble::test

@@ -15,6 +15,12 @@ local L = 0.25     -- link length, m
 local MASS = 0.5   -- kg
 local ANGLE = math.rad(60)
 
+-- While playing: ']' / '[' add or remove the bottom link, drag a link with
+-- the mouse, F kicks it, '.' and ',' change the time step (the "interact"
+-- actions in mods/base/bindings.lua; scripts/tumble/interact.lua).
+local interact = require "tumble.interact"
+local hands
+
 local scenario = {
   title = "Chain: N links swinging from a world anchor",
   duration = 6,  -- seconds, when run without --seconds/--steps
@@ -75,6 +81,7 @@ function scenario.actions.fewer_links()
 end
 
 function scenario.on_start(ctx)
+  hands = interact.new{}
   local n = math.floor(param("links", 10))
   top = {x = 0, y = 1 + n * L, z = 0}
   -- Released at ANGLE from the vertical, in the x-y plane.
@@ -97,6 +104,9 @@ function scenario.on_start(ctx)
 end
 
 function scenario.on_update(ctx, dt)
+  hands:update()
+  if input.pressed("more_links") then scenario.actions.more_links() end
+  if input.pressed("fewer_links") and scenario.actions.fewer_links then scenario.actions.fewer_links() end
   emax = math.max(emax, chainEnergy() - added)
 end
 

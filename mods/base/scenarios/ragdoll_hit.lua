@@ -9,6 +9,11 @@
 -- doll can slow it: just after the hit the doll has taken momentum (it moves
 -- along +x) and the box has slowed, by no more than the doll could take.
 
+-- While playing: drag a part with the mouse, F kicks the part under the
+-- cursor, '.' and ',' change the time step (scripts/tumble/interact.lua).
+local interact = require "tumble.interact"
+local hands
+
 local scenario = {
   title = "Rag-doll hit by a heavy box",
   duration = 5,  -- seconds, when run without --seconds/--steps
@@ -22,6 +27,7 @@ local BOX_MASS = 300  -- kg
 local hitCheck = {}
 
 function scenario.on_start(ctx)
+  hands = interact.new{}
   world.plane{friction = 0.6, color = {0.55, 0.57, 0.6}}
   speed = param("speed", 8)
   doll = spawn_ragdoll{position = {0, 0.005, 0}, height = 1.75, mass = 75}
@@ -35,6 +41,10 @@ function scenario.on_start(ctx)
     hitCheck.dollMomentum = px
     hitCheck.boxSpeed = box:velocity().x
   end)
+end
+
+function scenario.on_update(ctx, dt)
+  hands:update()
 end
 
 function scenario.on_finish(ctx)

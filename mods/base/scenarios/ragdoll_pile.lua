@@ -3,6 +3,11 @@
 --
 --   tumble run base:ragdoll_pile --set count=6
 
+-- While playing: drag a part with the mouse, F kicks the part under the
+-- cursor, '.' and ',' change the time step (scripts/tumble/interact.lua).
+local interact = require "tumble.interact"
+local hands
+
 local scenario = {
   title = "Rag-doll pile: default humans dropped on each other",
   duration = 8,  -- seconds, when run without --seconds/--steps
@@ -11,6 +16,7 @@ local scenario = {
 local dolls = {}
 
 function scenario.on_start(ctx)
+  hands = interact.new{}
   world.plane{friction = 0.6, color = {0.55, 0.57, 0.6}}
   local count = param("count", 3)
   for i = 1, count do
@@ -19,6 +25,10 @@ function scenario.on_start(ctx)
     dolls[#dolls + 1] = spawn_ragdoll{position = {0, 0.3 + (i - 1) * 0.5, -0.9}, height = 1.8, mass = 75,
                                       rotation = {math.pi / 2 * math.cos(yaw), 0, math.pi / 2 * math.sin(yaw)}}
   end
+end
+
+function scenario.on_update(ctx, dt)
+  hands:update()
 end
 
 function scenario.on_finish(ctx)

@@ -10,6 +10,11 @@
 
 local RISE, TREAD, WIDTH = 0.3, 0.45, 2.0  -- m
 
+-- While playing: drag a part with the mouse, F kicks the part under the
+-- cursor, '.' and ',' change the time step (scripts/tumble/interact.lua).
+local interact = require "tumble.interact"
+local hands
+
 local scenario = {
   title = "Rag-doll down the stairs",
   duration = 10,  -- seconds, when run without --seconds/--steps
@@ -21,6 +26,7 @@ local doll
 local steps
 
 function scenario.on_start(ctx)
+  hands = interact.new{}
   world.plane{friction = 0.6, color = {0.55, 0.57, 0.6}}
   steps = math.floor(param("steps", 8))
   local height = steps * RISE
@@ -40,6 +46,10 @@ function scenario.on_start(ctx)
     local v = part:velocity()
     part:set_velocity({2.5, v.y, v.z})
   end
+end
+
+function scenario.on_update(ctx, dt)
+  hands:update()
 end
 
 function scenario.on_finish(ctx)
