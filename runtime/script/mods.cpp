@@ -170,7 +170,10 @@ std::string constraintText(const ModDependency& d) {
 // returned table. Problems are appended; returns true if a table came back.
 bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>& problems) {
   std::string path = (fs::path(dir) / "mod.lua").string();
-  std::string folder = fs::path(dir).filename().string();
+  // "mods/mymod/" (a shell's completion) names the folder "mymod" too.
+  fs::path folderPath = fs::path(dir).lexically_normal();
+  if (!folderPath.has_filename()) folderPath = folderPath.parent_path();
+  std::string folder = folderPath.filename().string();
   auto problem = [&](int line, std::string msg) { problems.push_back({path, line, std::move(msg), folder}); };
   if (!fs::exists(path)) {
     problem(0, "missing: every mod folder needs a mod.lua manifest returning {name, version, title, api}");
@@ -412,6 +415,119 @@ std::vector<ModInfo> resolve(const std::vector<ModInfo>& mods, std::vector<ModPr
 
 }  // namespace
 
+namespace {
+
+// References by literal name in a mod's Lua files, checked statically: the
+// emitter, vehicle, input action or asset file must exist. Names built at
+// run time are not seen (the run then reports them). Comment lines are
+// skipped.
+void checkReferences(const ModInfo& self, const std::vector<fs::path>& files, const std::vector<ModInfo>& mods,
+                     const input::BindingSet& actions, std::vector<ModProblem>& problems) {
+  auto findMod = [&](const std::string& name) -> const ModInfo* {
+    if (name == self.name) return &self;
+    for (const ModInfo& m : mods)
+      if (m.name == name) return &m;
+    return nullptr;
+  };
+  // "mod:name" or "name" (this mod, then base) -> the file <mod>/<folder>/<name>.lua.
+  auto definitionExists = [&](const std::string& ref, const char* folder, std::string* why) {
+    std::vector<const ModInfo*> where;
+    std::string name = ref;
+    if (auto colon = ref.find(':'); colon != std::string::npos) {
+      name = ref.substr(colon + 1);
+      const ModInfo* m = findMod(ref.substr(0, colon));
+      if (!m) {
+        *why = "no mod named \"" + ref.substr(0, colon) + "\" is installed";
+        return false;
+      }
+      where.push_back(m);
+    } else {
+      where.push_back(&self);
+      if (const ModInfo* base = findMod("base"); base && base != &self) where.push_back(base);
+    }
+    std::string known;
+    for (const ModInfo* m : where) {
+      if (fs::exists(fs::path(m->dir) / folder / (name + ".lua"))) return true;
+      for (const std::string& n : ModRegistry::listLua(*m, folder)) known += (known.empty() ? "" : ", ") + m->name + ":" + n;
+    }
+    *why = std::string(folder) + "/" + name + ".lua not found" + (known.empty() ? "" : " (known: " + known + ")");
+    return false;
+  };
+  // "MOD:path" or a path inside this mod -> an existing file inside that mod.
+  auto assetExists = [&](const std::string& ref, std::string* why) {
+    const ModInfo* m = &self;
+    std::string rel = ref;
+    if (auto colon = ref.find(':'); colon != std::string::npos && colon > 1) {
+      m = findMod(ref.substr(0, colon));
+      rel = ref.substr(colon + 1);
+      if (!m) {
+        *why = "no mod named \"" + ref.substr(0, colon) + "\" is installed";
+        return false;
+      }
+    }
+    const fs::path root = fs::weakly_canonical(fs::path(m->dir));
+    const fs::path path = fs::weakly_canonical(root / rel);
+    const fs::path inside = path.lexically_relative(root);
+    if (inside.empty() || *inside.begin() == "..") {
+      *why = "leaves the mod's folder; paths stay inside it";
+      return false;
+    }
+    if (!fs::is_regular_file(path)) {
+      *why = "no such file in mod " + m->name + " (" + path.string() + ")";
+      return false;
+    }
+    return true;
+  };
+  static const std::regex emitterRe(R"re(particles\.(spawn|burst)\s*\(\s*"([^"]+)")re");
+  static const std::regex vehicleRe(R"re(vehicle\.(spawn|definition)\s*\(\s*"([^"]+)")re");
+  static const std::regex actionRe(R"re(input\.(value|pressed|released|down|inject)\s*\(\s*"([^"]+)")re");
+  static const std::regex assetCallRe(
+      R"re((set_model|add_static_model|model_mass_properties|import)\s*\(\s*"([^"]+)")re");
+  static const std::regex assetFieldRe(R"re(\b(interior|mesh|heightmap)\s*=\s*"([^"]+)")re");
+  for (const fs::path& file : files) {
+    std::ifstream in(file);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      const auto first = line.find_first_not_of(" \t");
+      if (first == std::string::npos || line.compare(first, 2, "--") == 0) continue;
+      auto scan = [&](const std::regex& re, auto&& check) {
+        for (auto it = std::sregex_iterator(line.begin(), line.end(), re); it != std::sregex_iterator(); ++it) {
+          const std::string what = (*it)[1], name = (*it)[2];
+          std::string why;
+          if (!check(what, name, &why)) problems.push_back({file.string(), n, why, self.name});
+        }
+      };
+      scan(emitterRe, [&](const std::string& fn, const std::string& ref, std::string* why) {
+        if (definitionExists(ref, "emitters", why)) return true;
+        *why = "particles." + fn + "(\"" + ref + "\"): no such emitter: " + *why;
+        return false;
+      });
+      scan(vehicleRe, [&](const std::string& fn, const std::string& ref, std::string* why) {
+        if (definitionExists(ref, "vehicles", why)) return true;
+        *why = "vehicle." + fn + "(\"" + ref + "\"): no such vehicle: " + *why;
+        return false;
+      });
+      scan(actionRe, [&](const std::string& fn, const std::string& name, std::string* why) {
+        if (actions.findAction(name)) return true;
+        std::string known;
+        for (const input::ActionDef& a : actions.actions) known += (known.empty() ? "" : ", ") + a.name;
+        *why = "input." + fn + "(\"" + name + "\"): no such action in bindings.lua of this mod, its dependencies "
+               "or base (known: " + (known.empty() ? std::string("none") : known) + ")";
+        return false;
+      });
+      auto asset = [&](const std::string& fn, const std::string& ref, std::string* why) {
+        if (assetExists(ref, why)) return true;
+        *why = fn + " \"" + ref + "\": " + *why;
+        return false;
+      };
+      scan(assetCallRe, asset);
+      scan(assetFieldRe, asset);
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<ModProblem> checkMod(const std::string& dir) {
   fs::path parent = fs::absolute(fs::path(dir)).lexically_normal();
   if (!parent.has_filename()) parent = parent.parent_path();  // "mods/x/"
@@ -429,6 +545,7 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
   bool manifestOk = readManifest(dir, info, problems) && problems.size() == before;
   // Dependencies: this mod among the others in the search folders.
   std::vector<ModInfo> bindingMods;  // base and this mod's dependencies, in load order, then this mod
+  std::vector<ModInfo> allMods;      // every loadable mod (emitters, vehicles, assets by "mod:name")
   if (manifestOk) {
     std::vector<ModProblem> ignored, resolved;
     std::vector<ModInfo> mods = collect(searchDirs, ignored);
@@ -437,6 +554,7 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
     if (it != mods.end()) *it = info;
     else mods.push_back(info);
     std::vector<ModInfo> ordered = resolve(mods, resolved);
+    allMods = ordered;
     std::set<std::string> wanted{"base"};
     for (const ModDependency& d : info.depends) wanted.insert(d.name);
     for (auto m = ordered.rbegin(); m != ordered.rend(); ++m)  // dependents come after their dependencies
@@ -480,6 +598,7 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
       });
       if (!seen) problems.push_back(std::move(p));
     }
+    checkReferences(info, files, allMods, bindings.set, problems);
   }
   return problems;
 }

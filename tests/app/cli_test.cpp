@@ -2,6 +2,8 @@
 // that name file and line, check and list.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "tumble_process.h"
 
 namespace tumble::test {
@@ -81,6 +83,44 @@ TEST(Cli, ListShowsModsAndScenarios) {
   EXPECT_NE(r.output.find("base:drop"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("good:boxes"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("broken"), std::string::npos) << "the broken mod is reported: " << r.output;
+}
+
+}  // namespace tumble::test
+
+namespace tumble::test {
+
+// `tumble check` finds references by literal name to things that do not
+// exist (issue 6 item 1): emitters, vehicles, input actions, assets; each
+// with its file and line; comments are not read. A trailing slash on the
+// folder (a shell's completion) is fine.
+TEST(Cli, CheckFindsMissingEmittersVehiclesActionsAndAssets) {
+  const std::string dir = outDir("check_refs");
+  std::filesystem::create_directories(dir + "/refs/scenarios");
+  std::ofstream(dir + "/refs/mod.lua") << "return {name = \"refs\", version = \"1.0.0\", title = \"refs\", api = 1}\n";
+  std::ofstream(dir + "/refs/scenarios/s.lua") << R"(return {
+  terrain = {heightmap = "assets/none.png"},
+  on_start = function()
+    particles.spawn("base:dustt", {position = {0, 0, 0}})
+    particles.burst("sparks", 3, {position = {0, 0, 0}})
+    local car = vehicle.spawn("base:hatchbak", {position = {0, 1, 0}})
+    world.add_static_model("base:assets/models/rok.obj", {position = {0, 0, 0}})
+    -- particles.spawn("commented:out") is not read
+    if input.pressed("jump") or input.value("throttle") > 0 then end
+  end,
+}
+)";
+  auto r = runTumble("check " + dir + "/refs/");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  for (const char* expected : {"s.lua:2: heightmap \"assets/none.png\": no such file",
+                               "s.lua:4: particles.spawn(\"base:dustt\"): no such emitter",
+                               "s.lua:6: vehicle.spawn(\"base:hatchbak\"): no such vehicle",
+                               "s.lua:7: add_static_model \"base:assets/models/rok.obj\": no such file",
+                               "s.lua:9: input.pressed(\"jump\"): no such action"})
+    EXPECT_NE(r.output.find(expected), std::string::npos) << expected << "\n" << r.output;
+  EXPECT_EQ(r.output.find("particles.burst(\"sparks\")"), std::string::npos) << "base's sparks exists\n" << r.output;
+  EXPECT_EQ(r.output.find("commented"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("but the folder is"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("5 problems"), std::string::npos) << r.output;
 }
 
 }  // namespace tumble::test
