@@ -1,10 +1,11 @@
--- Crash test: a car at 10 m/s (36 km/h) into a rag-doll standing before a
+-- Crash test: a car at 15 m/s (54 km/h) into a rag-doll standing before a
 -- wall of boxes. The chassis is an ordinary rigid body, so the impact is solved by
 -- the contact solver like any other: the rag-doll goes tumbling, the wall
 -- scatters, the car is slowed. The autopilot holds the car straight up to
--- the impact, then the car coasts. (Above ~12 m/s the rag-doll's joints
--- currently blow up when a 1 t body hits them: a joint-solver limit, the
--- same with a plain box, not a vehicle one.)
+-- the impact, then the car coasts. The rag-doll's joints are impulses solved
+-- with the contacts (joint_solver = "impulse"): measured, they hold a 30 m/s
+-- hit to 3.3 cm, where the Lagrange formulation (forces from before the
+-- step, blind to the impact) opened 0.44 m at 10 m/s and blew up at 20 m/s.
 -- Expectations: the car was at speed when it hit, the rag-doll was thrown
 -- (its pelvis moved metres and fast), boxes scattered, the car slowed, and
 -- nothing went non-finite.
@@ -20,6 +21,7 @@ local impact_speed, doll_start, doll_speed_max, speed_after = 0, nil, 0, math.hu
 return {
   title = "Crash test: a car, a rag-doll and a wall of boxes",
   duration = 6,
+  joint_solver = "impulse",
 
   on_start = function(ctx)
     world.plane{friction = 0.9}
@@ -30,7 +32,7 @@ return {
       end
     end
     car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, 0}, heading = 0})
-    local speed = param("speed", 10)
+    local speed = param("speed", 15)
     car:body():set_velocity({0, 0, speed})
     pilot = drive.autopilot(car, {waypoints = {{0, 200}}, speed = speed, traction = false})
     drive.show(car)
@@ -53,7 +55,7 @@ return {
   end,
 
   on_finish = function(ctx)
-    expect("car at speed before the impact (m/s)", impact_speed, {min = 0.8 * param("speed", 10)})
+    expect("car at speed before the impact (m/s)", impact_speed, {min = 0.8 * param("speed", 15)})
     expect("rag-doll created", doll ~= nil)
     if doll then
       local q = doll.pelvis:position()
