@@ -388,6 +388,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     }
   });
   snapshotParticles(out, alpha);
+  snapshotVehiclesAndLines(out, alpha);
 }
 
 void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
@@ -423,6 +424,9 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
       dst.push_back(q);
     }
   });
+}
+
+void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) const {
   // Vehicle wheels are ray casts, not bodies: drawn with the shipped wheel
   // model (axle along X, radius 0.35 m, width 0.25 m) at each hub, steered
   // and turned by its accumulated spin; as spheres if the model is missing.

@@ -74,6 +74,8 @@ class Scene {
   void snapshot(render::FrameSnapshot& out, double alpha) const;
   /// The particles part of snapshot(): billboards of every live particle.
   void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
+  /// Vehicle wheels (ray casts, not bodies), ropes, cloth and script lines.
+  void snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) const;
   /// Steps the scenario's ropes and cloth, if it made any (after World::step).
   void stepDeformables(Real dt_s);
   /// Hot reload of a saved bindings.lua: the mods' bindings are read again
