@@ -195,6 +195,22 @@ bool World::destroyBody(BodyId id) {
   return true;
 }
 
+Status World::setPrincipalInertia(BodyId id, const Vec3& I) {
+  if (!isValid(id)) return makeError("setPrincipalInertia: no such body");
+  Body& b = mutableBody(id);
+  if (!b.isDynamic()) return makeError("setPrincipalInertia: only a dynamic body has inertia");
+  if (!I.allFinite() || (I.array() <= 0).any())
+    return makeError("setPrincipalInertia: moments must be finite and > 0 kg m^2");
+  // A real body's moments satisfy I_a <= I_b + I_c (a little slack for rounding).
+  for (int k = 0; k < 3; ++k)
+    if (I[k] > Real(1.0001) * (I[(k + 1) % 3] + I[(k + 2) % 3]))
+      return makeError("setPrincipalInertia: moments break the triangle inequality (no rigid body has them)");
+  b.inertiaLocal_kgm2 = I;
+  b.invInertiaLocal = I.cwiseInverse();
+  updateInertia(b);
+  return Ok{};
+}
+
 void World::updateInertia(Body& b) {
   if (!b.isDynamic()) {
     b.invInertiaWorld.setZero();

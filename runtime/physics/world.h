@@ -206,6 +206,12 @@ class World {
   bool removeSpring(SpringId id);
   const BodyIntegration& integration() const { return *m_integration; }
 
+  /// Replaces a dynamic body's principal moments of inertia (kg m^2, along
+  /// its body axes), e.g. from a visual mesh instead of its collision shape.
+  /// Refused (message says why) for a body that is not dynamic or moments
+  /// that are not finite and > 0 or break the triangle inequality.
+  Status setPrincipalInertia(BodyId id, const Vec3& moments_kgm2);
+
   /// Static terrain the bodies collide with (see height_field.h), or null.
   /// Owned by the caller and must outlive the world or be reset to null;
   /// the world keeps only the pointer (no terrain memory in physics).

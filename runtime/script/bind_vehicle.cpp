@@ -7,8 +7,11 @@
 //   car:set_controls{throttle = 1, steer = -0.3}
 //   print(car:speed(), car:rpm(), car:telemetry().wheels[1].slip_ratio)
 #include <cstring>
+#include <filesystem>
 #include <map>
 
+
+#include "physics/mass_properties.h"
 #include "script/internal/bind_common.h"
 #include "script/vehicle_defs.h"
 #include "vehicle/vehicle_system.h"
@@ -42,6 +45,23 @@ vehicle::VehicleId checkVehicle(lua_State* L, int idx) {
 vehicle::VehicleSystem& systemOf(lua_State* L) { return ScenarioHost::from(L)->vehicles(); }
 
 /// The definition of "mod:name" (or "name": base), loaded once per run.
+// chassis.inertia = "mesh": the chassis mesh as a uniform solid scaled to the
+// chassis mass; its inertia diagonal along the chassis axes (the products of
+// inertia of a left-right symmetric car are small and left out).
+Vec3 meshInertia(ScenarioHost& host, const ModInfo& mod, const vehicle::VehicleDef& def, const std::string& ref) {
+  const ModelTrianglesFn& triangles = host.options().modelTriangles;
+  const std::string where = "vehicle \"" + ref + "\": chassis.inertia = \"mesh\": ";
+  if (!triangles) throw LuaArgError(where + "this run cannot read model meshes");
+  const std::string file = (std::filesystem::path(mod.dir) / def.chassis.mesh).string();
+  auto mesh = triangles(file);
+  if (!mesh) throw LuaArgError(where + mesh.error());
+  if (!physics::isClosedMesh(mesh->vertices_m, mesh->triangles))
+    throw LuaArgError(where + file + " is not one closed surface; the inertia needs a closed mesh");
+  const physics::MassProperties p = physics::massPropertiesOfMesh(mesh->vertices_m, mesh->triangles, 1);
+  if (!p.valid) throw LuaArgError(where + file + " encloses no volume");
+  return p.inertia_kgm2.diagonal() * (def.chassis.mass_kg / p.mass_kg);
+}
+
 const vehicle::VehicleDef& definition(lua_State* L, const std::string& ref) {
   ScenarioHost& host = *ScenarioHost::from(L);
   auto& cache = host.vehicleDefCache();
@@ -56,6 +76,7 @@ const vehicle::VehicleDef& definition(lua_State* L, const std::string& ref) {
   if (!mod) throw LuaArgError("vehicle \"" + ref + "\": no mod named \"" + modName + "\" is loaded");
   auto def = loadVehicleFile(*mod, name);
   if (!def) throw LuaArgError(def.error());
+  if (def->chassis.inertiaFromMesh) def->chassis.inertia_kgm2 = meshInertia(host, *mod, *def, ref);
   return cache.emplace(ref, std::move(def.value())).first->second;
 }
 

@@ -178,6 +178,14 @@ void readDef(lua_State* L, VehicleDef& d) {
     c.number("friction", &d.chassis.friction, "Coulomb coefficient");
     c.number("restitution", &d.chassis.restitution, "0..1");
     c.string("mesh", &d.chassis.mesh);
+    std::string inertia = d.chassis.inertiaFromMesh ? "mesh" : "box";
+    c.string("inertia", &inertia);
+    if (inertia != "box" && inertia != "mesh")
+      throw DefError("chassis.inertia: \"" + inertia + "\" is not \"box\" (a solid box of size and mass) or \"mesh\" "
+                     "(the visual mesh as a uniform solid of the chassis mass)");
+    if (inertia == "mesh" && d.chassis.mesh.empty())
+      throw DefError("chassis.inertia: \"mesh\" needs chassis.mesh, the closed mesh to take the inertia from");
+    d.chassis.inertiaFromMesh = inertia == "mesh";
     const fs::path mesh(d.chassis.mesh);
     if (!d.chassis.mesh.empty() && (mesh.is_absolute() || std::any_of(mesh.begin(), mesh.end(), [](const fs::path& part) {
                                       return part == "..";
@@ -295,6 +303,8 @@ void pushVehicleDef(lua_State* L, const VehicleDef& d) {
     lua_pushstring(L, d.chassis.mesh.c_str());
     lua_setfield(L, -2, "mesh");
   }
+  lua_pushstring(L, d.chassis.inertiaFromMesh ? "mesh" : "box");
+  lua_setfield(L, -2, "inertia");
   lua_setfield(L, -2, "chassis");
   lua_createtable(L, int(d.axles.size()), 0);
   for (std::size_t i = 0; i < d.axles.size(); ++i) {

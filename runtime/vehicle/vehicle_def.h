@@ -24,8 +24,12 @@ struct ChassisDef {
   /// centred on the centre of mass (compound shapes are not there yet), so
   /// this moves the wheels relative to the box, not the box.
   Vec3 centerOfMass_m = Vec3::Zero();
-  // Inertia: that of a solid box of size_m and mass_kg (from the mesh when
-  // meshes land).
+  /// Inertia. "box" (default): a solid box of size_m and mass_kg. "mesh":
+  /// the moments of the visual mesh taken as a uniform solid scaled to
+  /// mass_kg (its diagonal along the chassis axes; the script layer computes
+  /// inertia_kgm2 from the mesh when it loads the definition).
+  bool inertiaFromMesh = false;
+  Vec3 inertia_kgm2 = Vec3::Zero();  ///< principal moments, kg m^2; zero: the box's
   Real dragArea_m2 = Real(0.7);   ///< drag coefficient times frontal area (Cd A), m^2
   Real airDensity_kgpm3 = Real(1.2);
   Real friction = Real(0.4);      ///< body contact friction (crashes, scrapes)

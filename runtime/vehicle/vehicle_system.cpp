@@ -180,6 +180,13 @@ Result<VehicleId> VehicleSystem::spawn(const VehicleDef& def, const Vec3& ground
   v.alive = true;
   v.def = def;
   v.chassis = body.value();
+  if (def.chassis.inertia_kgm2 != Vec3::Zero())
+    if (auto st = m_world.setPrincipalInertia(v.chassis, def.chassis.inertia_kgm2); !st) {
+      m_world.destroyBody(v.chassis);
+      v.alive = false;
+      m_free.push_back(index);
+      return makeError(where + ": chassis inertia: " + st.error());
+    }
   configure(v);
   place(v, ground, heading);
   ++m_alive;
@@ -232,6 +239,10 @@ Status VehicleSystem::setDef(VehicleId id, const VehicleDef& def, const std::str
   Vehicle& v = get(id);
   const bool reshape = def.chassis.size_m != v.def.chassis.size_m || def.chassis.mass_kg != v.def.chassis.mass_kg;
   if (!reshape) m_world.setMaterial(v.chassis, def.chassis.friction, def.chassis.restitution);
+  // Given moments (from the mesh) scale with the mass; the shape of the distribution stays.
+  Vec3 inertia = def.chassis.inertia_kgm2;
+  if (inertia != Vec3::Zero() && def.chassis.mass_kg != v.def.chassis.mass_kg)
+    inertia *= def.chassis.mass_kg / v.def.chassis.mass_kg;
   if (reshape) {
     // A new size or mass: the chassis body is remade with the same pose and
     // velocities (a new BodyId: Vehicle::chassis() gives it).
@@ -247,10 +258,17 @@ Status VehicleSystem::setDef(VehicleId id, const VehicleDef& def, const std::str
     bd.angularVelocity_radps = old.angularVelocity_radps;
     auto body = m_world.createBody(bd);
     if (!body) return makeError(where + ": " + body.error());
+    if (inertia != Vec3::Zero()) {
+      if (auto st = m_world.setPrincipalInertia(body.value(), inertia); !st) {
+        m_world.destroyBody(body.value());
+        return makeError(where + ": chassis inertia: " + st.error());
+      }
+    }
     m_world.destroyBody(v.chassis);
     v.chassis = body.value();
   }
   v.def = def;
+  v.def.chassis.inertia_kgm2 = inertia;
   configure(v);
   v.controls.gear = std::clamp(v.controls.gear, -1, int(def.gearbox.ratios.size()));
   v.gear = std::clamp(v.gear, -1, int(def.gearbox.ratios.size()));

@@ -223,5 +223,40 @@ TEST(Vehicle, ParameterChangeWhileRunningChangesBehaviour) {
   EXPECT_FALSE(s.setDef(car, d).ok());
 }
 
+// Chassis inertia given as principal moments (chassis.inertia = "mesh" puts
+// the mesh's there): the body has them, a free yaw torque turns it at
+// tau / I_yy, a heavier chassis scales them, and moments no rigid body can
+// have are refused.
+TEST(Vehicle, GivenChassisInertiaIsUsedAndScalesWithMass) {
+  physics::World w;
+  w.settings().gravity_mps2 = Vec3::Zero();
+  VehicleSystem s(w);
+  VehicleDef def = testCar();
+  def.chassis.inertia_kgm2 = Vec3(1500, 1700, 320);
+  auto spawned = s.spawn(def, Vec3(0, 5, 0), 0);
+  ASSERT_TRUE(spawned.ok()) << spawned.error();
+  const VehicleId car = spawned.value();
+  const physics::BodyId body = s.chassis(car);
+  EXPECT_LT((w.body(body).inertiaLocal_kgm2 - def.chassis.inertia_kgm2).norm(), 1e-3);
+  // Free in the air: a yaw torque of 300 N m for 0.5 s spins it to tau t / I_yy.
+  for (int i = 0; i < 30; ++i) {
+    w.applyTorque(body, Vec3(0, 300, 0));
+    s.beforeStep(Real(1.0 / 60));
+    w.step(Real(1.0 / 60));
+  }
+  EXPECT_NEAR(w.body(body).angularVelocity_radps.y(), 300 * 0.5 / 1700, 0.02 * 300 * 0.5 / 1700);
+
+  VehicleDef heavier = s.def(car);
+  heavier.chassis.mass_kg *= 2;
+  ASSERT_TRUE(s.setDef(car, heavier, "car.lua").ok());
+  EXPECT_LT((w.body(s.chassis(car)).inertiaLocal_kgm2 - 2 * def.chassis.inertia_kgm2).norm(), 1e-2);
+
+  VehicleDef impossible = testCar();
+  impossible.chassis.inertia_kgm2 = Vec3(100, 100, 500);  // 500 > 100 + 100
+  auto refused = s.spawn(impossible, Vec3(5, 0, 0), 0);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("triangle inequality"), std::string::npos) << refused.error();
+}
+
 }  // namespace
 }  // namespace tumble::vehicle::test
