@@ -119,7 +119,9 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
   if (ImGui::Begin("Tumble", nullptr, kOverlayFlags | ImGuiWindowFlags_NoMove)) {
     ImGui::Text("%s", stats.scenario.empty() ? "(no scenario)" : stats.scenario.c_str());
     ImGui::Separator();
-    ImGui::Text("%.0f FPS  (%.2f ms)", stats.fps, stats.fps > 0 ? 1000.0 / stats.fps : 0.0);
+    // A single picture (run --screenshot, offscreen play) has no frame rate.
+    if (stats.fps > 0) ImGui::Text("%.0f FPS  (%.2f ms)", stats.fps, 1000.0 / stats.fps);
+    else ImGui::TextColored(kDimColor, "single frame (no frame rate)");
     if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_SizingFixedFit)) {
       timingRow("physics", stats.physics_ms);
       timingRow("script", stats.script_ms);
