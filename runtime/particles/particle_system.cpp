@@ -25,7 +25,7 @@ bool ParticleSystem::redefine(EmitterId id, const EmitterDef& def) {
   if (!e) return false;
   const bool scriptRate = e->rate_per_s != e->def.rate_per_s;
   e->def = def;
-  std::sort(e->def.bursts.begin(), e->def.bursts.end(),
+  std::stable_sort(e->def.bursts.begin(), e->def.bursts.end(),
             [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
   if (!scriptRate) e->rate_per_s = def.rate_per_s;
   if (std::size_t(def.maxCount) > e->pool.px.size()) e->pool.reserve(std::size_t(def.maxCount));

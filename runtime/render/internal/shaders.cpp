@@ -1,5 +1,7 @@
 #include "render/internal/shaders.h"
 
+#include <string>
+
 namespace tumble::render::shaders {
 
 // The lighting model, kept deliberately simple so shapes read clearly:
@@ -8,6 +10,41 @@ namespace tumble::render::shaders {
 // from below) so faces turned away from the sun keep their shape. Distance
 // fog blends into the sky's horizon colour, which hides the edge of the
 // finite ground plane and the aliasing of far checker squares.
+
+// The lit uniforms (set by internal/lit_uniforms.h) and the lighting and fog
+// every lit pass shares: shapes, terrain and model meshes. Spliced into their
+// fragment shaders after the #version line (litFragment below).
+const char* const kLighting = R"glsl(
+uniform vec3 uEye;
+uniform vec3 uLightDirection;   // unit, towards the light
+uniform vec3 uLightColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform vec3 uFogColor;
+uniform float uFogDensity;      // 1/m
+
+// Lambert sun + hemisphere ambient + a Blinn-Phong highlight of the given
+// strength (0: none) and shininess.
+vec3 sunAndSky(vec3 albedo, vec3 n, vec3 position, float highlight, float shininess) {
+  float diffuse = max(dot(n, uLightDirection), 0.0);
+  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
+  vec3 color = albedo * (ambient + uLightColor * diffuse);
+  if (highlight > 0.0 && diffuse > 0.0) {
+    vec3 halfway = normalize(normalize(uEye - position) + uLightDirection);
+    color += uLightColor * highlight * pow(max(dot(n, halfway), 0.0), shininess);
+  }
+  return color;
+}
+
+// Distance fog into the horizon colour, then linear -> sRGB.
+vec4 fogged(vec3 color, float distance) {
+  float d = distance * uFogDensity;
+  color = mix(color, uFogColor, 1.0 - exp(-d * d));
+  return vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+}
+)glsl";
+
+static std::string litFragment(const char* body) { return std::string("#version 330 core\n") + kLighting + body; }
 
 const char* const kShapeVertex = R"glsl(
 #version 330 core
@@ -44,20 +81,12 @@ void main() {
 }
 )glsl";
 
-const char* const kShapeFragment = R"glsl(
-#version 330 core
+const std::string kShapeFragmentSource = litFragment(R"glsl(
 in vec3 vWorldPosition;
 in vec3 vNormal;
 in vec3 vColor;
 in vec2 vPlaneCoord;
 
-uniform vec3 uEye;
-uniform vec3 uLightDirection;   // unit, towards the light
-uniform vec3 uLightColor;
-uniform vec3 uSkyAmbient;
-uniform vec3 uGroundAmbient;
-uniform vec3 uFogColor;
-uniform float uFogDensity;      // 1/m
 uniform int uChecker;           // 1: 1 m checkerboard in local XZ (planes)
 
 out vec4 fragColor;
@@ -77,18 +106,11 @@ void main() {
   vec3 albedo = vColor;
   if (uChecker != 0) albedo *= mix(1.0, 0.55, checker(vPlaneCoord));
 
-  float diffuse = max(dot(n, uLightDirection), 0.0);
-  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
-  vec3 toEye = normalize(uEye - vWorldPosition);
-  vec3 halfway = normalize(toEye + uLightDirection);
-  float specular = diffuse > 0.0 ? 0.12 * pow(max(dot(n, halfway), 0.0), 40.0) : 0.0;
-  vec3 color = albedo * (ambient + uLightColor * diffuse) + uLightColor * specular;
-
-  float d = length(uEye - vWorldPosition) * uFogDensity;
-  color = mix(color, uFogColor, 1.0 - exp(-d * d));
-  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+  vec3 color = sunAndSky(albedo, n, vWorldPosition, 0.12, 40.0);
+  fragColor = fogged(color, length(uEye - vWorldPosition));
 }
-)glsl";
+)glsl");
+const char* const kShapeFragment = kShapeFragmentSource.c_str();
 
 // Sky: one triangle covering the screen (no vertex buffer; positions come
 // from gl_VertexID), drawn at the far plane. The view ray through each pixel
@@ -197,8 +219,7 @@ void main() {
 }
 )glsl";
 
-const char* const kTerrainFragment = R"glsl(
-#version 330 core
+const std::string kTerrainFragmentSource = litFragment(R"glsl(
 in vec3 vWorldPosition;
 in vec3 vNormal;
 in float vShade;
@@ -211,13 +232,6 @@ uniform float uSpacing;            // m per block
 uniform ivec2 uBlocks;             // blocks along x / z
 uniform float uTexturePerMetre;    // material texture repeats per metre
 uniform float uDetailSlope;        // scale of the detail slope at bump 255
-uniform vec3 uEye;
-uniform vec3 uLightDirection;
-uniform vec3 uLightColor;
-uniform vec3 uSkyAmbient;
-uniform vec3 uGroundAmbient;
-uniform vec3 uFogColor;
-uniform float uFogDensity;
 
 out vec4 fragColor;
 float hash(vec2 p) {
@@ -260,15 +274,10 @@ void main() {
     n = normalize(n - (tilt - n * dot(n, tilt)));
   }
 
-  float diffuse = max(dot(n, uLightDirection), 0.0);
-  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
-  vec3 color = albedo * (ambient + uLightColor * diffuse);
-
-  float d = distance * uFogDensity;
-  color = mix(color, uFogColor, 1.0 - exp(-d * d));
-  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+  fragColor = fogged(sunAndSky(albedo, n, vWorldPosition, 0.0, 1.0), distance);
 }
-)glsl";
+)glsl");
+const char* const kTerrainFragment = kTerrainFragmentSource.c_str();
 
 // Meshes of loaded models: the shapes' lighting and fog, an albedo of
 // material colour x vertex colour x texture (an sRGB texture, so the sample
@@ -301,20 +310,12 @@ void main() {
 }
 )glsl";
 
-const char* const kMeshFragment = R"glsl(
-#version 330 core
+const std::string kMeshFragmentSource = litFragment(R"glsl(
 in vec3 vWorldPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec3 vColor;
 
-uniform vec3 uEye;
-uniform vec3 uLightDirection;
-uniform vec3 uLightColor;
-uniform vec3 uSkyAmbient;
-uniform vec3 uGroundAmbient;
-uniform vec3 uFogColor;
-uniform float uFogDensity;
 uniform vec3 uDiffuse;        // linear material colour x instance tint
 uniform int uHasTexture;
 uniform sampler2D uTexture;   // sRGB, sampled as linear
@@ -330,16 +331,9 @@ void main() {
     if (texel.a < 0.5) discard;
     albedo *= texel.rgb;
   }
-  float diffuse = max(dot(n, uLightDirection), 0.0);
-  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
-  vec3 toEye = normalize(uEye - vWorldPosition);
-  vec3 halfway = normalize(toEye + uLightDirection);
-  float specular = diffuse > 0.0 ? 0.08 * pow(max(dot(n, halfway), 0.0), 32.0) : 0.0;
-  vec3 color = albedo * (ambient + uLightColor * diffuse) + uLightColor * specular;
-  float d = length(uEye - vWorldPosition) * uFogDensity;
-  color = mix(color, uFogColor, 1.0 - exp(-d * d));
-  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+  fragColor = fogged(sunAndSky(albedo, n, vWorldPosition, 0.08, 32.0), length(uEye - vWorldPosition));
 }
-)glsl";
+)glsl");
+const char* const kMeshFragment = kMeshFragmentSource.c_str();
 
 }  // namespace tumble::render::shaders
