@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "core/handle.h"
+#include "core/random.h"
 #include "particles/emitter_def.h"
 #include <Eigen/Geometry>
 
@@ -62,12 +63,7 @@ struct ParticlePool {
 /// platform, unlike std:: distributions.
 struct Random {
   std::uint64_t state = 0;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
+  std::uint64_t next() { return splitmix64(state); }
   /// Uniform in [0, 1).
   float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
   float range(float lo, float hi) { return lo + (hi - lo) * uniform(); }

@@ -7,6 +7,7 @@
 // arithmetic; float() uses the top 53 bits).
 #include <cmath>
 
+#include "core/random.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -28,13 +29,6 @@ struct Random {
   std::uint64_t s[4];
   std::uint64_t seed;
 };
-
-std::uint64_t splitmix64(std::uint64_t& x) {
-  std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
 

@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "core/log.h"
+#include "core/random.h"
 #include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
 #include "script/internal/emitter_table.h"
@@ -1273,10 +1274,8 @@ void ScenarioHost::decide(Outcome outcome, std::string reason) {
 
 std::uint64_t ScenarioHost::nextRandomSeed() {
   // splitmix64 of (seed, count): distinct, reproducible streams.
-  std::uint64_t z = m_options.seed + 0x9E3779B97F4A7C15ull * ++m_randomCount;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+  std::uint64_t state = m_options.seed + 0x9E3779B97F4A7C15ull * m_randomCount++;
+  return splitmix64(state);
 }
 
 void ScenarioHost::setColor(physics::BodyId id, const Eigen::Vector3f& rgb) {

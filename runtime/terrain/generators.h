@@ -6,21 +6,16 @@
 // not contract to FMA, so the bytes match across x86-64 and AArch64 builds.
 #include <cstdint>
 
+#include "core/random.h"
 #include "terrain/height_map.h"
 
 namespace tumble::terrain {
 
-/// splitmix64 (Steele, Lea, Flood 2014): tiny, fast, statistically good and
-/// fully specified, so the sequence is the same everywhere.
+/// splitmix64 (core/random.h): the same sequence everywhere.
 class Rng {
  public:
   explicit Rng(std::uint64_t seed) : m_state(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (m_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
+  std::uint64_t next() { return splitmix64(m_state); }
   /// Uniform in [0, 1) with 53 random bits.
   double unit() { return double(next() >> 11) * 0x1.0p-53; }
   /// Uniform in [-1, 1).
