@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "joint_fixture.h"
 #include "physics/joints/joint_system.h"
 #include "physics/joints/ragdoll.h"
 #include "physics/world.h"
@@ -22,70 +23,24 @@ JointSettings impulseSettings() {
   return s;
 }
 
-WorldSettings quietSettings() {
-  WorldSettings s;
-  s.enableSleep = false;
-  return s;
-}
+using test::addBox;
+using test::quietSettings;
 
-BodyId addBox(World& w, const Vec3& p, const Vec3& half, Real mass, Real friction = Real(0.6)) {
-  BodyDef d;
-  d.shape = Shape::box(half);
-  d.position_m = p;
-  d.mass_kg = mass;
-  d.friction = friction;
-  return w.createBody(d).value();
-}
-
-/// n boxes of length L hanging from a world anchor at `top` along `dir`.
-std::vector<BodyId> makeChain(World& w, JointSystem& js, int n, const Vec3& top, const Vec3& dir,
-                              Real L = Real(0.25), Real mass = Real(0.5)) {
-  std::vector<BodyId> links;
-  const Quat q = Quat::FromTwoVectors(Vec3(0, -1, 0), dir);
-  for (int i = 0; i < n; ++i) {
-    BodyDef d;
-    d.shape = Shape::box(Vec3(Real(0.05), L / 2, Real(0.05)));
-    d.position_m = top + dir * (L * (Real(i) + Real(0.5)));
-    d.orientation = q;
-    d.mass_kg = mass;
-    links.push_back(w.createBody(d).value());
-    const BodyId parent = i == 0 ? BodyId{} : links[i - 1];
-    EXPECT_TRUE(js.createJoint(makeJointDef(w, JointType::Ball, links[i], parent, top + dir * (L * Real(i)))).ok());
-  }
-  return links;
+/// The chain's links (ball joints).
+std::vector<BodyId> makeChain(World& w, JointSystem& js, int n, const Vec3& top, const Vec3& dir) {
+  return test::makeChain(w, js, n, top, dir).links;
 }
 
 TEST(ImpulseJoints, PendulumPeriodWithinOnePercent) {
-  World world(quietSettings());
-  JointSystem joints(world, impulseSettings());
-  ASSERT_EQ(world.constraintSolver() != nullptr, true) << "formulation B registers with the World";
-  const Vec3 half(0.05f, 0.4f, 0.05f);
-  const Real m = 2;
-  const Vec3 pivot(0, 2, 0);
-  const BodyId box = addBox(world, pivot - Vec3(0, half.y(), 0), half, m);
-  ASSERT_TRUE(joints.createJoint(makeJointDef(world, JointType::Ball, box, BodyId{}, pivot)).ok());
-  const double d = half.y();
-  const double Ipivot = m * (4 * half.x() * half.x() + 4 * half.y() * half.y()) / 12.0 + m * d * d;
-  const double T = 2 * M_PI * std::sqrt(Ipivot / (m * 9.81 * d));  // small-angle period
-  const double th0 = 0.05;
-  const Quat q(Eigen::AngleAxis<Real>(Real(th0), Vec3::UnitZ()));
-  world.setOrientation(box, q);
-  world.setPosition(box, pivot + q * Vec3(0, -half.y(), 0));
-  double prev = th0, t = 0;
-  std::vector<double> crossings;
-  for (int i = 0; i < int(12 / kDt); ++i) {
-    joints.step(kDt);
-    t += kDt;
-    const Vec3 r = world.body(box).position_m - pivot;
-    const double th = std::atan2(r.x(), -r.y());
-    if (prev > 0 && th <= 0) crossings.push_back(t - kDt * th / (th - prev));
-    prev = th;
+  {
+    World world(quietSettings());
+    JointSystem joints(world, impulseSettings());
+    EXPECT_NE(world.constraintSolver(), nullptr) << "formulation B registers with the World";
   }
-  ASSERT_GE(crossings.size(), 4u);
-  const double measured = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
-  std::printf("[B pendulum] analytic T = %.5f s, measured %.5f s (%.3f%%), anchor error max %.2e m\n", T, measured,
-              100 * (measured - T) / T, joints.maxAnchorError_m());
-  EXPECT_NEAR(measured, T, 0.01 * T);
+  const test::PendulumSwing p = test::swingPendulum(impulseSettings());
+  std::printf("[B pendulum] analytic T = %.5f s, measured %.5f s (%.3f%%), anchor error max %.2e m\n", p.analytic_s,
+              p.measured_s, 100 * (p.measured_s - p.analytic_s) / p.analytic_s, p.anchorErrorMax_m);
+  EXPECT_NEAR(p.measured_s, p.analytic_s, 0.01 * p.analytic_s);
 }
 
 TEST(ImpulseJoints, TenLinkChainAtRestKeepsAnchorsWithinAMillimetre) {

@@ -6,87 +6,23 @@
 #include <cstdio>
 #include <vector>
 
+#include "joint_fixture.h"
 #include "physics/joints/joint_system.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
 namespace {
 
-WorldSettings quietSettings() {
-  WorldSettings s;
-  s.enableSleep = false;
-  return s;
-}
-
-BodyId addBox(World& w, const Vec3& p, const Vec3& half, Real mass) {
-  BodyDef d;
-  d.shape = Shape::box(half);
-  d.position_m = p;
-  d.mass_kg = mass;
-  return w.createBody(d).value();
-}
-
-/// n links (boxes of length L along the chain) hanging from a world anchor
-/// at `top`, laid out along `dir` (unit). Ball joints at the link ends.
-struct Chain {
-  std::vector<BodyId> links;
-  std::vector<JointId> joints;
-};
-Chain makeChain(World& w, JointSystem& js, int n, const Vec3& top, const Vec3& dir, Real L = Real(0.25),
-                Real mass = Real(0.5), JointType type = JointType::Ball) {
-  Chain c;
-  const Vec3 half(Real(0.05), L / 2, Real(0.05));
-  const Quat q = Quat::FromTwoVectors(Vec3(0, -1, 0), dir);
-  for (int i = 0; i < n; ++i) {
-    BodyDef d;
-    d.shape = Shape::box(half);
-    d.position_m = top + dir * (L * (Real(i) + Real(0.5)));
-    d.orientation = q;
-    d.mass_kg = mass;
-    c.links.push_back(w.createBody(d).value());
-    const BodyId parent = i == 0 ? BodyId{} : c.links[i - 1];
-    // A joint's body A is the child (always dynamic), B the parent or world.
-    c.joints.push_back(js.createJoint(makeJointDef(w, type, c.links[i], parent, top + dir * (L * Real(i)),
-                                                   Vec3::UnitZ()))
-                           .value());
-  }
-  return c;
-}
+using test::addBox;
+using test::Chain;
+using test::makeChain;
+using test::quietSettings;
 
 TEST(JointSystem, BallPendulumMatchesSmallAnglePeriod) {
-  World world(quietSettings());
-  JointSystem joints(world);
-  const Vec3 half(0.05f, 0.4f, 0.05f);
-  const Real m = 2;
-  const Vec3 pivot(0, 2, 0);
-  // Box hanging with its top centre at the pivot; d = half height.
-  const BodyId box = addBox(world, pivot - Vec3(0, half.y(), 0), half, m);
-  ASSERT_TRUE(joints.createJoint(makeJointDef(world, JointType::Ball, box, BodyId{}, pivot)).ok());
-  const double d = half.y();
-  const double Icom = m * (4 * half.x() * half.x() + 4 * half.y() * half.y()) / 12.0;  // about z
-  const double Ipivot = Icom + m * d * d;
-  const double T = 2 * M_PI * std::sqrt(Ipivot / (m * 9.81 * d));
-  // Start at 0.05 rad about z: rotate the box about the pivot.
-  const double th0 = 0.05;
-  const Quat q(Eigen::AngleAxis<Real>(Real(th0), Vec3::UnitZ()));
-  world.setOrientation(box, q);
-  world.setPosition(box, pivot + q * Vec3(0, -half.y(), 0));
-  const Real dt = Real(1.0 / 60.0);
-  double prev = th0, t = 0;
-  std::vector<double> crossings;
-  for (int i = 0; i < int(12 / dt); ++i) {
-    joints.step(dt);
-    t += dt;
-    const Vec3 r = world.body(box).position_m - pivot;
-    const double th = std::atan2(r.x(), -r.y());
-    if (prev > 0 && th <= 0) crossings.push_back(t - dt * th / (th - prev));
-    prev = th;
-  }
-  ASSERT_GE(crossings.size(), 4u);
-  const double measured = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
-  std::printf("[pendulum] analytic T = %.5f s, measured %.5f s (%.3f%%), anchor error max %.2e m\n", T, measured,
-              100 * (measured - T) / T, joints.maxAnchorError_m());
-  EXPECT_NEAR(measured, T, 0.01 * T);
+  const test::PendulumSwing p = test::swingPendulum(JointSettings{});
+  std::printf("[pendulum] analytic T = %.5f s, measured %.5f s (%.3f%%), anchor error max %.2e m\n", p.analytic_s,
+              p.measured_s, 100 * (p.measured_s - p.analytic_s) / p.analytic_s, p.anchorErrorMax_m);
+  EXPECT_NEAR(p.measured_s, p.analytic_s, 0.01 * p.analytic_s);
 }
 
 TEST(JointSystem, TenLinkChainAtRestKeepsAnchorsWithinAMillimetre) {
