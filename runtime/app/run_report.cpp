@@ -6,8 +6,41 @@
 #include "core/file_util.h"
 #include "core/hash.h"
 #include "core/process_stats.h"
+#include "particles/particle_system.h"
+#include "physics/deformable.h"
 
 namespace tumble::app {
+namespace {
+
+/// The bodies' hash, extended with every other simulated state a scene
+/// may have: rope and cloth particles, and live effect particles (positions,
+/// velocities, ages), each in creation order. Exact bits, as World::stateHash.
+std::uint64_t sceneStateHash(Scene& scene) {
+  Hasher h;
+  h.value(scene.world().stateHash());
+  if (const physics::DeformableSystem* ds = scene.host().deformablesIfAny()) {
+    ds->forEach([&](int id, const physics::Deformable& d) {
+      h.value(id);
+      for (int i = 0; i < d.particleCount(); ++i) {
+        const Vec3 x = d.position(i), v = d.velocity(i);
+        h.bytes(x.data(), sizeof(Real) * 3);
+        h.bytes(v.data(), sizeof(Real) * 3);
+      }
+    });
+  }
+  if (const particles::ParticleSystem* ps = scene.host().particlesIfAny()) {
+    ps->forEach([&](particles::EmitterId id, const particles::Emitter& e) {
+      h.value(id.index);
+      const particles::ParticlePool& p = e.pool;
+      h.value(p.count);
+      for (const std::vector<float>* a : {&p.px, &p.py, &p.pz, &p.vx, &p.vy, &p.vz, &p.age_s})
+        h.bytes(a->data(), sizeof(float) * p.count);
+    });
+  }
+  return h.digest();
+}
+
+}  // namespace
 
 StepMsSummary summarizeSteps(std::vector<double> ms) {
   StepMsSummary s;
@@ -58,7 +91,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
     else tunables[tn.name] = tn.valueText();
   }
   char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(world.stateHash()));
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneStateHash(scene)));
   return json{
       {"scenario", scene.name()},
       {"seed", scene.options().seed},

@@ -76,6 +76,18 @@ TEST(Report, SameInputsGiveTheSameStateHashAndADifferentSeedDoesNot) {
   EXPECT_NE(a["state_hash"], c["state_hash"]);
 }
 
+TEST(Report, TheStateHashCoversRopesAndEffectParticlesNotOnlyBodies) {
+  // good:unseen_state has no moving body: only a rope and an emitter.
+  std::string dir = outDir("report_unseen_state");
+  auto a = runAndRead(testMods() + " run good:unseen_state", dir);
+  auto b = runAndRead(testMods() + " run good:unseen_state", dir);
+  auto stiffer = runAndRead(testMods() + " run good:unseen_state --set k=3000", dir);
+  auto busier = runAndRead(testMods() + " run good:unseen_state --set rate=40", dir);
+  EXPECT_EQ(a["state_hash"], b["state_hash"]);
+  EXPECT_NE(a["state_hash"], stiffer["state_hash"]);
+  EXPECT_NE(a["state_hash"], busier["state_hash"]);
+}
+
 TEST(Report, ScriptErrorsNameModFileLineAndTraceback) {
   auto j = runAndRead(testMods() + " run good:runtime_error", outDir("report_errors"), 3);
   ASSERT_FALSE(j["script_errors"].empty());
