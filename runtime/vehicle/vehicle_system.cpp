@@ -63,7 +63,10 @@
 //    mu_lat N h, each mu from its curve beyond the peak (the sliding value
 //    once the tyre slides) times the surface friction (the terrain drag
 //    map: mud 0.3, grass 0.6, rock 0.8; or the body's friction). Two
-//    Gauss-Seidel passes over the wheels per substep.
+//    Gauss-Seidel passes over the wheels per substep, each followed by the
+//    limited-slip locks (1.); a wheel's spin changes through its axle's
+//    M^-1, so a tyre impulse on one wheel of an open axle also turns the
+//    other (through the carrier's inertia).
 // 4. Aerodynamic drag 0.5 rho CdA |v| v at the centre of mass.
 //
 // Rejected: wheels as rigid bodies on joints (a stiff, slow chain whose
