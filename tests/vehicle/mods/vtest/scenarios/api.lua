@@ -27,6 +27,10 @@ return {
     effects = drive.effects(car)
     -- The player controller drives from the input actions (none pressed here).
     expect("player controller reads the actions", drive.player(car):update(1 / 60) == true)
+    -- Another mod's car wears its own mesh (the path is inside base, not vtest).
+    local parked = vehicle.spawn("base:truck", {position = {60, 0, 0}})
+    expect("drive.show dresses a car from another mod", drive.show(parked), {min = 1, max = 2})
+    camera.set_mode("orbit")
     car:set_controls{throttle = 0.15}
   end,
   on_update = function(ctx, dt)
