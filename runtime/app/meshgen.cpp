@@ -2,6 +2,9 @@
 // primitives (box, extruded side profile, cylinder / cone frustum, torus,
 // noisy icosphere); every triangle is given an outward hint and turned to
 // face it, so each part is a closed outward-wound surface by construction.
+// The truck and buggy bodies are each one closed solid of prisms
+// (PrismSolid), split into parts by material, so chassis.inertia = "mesh"
+// can integrate over them.
 // Textures are 64 x 64 procedural images (integer-hash value noise).
 #include "app/meshgen.h"
 
@@ -66,6 +69,7 @@ struct Material {
 struct ObjModel {
   std::string name;
   std::vector<Part> parts;
+  bool oneSurface = false;  // the parts are materials of one closed surface, not closed each
 };
 
 // ---- primitives ------------------------------------------------------------
@@ -204,6 +208,110 @@ Part torus(const std::string& name, const std::string& material, const V3& cente
     }
   }
   return part;
+}
+
+// ---- prism solids ------------------------------------------------------------
+
+// A solid built from prisms along X, for vehicle bodies that must be one
+// closed surface (chassis.inertia = "mesh" integrates over it). The side
+// view (z, y) is cut into convex cells that meet along whole edges (two
+// cells that touch share both end points of the edge they touch along; no
+// T-junctions); stations cut X into slabs, and each cell says in which
+// slabs it is solid. The surface is the boundary of that union of prisms: a
+// cap where a cell's solidity changes from one slab to the next (or at the
+// first and last station), a wall where a cell is solid in a slab and its
+// neighbour across an edge is not (or has none). Every wall is cut at every
+// station, so all faces meet edge to edge and the surface is closed and
+// consistently outward-wound by construction, whatever the cells; the
+// prisms never overlap, so no volume counts twice. Pockets (a truck bed),
+// holes (a window in a roll cage) and parts across the width (cross tubes)
+// are cells solid in some slabs only. Materials: each cell has one, and a
+// paint rule may override it per face (windscreen, headlights).
+struct ProfileCell {
+  std::vector<int> loop;    // indices into PrismSolid::points, convex, either winding
+  std::vector<bool> solid;  // per slab
+  std::string material;
+};
+
+struct PrismSolid {
+  std::vector<V2> points;         // (z, y), m
+  std::vector<double> stations;   // x, m, ascending
+  std::vector<ProfileCell> cells;
+  // Material for a face (its centre and outward normal) of a cell with `material`.
+  std::function<std::string(const V3& centre, const V3& normal, const std::string& material)> paint;
+
+  int point(double z, double y) {
+    points.emplace_back(z, y);
+    return int(points.size()) - 1;
+  }
+  void cell(std::vector<int> loop, const std::string& material, const std::function<bool(double x)>& solidAt) {
+    ProfileCell c{std::move(loop), {}, material};
+    for (std::size_t k = 0; k + 1 < stations.size(); ++k) c.solid.push_back(solidAt(0.5 * (stations[k] + stations[k + 1])));
+    cells.push_back(std::move(c));
+  }
+};
+
+V3 at(double x, const V2& zy) { return V3(x, zy.y(), zy.x()); }
+
+std::vector<Part> buildPrismSolid(const PrismSolid& solid) {
+  std::vector<Part> parts;
+  std::map<std::string, std::size_t> partOf;
+  auto partFor = [&](const std::string& material) -> Part& {
+    auto [it, fresh] = partOf.try_emplace(material, parts.size());
+    if (fresh) parts.push_back(Part{material, material, {}, {}});
+    return parts[it->second];
+  };
+  auto materialOf = [&](const ProfileCell& c, const V3& centre, const V3& normal) {
+    return solid.paint ? solid.paint(centre, normal, c.material) : c.material;
+  };
+  // The cells along each edge (at most two: the cells tile the side view).
+  std::map<std::pair<int, int>, std::vector<std::size_t>> along;
+  for (std::size_t c = 0; c < solid.cells.size(); ++c) {
+    const auto& loop = solid.cells[c].loop;
+    for (std::size_t i = 0; i < loop.size(); ++i) along[std::minmax(loop[i], loop[(i + 1) % loop.size()])].push_back(c);
+  }
+  const std::size_t slabs = solid.stations.size() - 1;
+  for (std::size_t ci = 0; ci < solid.cells.size(); ++ci) {
+    const ProfileCell& c = solid.cells[ci];
+    V2 centroid = V2::Zero();
+    for (int i : c.loop) centroid += solid.points[std::size_t(i)];
+    centroid /= double(c.loop.size());
+    const std::size_t n = c.loop.size();
+    // Caps, fanned from the centroid (the cell is convex).
+    for (std::size_t k = 0; k <= slabs; ++k) {
+      const bool below = k > 0 && c.solid[k - 1], above = k < slabs && c.solid[k];
+      if (below == above) continue;
+      const double x = solid.stations[k];
+      const V3 normal(below ? 1 : -1, 0, 0);
+      Part& part = partFor(materialOf(c, at(x, centroid), normal));
+      const int mid = part.add(at(x, centroid), normal, 0.5 * centroid);
+      std::vector<int> ring;
+      for (int i : c.loop) ring.push_back(part.add(at(x, solid.points[std::size_t(i)]), normal, 0.5 * solid.points[std::size_t(i)]));
+      for (std::size_t i = 0; i < n; ++i) part.tri(mid, ring[i], ring[(i + 1) % n], normal);
+    }
+    // Walls, one quad per edge and slab.
+    for (std::size_t i = 0; i < n; ++i) {
+      const int ia = c.loop[i], ib = c.loop[(i + 1) % n];
+      const V2 a = solid.points[std::size_t(ia)], b = solid.points[std::size_t(ib)];
+      V2 out(b.y() - a.y(), a.x() - b.x());
+      if (out.dot(0.5 * (a + b) - centroid) < 0) out = -out;
+      const V3 normal(0, out.y(), out.x());
+      const ProfileCell* other = nullptr;
+      for (std::size_t o : along[std::minmax(ia, ib)])
+        if (o != ci) other = &solid.cells[o];
+      const double length = (b - a).norm();
+      for (std::size_t k = 0; k < slabs; ++k) {
+        if (!c.solid[k] || (other && other->solid[k])) continue;
+        const double x0 = solid.stations[k], x1 = solid.stations[k + 1];
+        const V3 centre = 0.5 * (at(x0, a) + at(x1, b));
+        Part& part = partFor(materialOf(c, centre, normal.normalized()));
+        const int q0 = part.add(at(x0, a), normal, V2(0, x0 * 0.5)), q1 = part.add(at(x0, b), normal, V2(length * 0.5, x0 * 0.5));
+        const int q2 = part.add(at(x1, b), normal, V2(length * 0.5, x1 * 0.5)), q3 = part.add(at(x1, a), normal, V2(0, x1 * 0.5));
+        part.quad(q0, q1, q2, q3, normal);
+      }
+    }
+  }
+  return parts;
 }
 
 // ---- deterministic noise ---------------------------------------------------
@@ -408,52 +516,136 @@ ObjModel hatchback() {
   return m;
 }
 
-// Off-road truck: a cab and a flatbed, 4.8 m long, high ground clearance
-// (wheels at x = +-0.95, z = +-1.6, radius 0.45).
+// Off-road truck: a cab with side windows and a flatbed, 4.9 m long, high
+// ground clearance (wheels at x = +-0.95, z = +-1.6, radius 0.45). One
+// closed solid (a PrismSolid): the bed is a pocket between its side walls,
+// the bull bar a cell solid between x = +-0.8 only; glass and lights are
+// painted faces of the body.
 ObjModel truck() {
-  ObjModel m{"truck", {}};
-  const std::vector<V2> cab = {{0.2, 0.62}, {2.4, 0.62}, {2.4, 1.35}, {1.6, 1.50}, {1.2, 2.25}, {0.2, 2.25}};
-  m.parts.push_back(extrusion("cab", "paint_green", cab, -0.9, 0.9));
-  m.parts.push_back(box("bed_floor", "paint_green", {0, 0.80, -1.1}, {0.9, 0.18, 1.3}));
-  m.parts.push_back(box("bed_side_left", "paint_green", {0.86, 1.22, -1.1}, {0.04, 0.24, 1.3}));
-  m.parts.push_back(box("bed_side_right", "paint_green", {-0.86, 1.22, -1.1}, {0.04, 0.24, 1.3}));
-  m.parts.push_back(box("tailgate", "paint_green", {0, 1.22, -2.36}, {0.82, 0.24, 0.04}));
-  m.parts.push_back(box("windscreen", "glass", {0, 1.86, 1.41}, {0.8, 0.3, 0.02}));
-  m.parts.push_back(box("bull_bar", "chrome", {0, 0.9, 2.45}, {0.8, 0.25, 0.05}));
-  m.parts.push_back(box("rear_bumper", "plastic_black", {0, 0.7, -2.45}, {0.9, 0.08, 0.05}));
-  for (double x : {0.6, -0.6}) {
-    m.parts.push_back(box(x > 0 ? "headlight_left" : "headlight_right", "headlight", {x, 1.15, 2.405}, {0.15, 0.08, 0.01}));
-  }
-  return m;
+  PrismSolid t;
+  t.stations = {-0.9, -0.82, -0.8, -0.75, -0.7, -0.55, -0.45, 0.45, 0.55, 0.7, 0.75, 0.8, 0.82, 0.9};
+  auto all = [](double) { return true; };
+  // Body below the bed floor, front to back.
+  const int b0 = t.point(-2.4, 0.62), b1 = t.point(2.4, 0.62), f065 = t.point(2.4, 0.65), f098 = t.point(2.4, 0.98);
+  const int m098 = t.point(0.2, 0.98), a098 = t.point(-1.1, 0.98), c098 = t.point(-2.0, 0.98);
+  const int g098 = t.point(-2.32, 0.98), r098 = t.point(-2.4, 0.98), r078 = t.point(-2.4, 0.78);
+  t.cell({b0, b1, f065, f098, m098, a098, c098, g098, r098, r078}, "paint_green", all);
+  // Rear bumper and bull bar.
+  const int rb0 = t.point(-2.5, 0.62), rb1 = t.point(-2.5, 0.78);
+  t.cell({rb0, b0, r078, rb1}, "plastic_black", all);
+  const int bb0 = t.point(2.5, 0.65), bb1 = t.point(2.5, 1.15), f115 = t.point(2.4, 1.15);
+  t.cell({f065, bb0, bb1, f115, f098}, "chrome", [](double x) { return std::abs(x) < 0.8; });
+  // Tailgate, and the bed: solid only in its side walls (|x| > 0.82) but
+  // for the humps over the rear wheels (|x| > 0.55, up to y = 1.28, above
+  // the tyres at full bump).
+  const int g128 = t.point(-2.32, 1.28), g146 = t.point(-2.32, 1.46), r146 = t.point(-2.4, 1.46);
+  const int c128 = t.point(-2.0, 1.28), a128 = t.point(-1.1, 1.28), m128 = t.point(0.2, 1.28), m146 = t.point(0.2, 1.46);
+  auto walls = [](double x) { return std::abs(x) > 0.82; };
+  t.cell({r098, g098, g128, g146, r146}, "paint_green", all);
+  t.cell({g098, c098, c128, g128}, "paint_green", walls);
+  t.cell({c098, a098, a128, c128}, "paint_green", [](double x) { return std::abs(x) > 0.55; });
+  t.cell({a098, m098, m128, a128}, "paint_green", walls);
+  t.cell({g128, c128, a128, m128, m146, g146}, "paint_green", walls);
+  // Bonnet up to the waist line (y = 1.5); the front carries the headlights.
+  const int f118 = t.point(2.4, 1.18), f130 = t.point(2.4, 1.30), f135 = t.point(2.4, 1.35);
+  const int w0 = t.point(1.6, 1.5), m150 = t.point(0.2, 1.5);
+  t.cell({m098, f098, f115, f118, f130, f135, w0, m150, m146, m128}, "paint_green", all);
+  // Cabin: the windscreen line from (1.6, 1.5) to (1.2, 2.25), a side window
+  // (glass cell) framed by four strips.
+  auto screen = [](double y) { return 1.6 - 0.4 * (y - 1.5) / 0.75; };
+  const double lo = 1.62, hi = 2.11, inset = 0.17;
+  const int s0 = t.point(screen(lo), lo), s1 = t.point(screen(hi), hi), top = t.point(1.2, 2.25), back = t.point(0.2, 2.25);
+  const int wlo0 = t.point(0.2, lo), wlo1 = t.point(0.35, lo), wlo2 = t.point(screen(lo) - inset, lo);
+  const int whi0 = t.point(0.2, hi), whi1 = t.point(0.35, hi), whi2 = t.point(screen(hi) - inset, hi);
+  t.cell({m150, w0, s0, wlo2, wlo1, wlo0}, "paint_green", all);
+  t.cell({wlo0, wlo1, whi1, whi0}, "paint_green", all);
+  t.cell({wlo1, wlo2, whi2, whi1}, "glass", all);
+  t.cell({wlo2, s0, s1, whi2}, "paint_green", all);
+  t.cell({whi0, whi1, whi2, s1, top, back}, "paint_green", all);
+  t.paint = [=](const V3& c, const V3& n, const std::string& material) -> std::string {
+    const double ax = std::abs(c.x());
+    if (n.z() > 0.5 && n.y() > 0.3 && c.y() > 1.5 && ax < 0.8) return "glass";                      // windscreen
+    if (n.z() < -0.9 && c.z() < 0.21 && c.y() > lo && c.y() < hi && ax < 0.7) return "glass";       // rear window
+    if (n.z() > 0.9 && c.z() > 2.39 && c.y() > 1.18 && c.y() < 1.30 && ax > 0.45 && ax < 0.75) return "headlight";
+    return material;
+  };
+  return {"truck", buildPrismSolid(t), true};
 }
 
-// Buggy: a floor pan, a seat and a tube roll cage (wheels at x = +-0.85,
-// z = +-1.2, radius 0.38).
+/// Where the lines p0 + s d0 and p1 + t d1 cross (they must not be parallel).
+V2 crossing(const V2& p0, const V2& d0, const V2& p1, const V2& d1) {
+  const double det = d0.x() * d1.y() - d0.y() * d1.x();
+  const double s = ((p1 - p0).x() * d1.y() - (p1 - p0).y() * d1.x()) / det;
+  return p0 + s * d0;
+}
+
+// Buggy: a floor pan, a seat and a square-tube roll cage (wheels at x =
+// +-0.85, z = +-1.2, radius 0.38), one closed solid (a PrismSolid). Seen
+// from the side, each half of the cage is a frame (main hoop leg, roof
+// rail, front leg on a lower rail) solid only at |x| 0.52..0.59; the tube
+// corners are mitred; cross tubes (top of the main hoop, top of the front
+// legs, the front of the rails) are cells solid across the whole width.
 ObjModel buggy() {
-  ObjModel m{"buggy", {}};
-  m.parts.push_back(box("floor_pan", "plastic_black", {0, 0.45, 0}, {0.6, 0.05, 1.5}));
-  m.parts.push_back(box("seat", "seat", {0, 0.7, -0.3}, {0.25, 0.2, 0.25}));
-  m.parts.push_back(box("seat_back", "seat", {0, 1.0, -0.52}, {0.25, 0.3, 0.05}));
-  const double r = 0.035;
-  int k = 0;
-  auto tube = [&](const V3& a, const V3& b) {
-    m.parts.push_back(frustum("tube_" + std::to_string(k++), "paint_yellow", a, b - a, (b - a).norm(), r, r, 10));
+  PrismSolid b;
+  b.stations = {-0.59, -0.52, -0.25, 0.25, 0.52, 0.59};
+  auto all = [](double) { return true; };
+  auto sides = [](double x) { return std::abs(x) > 0.52; };
+  auto seatSlab = [](double x) { return std::abs(x) < 0.25; };
+  const double w = 0.035;  // half the tube width, m
+  const double railLo = 0.48, railHi = 0.55;
+  // Frame centre line A (main hoop foot), B (main hoop top), C (front hoop top), D (front leg foot).
+  const V2 A(-0.9, 0.515), B(-0.6, 1.55), C(0.1, 1.45), D(0.6, 0.515);
+  const V2 dAB = (B - A).normalized(), dBC = (C - B).normalized(), dCD = (D - C).normalized();
+  auto normalOf = [](const V2& d) { return V2(-d.y(), d.x()); };  // the outside of the frame loop A B C D
+  const V2 nAB = normalOf(dAB), nBC = normalOf(dBC), nCD = normalOf(dCD);
+  // Mitred corners: where the offset lines cross.
+  const V2 oA = crossing(V2(0, railLo), V2(1, 0), A + w * nAB, dAB), iA = crossing(V2(0, railHi), V2(1, 0), A - w * nAB, dAB);
+  const V2 oB = crossing(A + w * nAB, dAB, B + w * nBC, dBC), iB = crossing(A - w * nAB, dAB, B - w * nBC, dBC);
+  const V2 oC = crossing(B + w * nBC, dBC, C + w * nCD, dCD), iC = crossing(B - w * nBC, dBC, C - w * nCD, dCD);
+  const V2 oD = crossing(V2(0, railLo), V2(1, 0), D + w * nCD, dCD), iD = crossing(V2(0, railHi), V2(1, 0), D - w * nCD, dCD);
+  // Where the legs' outer faces meet the top of the rail, and the cuts that
+  // end the cross tubes 0.1 m below the top corners.
+  const V2 pA = crossing(V2(0, railHi), V2(1, 0), A + w * nAB, dAB), pD = crossing(V2(0, railHi), V2(1, 0), D + w * nCD, dCD);
+  const V2 cutB = B - 0.1 * dAB, cutC = C + 0.1 * dCD;
+  auto P = [&](const V2& p) { return b.point(p.x(), p.y()); };
+  const int poA = P(oA), piA = P(iA), poB = P(oB), piB = P(iB), poC = P(oC), piC = P(iC), poD = P(oD), piD = P(iD);
+  const int ppA = P(pA), ppD = P(pD), qBo = P(cutB + w * nAB), qBi = P(cutB - w * nAB), qCo = P(cutC + w * nCD),
+            qCi = P(cutC - w * nCD);
+  // Floor pan under everything (its top carries every point the rails put on it).
+  const int pan0 = b.point(-1.5, 0.40), pan1 = b.point(1.5, 0.40), pan2 = b.point(1.5, railLo), pan3 = b.point(-1.5, railLo);
+  const int r0 = b.point(-1.45, railLo), r1 = b.point(-1.45, railHi), s0 = b.point(-0.55, railLo), s1 = b.point(-0.05, railLo);
+  const int s2 = b.point(-0.05, railHi), s3 = b.point(-0.55, railHi);
+  const int f0 = b.point(1.38, railLo), f1 = b.point(1.38, railHi), f2 = b.point(1.45, railLo), f3 = b.point(1.45, railHi);
+  b.cell({pan0, pan1, pan2, f2, f0, poD, s1, s0, poA, r0, pan3}, "plastic_black", all);
+  // Lower rails and the front cross tube.
+  b.cell({r0, poA, ppA, r1}, "paint_yellow", sides);
+  b.cell({poA, s0, s3, piA}, "paint_yellow", sides);
+  b.cell({s0, s1, s2, s3}, "paint_yellow", [](double x) { return std::abs(x) > 0.52 || std::abs(x) < 0.25; });
+  b.cell({s1, poD, piD, s2}, "paint_yellow", sides);
+  b.cell({poD, f0, f1, ppD}, "paint_yellow", sides);
+  b.cell({f0, f2, f3, f1}, "paint_yellow", all);
+  // Legs, roof rail and the two upper cross tubes.
+  b.cell({poA, ppA, qBo, qBi, piA}, "paint_yellow", sides);
+  b.cell({qBo, poB, piB, qBi}, "paint_yellow", all);
+  b.cell({poB, poC, piC, piB}, "paint_yellow", sides);
+  b.cell({poC, qCo, qCi, piC}, "paint_yellow", all);
+  b.cell({qCo, ppD, poD, piD, qCi}, "paint_yellow", sides);
+  // Seat on the middle of the rail cell, and its back.
+  const int t0 = b.point(-0.05, 0.9), t1 = b.point(-0.47, 0.9), t2 = b.point(-0.55, 0.9), t3 = b.point(-0.57, 0.9);
+  const int u0 = b.point(-0.47, 1.3), u1 = b.point(-0.57, 1.3);
+  b.cell({s3, s2, t0, t1, t2}, "seat", seatSlab);
+  b.cell({t3, t2, t1, u0, u1}, "seat", seatSlab);
+  b.paint = [=](const V3& c, const V3&, const std::string& material) -> std::string {
+    // The rail cell under the seat is the seat's base between x = +-0.25.
+    const bool underSeat = c.z() > -0.56 && c.z() < -0.04 && c.y() > railLo && c.y() < 0.56;
+    return underSeat && std::abs(c.x()) < 0.251 ? "seat" : material;
   };
-  for (double x : {0.55, -0.55}) {
-    tube({x, 0.5, -0.9}, {x, 1.55, -0.6});   // main hoop leg
-    tube({x, 0.5, 0.6}, {x, 1.45, 0.1});     // front leg
-    tube({x, 1.55, -0.6}, {x, 1.45, 0.1});   // roof rail
-    tube({x, 0.5, 1.45}, {x, 0.5, -1.45});   // lower rail
-  }
-  tube({0.55, 1.55, -0.6}, {-0.55, 1.55, -0.6});
-  tube({0.55, 1.45, 0.1}, {-0.55, 1.45, 0.1});
-  tube({0.6, 0.5, 1.45}, {-0.6, 0.5, 1.45});
-  return m;
+  return {"buggy", buildPrismSolid(b), true};
 }
 
 // Wheel: 0.35 m radius, 0.25 m wide, axle along X, centred at the origin.
 ObjModel wheel() {
-  ObjModel m{"wheel", {}};
+  ObjModel m{"wheel", {}, true};
   Part tyre = frustum("tyre", "tyre", {-0.125, 0, 0}, V3::UnitX(), 0.25, 0.35, 0.35, 32, 3.0);
   Part sides = splitOff(tyre, "rim", "rim", [](const V3& n) { return std::abs(n.x()) > 0.9; });
   m.parts.push_back(tyre);
@@ -536,7 +728,8 @@ std::string fmt(double v) {
 
 GeneratedFile writeObj(const ObjModel& model) {
   std::string out = "# " + model.name + ": generated by `tumble meshgen` (runtime/app/meshgen.cpp); do not edit\n";
-  out += "# Y up, metres, front +Z. Every object is a closed outward-wound surface.\n";
+  out += model.oneSurface ? "# Y up, metres, front +Z. The objects together are one closed outward-wound surface.\n"
+                          : "# Y up, metres, front +Z. Every object is a closed outward-wound surface.\n";
   out += "mtllib " + model.name + ".mtl\n";
   std::size_t base = 1;
   for (const Part& part : model.parts) {

@@ -8,7 +8,9 @@
 //
 // Conventions (as glTF): Y up, metres, a vehicle's front faces +Z and its
 // left side +X; vehicles and scenery stand on y = 0. Every part is a closed,
-// outward-wound surface, so mass properties can be computed from it.
+// outward-wound surface, or (wheel, truck, buggy) the parts are materials of
+// one closed, outward-wound surface, so mass properties can be computed
+// from it.
 #include <string>
 #include <vector>
 

@@ -6,14 +6,42 @@
 //    G * mean driven wheel speed, torque T(rpm) * throttle, or engine
 //    braking with the throttle shut; the rev limiter cuts torque above
 //    max_rpm. Starting off, the automatic clutch slips: the engine is held at
-//    idle + throttle * (launch - idle) and its whole torque passes. The
-//    engine's inertia is reflected onto the driven wheels as I_e G^2. Each
-//    driven axle gets its share; an open differential splits it evenly, a
-//    limited-slip one moves torque to the slower wheel up to the bias ratio.
-//    Brake, handbrake and rolling resistance are torques that stop a wheel
-//    but never reverse it; a wheel whose brake can stop it within the
-//    substep is locked (w = 0) and its tyre then acts on the chassis alone,
-//    with the brake torque / r as a further limit.
+//    idle + throttle * (launch - idle) and its whole torque passes. Each
+//    driven axle gets its share T_a of the torque at the wheels, into the
+//    carrier of its differential.
+//    Differential. The carrier turns at w_c = (w_l + w_r) / 2 (an open
+//    differential lets the wheel speeds differ by any amount) and carries
+//    the engine's inertia reflected through the gears, I_c = I_e G^2 * share
+//    (0 while the clutch slips or is open). With the wheel spins as the
+//    coordinates, the kinetic energy 1/2 I_w (w_l^2 + w_r^2) + 1/2 I_c w_c^2
+//    gives the axle's mass matrix M = I_w E + I_c / 4 [1 1; 1 1], and the
+//    carrier's torque acts on both wheels alike. Every angular impulse on a
+//    wheel (drive, brake, rolling resistance, tyre) changes both spins by
+//    M^-1 times it, and the tyre solve below sees r^2 (M^-1)_ii as the
+//    wheel's share of its effective mass. So both wheels always get the
+//    same torque from the differential, T_l = T_r = T_sum / 2 with
+//    T_sum = T_a - I_c dw_c/dt: when one wheel slips (ice, or in the air)
+//    it spins up and takes the engine with it, and the torque the other
+//    wheel gets is what the slipping one can hold (its traction plus its
+//    own angular acceleration), so the car barely moves and the engine
+//    revs to the limiter. A limited-slip (Torsen-style) axle adds a
+//    locking constraint w_l - w_r = 0 whose impulse moves torque from the
+//    faster to the slower wheel, bounded by the bias ratio B:
+//    |T_l - T_r| <= (B - 1) / (B + 1) |T_sum|, i.e. the gripping wheel
+//    gets at most B times the slipping wheel's torque (T_sum taken from
+//    the current iterate, as a friction bound takes the normal impulse).
+//    It is solved with the tyres in the same Gauss-Seidel passes (its
+//    effective mass is 2 / I_w: the carrier's inertia cancels in w_l - w_r).
+//    A wheel whose brake can stop it within the substep is locked (w = 0)
+//    and leaves the axle's mass matrix (the other wheel then drives the
+//    carrier alone, M = I_w + I_c / 4); its tyre acts on the chassis alone,
+//    with the brake torque / r as a further limit. Brake, handbrake and
+//    rolling resistance are torques that stop a wheel but never reverse it.
+//    Rejected: splitting the axle torque evenly (or by a bias) from the
+//    engine torque whatever the wheels do: a car with one driven wheel on
+//    ice drove away on the other; and a separate carrier body with a
+//    rigid w_l + w_r = 2 w_c constraint in the Gauss-Seidel loop: with
+//    I_c 40 times I_w (first gear) two passes converge poorly.
 // 2. Suspension. A ray from the hub's full-bump point along chassis -Y finds
 //    the ground (height field and the bodies near the vehicle). Spring length
 //    l = hit distance - radius; force k (rest - l) plus bump or rebound
@@ -35,7 +63,10 @@
 //    mu_lat N h, each mu from its curve beyond the peak (the sliding value
 //    once the tyre slides) times the surface friction (the terrain drag
 //    map: mud 0.3, grass 0.6, rock 0.8; or the body's friction). Two
-//    Gauss-Seidel passes over the wheels per substep.
+//    Gauss-Seidel passes over the wheels per substep, each followed by the
+//    limited-slip locks (1.); a wheel's spin changes through its axle's
+//    M^-1, so a tyre impulse on one wheel of an open axle also turns the
+//    other (through the carrier's inertia).
 // 4. Aerodynamic drag 0.5 rho CdA |v| v at the centre of mass.
 //
 // Rejected: wheels as rigid bodies on joints (a stiff, slow chain whose
@@ -117,7 +148,6 @@ void VehicleSystem::configure(Vehicle& v) {
       w.axle = int(i);
       const Vec3& p = d.axles[i].position_m;
       w.mount_local = Vec3(side * p.x(), p.y(), p.z()) - d.chassis.centerOfMass_m;
-      w.inertia_kgm2 = d.axles[i].wheelInertia_kgm2;
       w.t.radius_m = d.axles[i].wheelRadius_m;
       w.t.width_m = d.axles[i].wheelWidth_m;
       w.t.springLength_m = v.derived[i].staticLength_m;
@@ -301,6 +331,7 @@ void VehicleSystem::beforeStep(Real dt) {
     } else {
       v.shiftTimer_s = std::max<Real>(0, v.shiftTimer_s - dt);
     }
+    for (Wheel& w : v.wheels) w.driveImpulse_Nms = w.driveTime_s = 0;
     // Bodies the wheel rays may hit during this step: those whose bounding
     // sphere comes within reach of the vehicle's (swept over the step).
     Real reach = v.def.chassis.size_m.norm() / 2 + b.linearVelocity_mps.norm() * dt + 0.5f;
@@ -438,21 +469,65 @@ void VehicleSystem::drivetrain(Vehicle& v, Real h) {
   v.telemetry.gear = v.gear;
   v.telemetry.shifting = v.shiftTimer_s > 0;
   const Real reflected = engaged ? e.inertia_kgm2 * G * G : 0;
-  for (std::size_t i = 0; i < v.wheels.size(); i += 2) {
-    Wheel& l = v.wheels[i];
-    Wheel& r = v.wheels[i + 1];
-    const AxleDef& a = d.axles[std::size_t(l.axle)];
-    const Real share = v.axleShare[std::size_t(l.axle)];
-    l.inertia_kgm2 = r.inertia_kgm2 = a.wheelInertia_kgm2 + reflected * share / 2;
-    const Real axleTorque = wheelTorque * share;
-    Real transfer = 0;  // from the left wheel to the right one
-    if (a.differential == Differential::LimitedSlip && axleTorque != 0) {
-      // Equalise the wheel speeds within the substep, up to the bias ratio.
-      const Real limit = std::abs(axleTorque) / 2 * (a.lsdBias - 1) / (a.lsdBias + 1);
-      transfer = std::clamp(l.inertia_kgm2 * (l.t.spin_radps - r.t.spin_radps) / (2 * h), -limit, limit);
-    }
-    l.driveTorque_Nm = axleTorque / 2 - transfer;
-    r.driveTorque_Nm = axleTorque / 2 + transfer;
+  v.axleDrive.resize(d.axles.size());
+  for (std::size_t i = 0; i < d.axles.size(); ++i) {
+    AxleDrive& ad = v.axleDrive[i];
+    ad.torque_Nm = wheelTorque * v.axleShare[i];
+    ad.carrier_kgm2 = reflected * v.axleShare[i];
+    ad.lock_Nms = 0;
+    ad.spin0_radps[0] = v.wheels[2 * i].t.spin_radps;
+    ad.spin0_radps[1] = v.wheels[2 * i + 1].t.spin_radps;
+    v.wheels[2 * i].locked = v.wheels[2 * i + 1].locked = false;
+    updateAxleInertia(v, i);
+  }
+}
+
+/// M^-1 of the axle's free (unlocked) wheels: M = I_w E + I_c / 4 [1 1; 1 1]
+/// with both free, I_w + I_c / 4 with one (see 1. above).
+void VehicleSystem::updateAxleInertia(Vehicle& v, std::size_t axle) {
+  AxleDrive& ad = v.axleDrive[axle];
+  const Real I = v.def.axles[axle].wheelInertia_kgm2, c = ad.carrier_kgm2 / 4;
+  const bool freeL = !v.wheels[2 * axle].locked, freeR = !v.wheels[2 * axle + 1].locked;
+  Real(&W)[2][2] = ad.invInertia;
+  W[0][0] = W[0][1] = W[1][0] = W[1][1] = 0;
+  if (freeL && freeR) {
+    const Real det = I * (I + 2 * c);
+    W[0][0] = W[1][1] = (I + c) / det;
+    W[0][1] = W[1][0] = -c / det;
+  } else if (freeL) {
+    W[0][0] = 1 / (I + c);
+  } else if (freeR) {
+    W[1][1] = 1 / (I + c);
+  }
+}
+
+/// An angular impulse (N m s, + forward) on one wheel: both wheels of its
+/// axle respond through the differential (zero on a locked wheel).
+void VehicleSystem::spinImpulse(Vehicle& v, std::size_t wheel, Real impulse) {
+  const AxleDrive& ad = v.axleDrive[wheel / 2];
+  const std::size_t k = wheel % 2, base = wheel - k;
+  for (std::size_t j = 0; j < 2; ++j) v.wheels[base + j].t.spin_radps += ad.invInertia[j][k] * impulse;
+}
+
+/// Limited-slip locking constraint w_l - w_r = 0 on every driven LSD axle
+/// with both wheels free; the accumulated impulse is bounded by the bias.
+void VehicleSystem::solveLimitedSlip(Vehicle& v, Real h) {
+  for (std::size_t i = 0; i < v.axleDrive.size(); ++i) {
+    const AxleDef& a = v.def.axles[i];
+    AxleDrive& ad = v.axleDrive[i];
+    Wheel& l = v.wheels[2 * i];
+    Wheel& r = v.wheels[2 * i + 1];
+    if (!a.driven || a.differential != Differential::LimitedSlip || l.locked || r.locked) continue;
+    const Real(&W)[2][2] = ad.invInertia;
+    const Real k = W[0][0] + W[1][1] - W[0][1] - W[1][0];
+    const Real carrierRate = (l.t.spin_radps - ad.spin0_radps[0] + r.t.spin_radps - ad.spin0_radps[1]) / (2 * h);
+    const Real sum = ad.torque_Nm - ad.carrier_kgm2 * carrierRate;
+    const Real bound = (a.lsdBias - 1) / (a.lsdBias + 1) * std::abs(sum) * h / 2;
+    const Real lock = std::clamp(ad.lock_Nms - (l.t.spin_radps - r.t.spin_radps) / k, -bound, bound);
+    const Real d = lock - ad.lock_Nms;
+    ad.lock_Nms = lock;
+    spinImpulse(v, 2 * i, d);
+    spinImpulse(v, 2 * i + 1, -d);
   }
 }
 
@@ -477,16 +552,24 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
 
   // Wheel spin: drive, then brakes and rolling resistance (never reversing).
   const Real brakeIn = v.controls.brake, handIn = v.controls.handbrake;
-  for (Wheel& w : v.wheels) {
+  for (std::size_t i = 0; i < v.axleDrive.size(); ++i) {
+    const Real half = v.axleDrive[i].torque_Nm * h / 2;  // the carrier's torque acts on both wheels alike
+    spinImpulse(v, 2 * i, half);
+    spinImpulse(v, 2 * i + 1, half);
+  }
+  for (std::size_t i = 0; i < v.wheels.size(); ++i) {
+    Wheel& w = v.wheels[i];
     const AxleDef& a = d.axles[std::size_t(w.axle)];
-    w.t.spin_radps += h * w.driveTorque_Nm / w.inertia_kgm2;
     const Real brake = a.brakeTorque_Nm * brakeIn + a.handbrakeTorque_Nm * handIn;
-    w.locked = brake > 0 && std::abs(w.t.spin_radps) * w.inertia_kgm2 <= brake * h;
-    if (w.locked) {
+    if (brake <= 0) continue;
+    const Real Wii = v.axleDrive[i / 2].invInertia[i % 2][i % 2];
+    if (std::abs(w.t.spin_radps) <= Wii * brake * h) {
+      spinImpulse(v, i, -w.t.spin_radps / Wii);
       w.t.spin_radps = 0;
-    } else if (brake > 0) {
-      const Real dw = std::min(std::abs(w.t.spin_radps), brake * h / w.inertia_kgm2);
-      w.t.spin_radps -= std::copysign(dw, w.t.spin_radps);
+      w.locked = true;
+      updateAxleInertia(v, i / 2);
+    } else {
+      spinImpulse(v, i, -std::copysign(brake * h, w.t.spin_radps));
     }
   }
 
@@ -600,11 +683,12 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
     // Rolling resistance (more on soft ground): a torque against the spin.
     if (!w.locked) {
       const Real crr = tyre.rollingResistance + tyre.softGroundDrag * std::max<Real>(0, 1 - c.friction);
-      const Real dw = std::min(std::abs(w.t.spin_radps), crr * c.load * r * h / w.inertia_kgm2);
-      w.t.spin_radps -= std::copysign(dw, w.t.spin_radps);
+      const Real Wii = v.axleDrive[i / 2].invInertia[i % 2][i % 2];
+      const Real p = std::min(std::abs(w.t.spin_radps) / Wii, crr * c.load * r * h);
+      spinImpulse(v, i, -std::copysign(p, w.t.spin_radps));
     }
   }
-  for (int pass = 0; pass < kTyrePasses; ++pass)
+  for (int pass = 0; pass < kTyrePasses; ++pass) {
     for (std::size_t i = 0; i < nw; ++i) {
       Wheel& w = v.wheels[i];
       if (!w.t.contact || contacts[i].load <= 0) continue;
@@ -616,7 +700,7 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
       const Real vLat = vc.dot(c.latDir);
       Real kLong = invMassAlong(body, c.point, c.longDir) + (g ? invMassAlong(*g, c.point, c.longDir) : 0);
       const Real kLat = invMassAlong(body, c.point, c.latDir) + (g ? invMassAlong(*g, c.point, c.latDir) : 0);
-      if (!w.locked) kLong += r * r / w.inertia_kgm2;
+      if (!w.locked) kLong += r * r * v.axleDrive[i / 2].invInertia[i % 2][i % 2];
       const Real gLong = c.cLong > 0 ? 1 / (c.cLong * h) : Real(1e30);
       const Real gLat = c.cLat > 0 ? 1 / (c.cLat * h) : Real(1e30);
       Real P = c.P - (u + gLong * c.P) / (kLong + gLong);
@@ -633,9 +717,27 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
       const Vec3 J = (P - c.P) * c.longDir + (Q - c.Q) * c.latDir;
       m_world.applyImpulseNow(v.chassis, J, c.point);
       if (g) m_world.applyImpulseNow(c.ground, -J, c.point);
-      if (!w.locked) w.t.spin_radps -= (P - c.P) * r / w.inertia_kgm2;
+      if (!w.locked) spinImpulse(v, i, -(P - c.P) * r);
       c.P = P, c.Q = Q;
     }
+    solveLimitedSlip(v, h);
+  }
+  // What the differentials delivered: T_sum / 2 each, plus the limited-slip transfer.
+  for (std::size_t i = 0; i < v.axleDrive.size(); ++i) {
+    const AxleDrive& ad = v.axleDrive[i];
+    Wheel& l = v.wheels[2 * i];
+    Wheel& r = v.wheels[2 * i + 1];
+    Real left = 0, right = 0;
+    if (d.axles[i].driven) {
+      const Real carrierRate = (l.t.spin_radps - ad.spin0_radps[0] + r.t.spin_radps - ad.spin0_radps[1]) / (2 * h);
+      const Real sum = ad.torque_Nm - ad.carrier_kgm2 * carrierRate;
+      left = sum / 2 + ad.lock_Nms / h, right = sum / 2 - ad.lock_Nms / h;
+    }
+    l.driveImpulse_Nms += left * h, r.driveImpulse_Nms += right * h;
+    l.driveTime_s += h, r.driveTime_s += h;
+    l.t.driveTorque_Nm = l.driveImpulse_Nms / l.driveTime_s;
+    r.t.driveTorque_Nm = r.driveImpulse_Nms / r.driveTime_s;
+  }
   for (Wheel& w : v.wheels) w.t.rotation_rad = std::fmod(w.t.rotation_rad + w.t.spin_radps * h, 2 * kPi);
   v.telemetry.speed_mps = m_world.currentLinearVelocity(v.chassis).dot(q * Vec3::UnitZ());
 }

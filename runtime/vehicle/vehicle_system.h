@@ -42,6 +42,11 @@ struct WheelTelemetry {
   Real slipSpeed_mps = 0;     ///< speed of the contact patch over the ground (dust)
   Real surfaceFriction = 0;   ///< of what the tyre touches (terrain drag map or body friction)
   Real spin_radps = 0;        ///< wheel angular velocity, + rolling forward
+  /// Torque the differential delivered to this wheel, mean over the last
+  /// step's substeps, N m (+ drives forward; 0 on an undriven axle). Open:
+  /// both wheels of an axle get the same; limited slip: up to lsd_bias
+  /// times the other's.
+  Real driveTorque_Nm = 0;
   Real rotation_rad = 0;      ///< accumulated spin angle (for drawing)
   Real steer_rad = 0;         ///< + to the left
   Real springLength_m = 0;    ///< hub below full bump, 0..travel
@@ -109,10 +114,17 @@ class VehicleSystem {
   struct Wheel {
     int axle = 0;
     Vec3 mount_local = Vec3::Zero();  ///< hub at full bump, relative to the centre of mass
-    Real driveTorque_Nm = 0;
-    Real inertia_kgm2 = 1;  ///< wheel plus its share of the engine's reflected inertia
     bool locked = false;
+    Real driveImpulse_Nms = 0, driveTime_s = 0;  ///< this step so far: telemetry's mean drive torque
     WheelTelemetry t;
+  };
+  /// One axle's differential in the current substep (vehicle_system.cpp, 1.).
+  struct AxleDrive {
+    Real torque_Nm = 0;      ///< from the gearbox into the differential's carrier
+    Real carrier_kgm2 = 0;   ///< engine inertia reflected onto the carrier (0: clutch open)
+    Real invInertia[2][2] = {};  ///< spin change of wheel j per unit angular impulse on wheel k, 1/(kg m^2)
+    Real spin0_radps[2] = {};    ///< wheel spins at the start of the substep
+    Real lock_Nms = 0;       ///< limited-slip transfer impulse this substep (+ to the left wheel)
   };
   struct Vehicle {
     bool alive = false;
@@ -122,6 +134,7 @@ class VehicleSystem {
     physics::BodyId chassis;
     std::vector<Wheel> wheels;
     std::vector<Real> axleShare;  ///< drive share per axle (0: not driven)
+    std::vector<AxleDrive> axleDrive;
     VehicleControls controls;
     Real steer_rad = 0;
     Real engine_radps = 0;
@@ -138,6 +151,9 @@ class VehicleSystem {
   void substep(Real h);
   void substepVehicle(Vehicle& v, Real h);
   void drivetrain(Vehicle& v, Real h);
+  void updateAxleInertia(Vehicle& v, std::size_t axle);
+  void spinImpulse(Vehicle& v, std::size_t wheel, Real impulse_Nms);
+  void solveLimitedSlip(Vehicle& v, Real h);
   bool castWheel(const Vehicle& v, const Vec3& origin, const Vec3& down, Real length, physics::RayHit* hit,
                  Real* friction) const;
 

@@ -675,6 +675,7 @@ function Vehicle:remove() end
 ---@field slip_speed number speed of the contact patch over the ground, m/s (dust)
 ---@field surface_friction number friction of what the tyre touches (terrain drag map or body)
 ---@field spin number wheel angular velocity, rad/s (+ rolling forward)
+---@field drive_torque number torque the differential gives this wheel, N m (mean over the last step; 0 on an undriven axle). Open: the same on both wheels of an axle; limited slip: up to lsd_bias times the other's
 ---@field steer number steering angle, rad (+ to the left)
 ---@field spring_length number hub below full bump, m (0..travel)
 ---@field position Vec3 hub, world, m

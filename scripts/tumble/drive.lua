@@ -253,7 +253,9 @@ function drive.show(car)
     -- ground where the tyres touch it at rest.
     local com, axle = def.chassis.com, def.axles[1]
     local ground = axle.position[2] - axle.suspension.rest_length - axle.radius
-    body:set_model(mesh, {offset = {-com[1], ground - com[2], -com[3]}})
+    -- The mesh path is inside the vehicle's mod, which need not be the scenario's.
+    local mod = car:name():match("^([^:]+):")
+    body:set_model(mod and (mod .. ":" .. mesh) or mesh, {offset = {-com[1], ground - com[2], -com[3]}})
     done = done + 1
   end
   return done

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <tuple>
 
 #include "app/meshgen.h"
 #include "core/file_util.h"
@@ -58,9 +61,11 @@ TEST(ShippedModels, EveryPartIsAClosedSurface) {
                            "tree.obj", "building.obj", "barrier.obj", "checkpoint_arch.obj"}) {
     auto model = load(name);
     ASSERT_TRUE(model);
-    // The wheel's tread and sides are two materials of one closed surface;
-    // every other object (node) is closed on its own.
-    if (std::string(name) == "wheel.obj") {
+    // The wheel's tread and sides, and the truck's and buggy's bodies, are
+    // materials of one closed surface; every other object (node) is closed
+    // on its own.
+    const std::string n = name;
+    if (n == "wheel.obj" || n == "truck.obj" || n == "buggy.obj") {
       const render::FlatMesh flat = render::flattenModel(*model);
       std::vector<Vec3> v;
       for (const auto& p : flat.positions) v.push_back(p.cast<Real>());
@@ -75,6 +80,76 @@ TEST(ShippedModels, EveryPartIsAClosedSurface) {
         EXPECT_TRUE(physics::isClosedMesh(v, mesh.triangles)) << name << " part " << node.name;
       }
     }
+  }
+}
+
+/// Edges, faces and vertices of a model with coincident vertices welded;
+/// checks it is one connected, closed, consistently wound 2-manifold
+/// (every edge used once in each direction; around every vertex the faces
+/// form one fan) and returns its Euler characteristic V - E + F.
+int checkOneManifoldSurface(const render::FlatMesh& flat, const std::string& name) {
+  std::map<std::tuple<float, float, float>, std::uint32_t> ids;
+  std::vector<std::uint32_t> weld;
+  for (const Eigen::Vector3f& p : flat.positions)
+    weld.push_back(ids.emplace(std::make_tuple(p.x(), p.y(), p.z()), std::uint32_t(ids.size())).first->second);
+  std::vector<Vec3> v;
+  for (const auto& p : flat.positions) v.push_back(p.cast<Real>());
+  EXPECT_TRUE(physics::isClosedMesh(v, flat.triangles)) << name << " is not closed";
+  // Vertex links: for triangle (a, b, c) the vertex a sees the edge b -> c.
+  std::vector<std::map<std::uint32_t, std::uint32_t>> link(ids.size());
+  int repeated = 0;  // a vertex that sees the same link edge twice: more than one sheet through it
+  std::vector<std::uint32_t> parent(flat.triangles.size());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> edgeFace;
+  for (std::uint32_t f = 0; f < flat.triangles.size(); ++f) {
+    parent[f] = f;
+    const auto& t = flat.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = weld[t[k]], b = weld[t[(k + 1) % 3]], c = weld[t[(k + 2) % 3]];
+      repeated += !link[a].emplace(b, c).second;
+      edgeFace[{a, b}] = f;
+    }
+  }
+  EXPECT_EQ(repeated, 0) << name << ": edges or vertices shared by more than two faces";
+  int pinched = 0;
+  for (const auto& l : link) {
+    if (l.empty()) continue;
+    std::size_t steps = 0;
+    std::uint32_t at = l.begin()->first;
+    do {
+      auto it = l.find(at);
+      if (it == l.end()) break;
+      at = it->second, ++steps;
+    } while (at != l.begin()->first && steps <= l.size());
+    pinched += steps != l.size();
+  }
+  EXPECT_EQ(pinched, 0) << name << ": vertices where two sheets of the surface touch";
+  // One connected piece: union the faces across each edge.
+  std::function<std::uint32_t(std::uint32_t)> root = [&](std::uint32_t f) {
+    return parent[f] == f ? f : parent[f] = root(parent[f]);
+  };
+  for (const auto& [edge, f] : edgeFace)
+    if (auto it = edgeFace.find({edge.second, edge.first}); it != edgeFace.end()) parent[root(f)] = root(it->second);
+  std::size_t pieces = 0;
+  for (std::uint32_t f = 0; f < parent.size(); ++f) pieces += root(f) == f;
+  EXPECT_EQ(pieces, 1u) << name << " is not one connected surface";
+  const int V = int(ids.size()), E = int(edgeFace.size() / 2), F = int(flat.triangles.size());
+  return V - E + F;
+}
+
+// chassis.inertia = "mesh" needs the chassis to be one closed solid: the
+// truck and buggy bodies are one connected, closed, outward-wound manifold
+// each (no overlapping parts counted twice), of the topology they are built
+// with: the truck a sphere with a pocket (Euler characteristic 2), the
+// buggy a pan with a roll cage of four independent loops (each side frame,
+// and the two cross tubes joining them), genus 4: 2 - 2 * 4 = -6.
+TEST(ShippedModels, TruckAndBuggyBodiesAreEachOneClosedManifoldSolid) {
+  for (const auto& [name, euler] : {std::pair{"truck.obj", 2}, std::pair{"buggy.obj", -6}}) {
+    auto model = load(name);
+    ASSERT_TRUE(model);
+    const render::FlatMesh flat = render::flattenModel(*model);
+    EXPECT_EQ(checkOneManifoldSurface(flat, name), euler) << name;
+    const physics::MassProperties p = massOf(*model, 1);
+    EXPECT_TRUE(p.valid && p.volume_m3 > 0) << name << " must be wound outward";
   }
 }
 

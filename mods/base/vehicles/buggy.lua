@@ -5,7 +5,8 @@
 return {
   name = "Buggy",
   description = "light, rear drive, stiff and twitchy: fast, slides when provoked",
-  chassis = {mass = 700, size = {1.6, 0.5, 3.2}, com = {0, -0.05, -0.2}, drag_area = 0.6, mesh = "assets/models/buggy.obj"},
+  chassis = {mass = 700, size = {1.6, 0.5, 3.2}, com = {0, -0.05, -0.2}, drag_area = 0.6, mesh = "assets/models/buggy.obj",
+             inertia = "mesh"},
   axles = {
     {position = {0.75, -0.1, 1.2}, radius = 0.32, width = 0.22, inertia = 0.7,
      steered = true, brake = 1100,

@@ -27,6 +27,10 @@ return {
     effects = drive.effects(car)
     -- The player controller drives from the input actions (none pressed here).
     expect("player controller reads the actions", drive.player(car):update(1 / 60) == true)
+    -- Another mod's car wears its own mesh (the path is inside base, not vtest).
+    local parked = vehicle.spawn("base:truck", {position = {60, 0, 0}})
+    expect("drive.show dresses a car from another mod", drive.show(parked), {min = 1, max = 2})
+    camera.set_mode("orbit")
     car:set_controls{throttle = 0.15}
   end,
   on_update = function(ctx, dt)
@@ -40,6 +44,11 @@ return {
       local t = car:telemetry()
       expect("moving forward after 1 s of throttle (m/s)", t.speed, {min = 1.5})
       expect("four wheels report contact", #t.wheels == 4 and t.wheels[1].contact and t.wheels[4].contact)
+      -- Rear drive, open differential on even ground: the rear wheels get
+      -- the same drive torque, the undriven front wheels none.
+      expect("driven rear wheels get drive torque (N m)", t.wheels[3].drive_torque, {min = 1})
+      expect("open differential: equal torque left and right (N m)", math.abs(t.wheels[3].drive_torque - t.wheels[4].drive_torque), {max = 1e-3})
+      expect("undriven front wheels get no drive torque", t.wheels[1].drive_torque == 0 and t.wheels[2].drive_torque == 0)
       expect("loads carry the weight (N)", t.wheels[1].load + t.wheels[2].load + t.wheels[3].load + t.wheels[4].load,
              {min = 300 * 9.81 * 0.8, max = 300 * 9.81 * 1.2})
       -- Tuning while running: a tenth of the torque.
