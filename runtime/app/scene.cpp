@@ -363,6 +363,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
         break;
       case physics::ShapeType::Plane: s.kind = render::ShapeKind::Plane; break;
       case physics::ShapeType::Compound: return;  // children are emitted instead
+      case physics::ShapeType::Mesh: return;      // static models' meshes: their model is the picture
     }
     out.shapes.push_back(std::move(s));
   };

@@ -101,6 +101,7 @@ Eigen::Vector3d d3(const Vec3& v) { return v.cast<double>(); }
 bool shapeContact(const Shape& shape, const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& x,
                   double r, Eigen::Vector3d* n, double* depth) {
   switch (shape.type) {
+    case ShapeType::Mesh: return false;  // cloth and soft bodies do not collide with static triangle meshes (yet)
     case ShapeType::Hull: {
       // The face plane the particle is farthest in front of: the separating
       // distance (exact over a face, a little short of the true distance
