@@ -54,6 +54,7 @@ TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
   } cases[] = {
       {"missing_model", "no_such_car.obj\": no such file in mod \"base\""},
       {"broken_model", "broken.obj: not a readable model"},
+      {"broken_mesh", "no_area.obj: mesh has no triangles with area"},
       {"escape", "leaves the folder of mod \"models\""},
       {"chase_no_target", "mode \"chase\" needs a body to follow"},
   };
@@ -76,7 +77,14 @@ TEST(ModelsCli, MistakesInOptionsSayWhatIsValid) {
   EXPECT_EQ(r.exitCode, 0) << "every mistake refused with the right words:\n" << r.output;
 }
 
-TEST(ModelsCli, StaticModelsCollideThroughTheirBoxes) {
+// The wheels' rays hit a ramp model's triangles: the car climbs it and
+// comes down (with a box around the ramp it stops at the 0.6 m step).
+TEST(ModelsCli, CarDrivesOverAMeshRamp) {
+  auto r = runTumble(testMods() + " run models:ramp_drive");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+TEST(ModelsCli, StaticModelsCollideThroughTheirMeshesOrBoxes) {
   const std::string dir = outDir("models_static");
   auto r = runTumble(testMods() + " run models:static_scenery --report " + dir + "/r.json");
   EXPECT_EQ(r.exitCode, 0) << r.output;
