@@ -138,7 +138,17 @@ void pieceContacts(const Shape& shape, const Vec3& pL, const Mat3& RL, const Qua
     const MeshTriangle& t = mesh.triangles[ti];
     ++stats.trianglesTested;
     if (!boxesOverlap(lo, hi, t.lo_m, t.hi_m)) return;
-    if (t.normal.dot(pL - t.v[0]) < 0) return;  // centre behind the front: one-sided
+    const Real centre = t.normal.dot(pL - t.v[0]);
+    if (centre < 0) return;  // centre behind the front: one-sided
+    // The piece's extent towards the plane: farther than the margin in front, no contact.
+    Real reach = 0;
+    switch (shape.type) {
+      case ShapeType::Sphere: reach = shape.radius_m; break;
+      case ShapeType::Capsule: reach = shape.radius_m + std::abs(RL.col(1).dot(t.normal)) * shape.halfHeight_m; break;
+      case ShapeType::Box: reach = (RL.transpose() * t.normal).cwiseAbs().dot(shape.halfExtents_m); break;
+      default: reach = shape.boundingRadius(); break;
+    }
+    if (centre - reach > margin) return;
     ++stats.exactTests;
     s.set(t);
     Manifold m;
@@ -231,11 +241,17 @@ int groupContacts(Scratch& s, const Vec3& pm, const Mat3& Rm, bool onePointPerNo
       if (taken[j] || cs[j].normal.dot(n) < kSameNormalCos) continue;
       taken[j] = 1;
       if (onePointPerNormal && !s.group.empty()) continue;
-      bool dup = false;
-      for (const MeshContact& g : s.group) dup |= g.id == cs[j].id;
-      if (!dup) s.group.push_back(cs[j]);
+      s.group.push_back(cs[j]);
     }
+    // Reduce first (linear), then drop repeated ids among the kept four: a
+    // box corner on a seam is found by both triangles, at the same place.
     reduceGroup(s.group, n);
+    for (std::size_t g = 1; g < s.group.size();) {
+      bool dup = false;
+      for (std::size_t h = 0; h < g; ++h) dup |= s.group[h].id == s.group[g].id;
+      if (dup) s.group.erase(s.group.begin() + std::ptrdiff_t(g));
+      else ++g;
+    }
     Manifold& m = out[count++];
     m = Manifold{};
     m.normal = Rm * -n;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
 #include "physics/mesh_shape.h"
 #include "physics_fixture.h"
@@ -282,6 +283,71 @@ TEST(MeshShape, BoxRestsOnAMeshBlock) {
   simulate(w, 2);
   EXPECT_NEAR(w.body(box).position_m.y(), Real(1.2), Real(0.006));
   EXPECT_FALSE(w.body(box).awake);
+}
+
+// Every kind of moving shape rests on a mesh block's top face at the height
+// its own geometry says: capsule lying down (radius), hull (its lowest
+// vertex) and compound (its lowest child).
+TEST(MeshShape, CapsuleHullAndCompoundRestOnAMeshBlock) {
+  World w;
+  MeshTreeInput tree;
+  tree.nodes.resize(1);
+  addBox(tree.nodes[0], Vec3(-4, 0, -4), Vec3(4, 1, 4));
+  addMesh(w, tree);
+  BodyDef cap;
+  cap.shape = Shape::capsule(Real(0.2), Real(0.4));
+  cap.position_m = Vec3(-2, Real(1.6), 0);
+  cap.orientation = Quat(Eigen::AngleAxis<Real>(Real(kPi / 2), Vec3::UnitZ()));  // lying along x
+  BodyId capsule = w.createBody(cap).value();
+  std::vector<Vec3> prism;  // a six-sided prism 0.5 m tall
+  for (int i = 0; i < 6; ++i)
+    for (Real y : {Real(-0.25), Real(0.25)})
+      prism.emplace_back(Real(0.3) * std::cos(i * kPi / 3), y, Real(0.3) * std::sin(i * kPi / 3));
+  BodyId hull = addBody(w, makeHullShape(prism).value(), Vec3(0, Real(1.8), 0));
+  CompoundChild left{Shape::box(Vec3(Real(0.1), Real(0.3), Real(0.1))), Vec3(Real(-0.3), 0, 0)};
+  CompoundChild right{Shape::box(Vec3(Real(0.1), Real(0.3), Real(0.1))), Vec3(Real(0.3), 0, 0)};
+  BodyId compound = addBody(w, makeCompoundShape({left, right}).value(), Vec3(2, Real(1.8), 0));
+  simulate(w, 3);
+  EXPECT_NEAR(w.body(capsule).position_m.y(), Real(1.2), Real(0.006));
+  EXPECT_NEAR(w.body(hull).position_m.y(), Real(1.25), Real(0.006));
+  EXPECT_NEAR(w.body(compound).position_m.y(), Real(1.3), Real(0.006));
+  for (BodyId id : {capsule, hull, compound}) EXPECT_FALSE(w.body(id).awake);
+}
+
+// A box on a floor of 5 cm triangles (its bottom covers ~250 of them) gets
+// a bounded contact set: one normal, at most four points.
+TEST(MeshShape, ManyTrianglesUnderABoxGiveOneFourPointManifold) {
+  World w;
+  addMesh(w, floorTree(80, Real(0.05)));
+  BodyDef d;
+  d.shape = Shape::box(Vec3(Real(0.4), Real(0.2), Real(0.4)));
+  d.position_m = Vec3(Real(0.01), Real(0.25), Real(0.02));
+  d.allowSleep = false;  // a sleeping body has no contacts to count
+  BodyId box = w.createBody(d).value();
+  simulate(w, 1);
+  EXPECT_LE(w.contactPointCount(), 4);
+  EXPECT_GE(w.contactPointCount(), 3);
+  EXPECT_NEAR(w.body(box).position_m.y(), Real(0.2), Real(0.006));
+}
+
+// Queries see the mesh: an overlap touching the block's top finds it, one
+// above does not, and a sphere cast down stops where it touches the top.
+TEST(MeshShape, OverlapAndShapeCastFindTheMesh) {
+  World w;
+  MeshTreeInput tree;
+  tree.nodes.resize(1);
+  addBox(tree.nodes[0], Vec3(-1, 0, -1), Vec3(1, 1, 1));
+  BodyId block = addMesh(w, tree);
+  const Shape ball = Shape::sphere(Real(0.3));
+  auto found = w.overlapShape(ball, Vec3(Real(0.2), Real(1.25), 0), Quat::Identity());
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0], block);
+  EXPECT_TRUE(w.overlapShape(ball, Vec3(Real(0.2), Real(1.4), 0), Quat::Identity()).empty());
+  ShapeCastHit hit;
+  ASSERT_TRUE(w.shapeCast(ball, Vec3(Real(0.2), 3, Real(0.1)), Quat::Identity(), Vec3(0, -1, 0), 5, &hit));
+  EXPECT_EQ(hit.body, block);
+  EXPECT_NEAR(hit.distance_m, 3 - 1 - Real(0.3), World::kQueryTolerance_m + Real(1e-3));
+  EXPECT_LE(hit.distance_m, 3 - 1 - Real(0.3) + Real(1e-4));  // conservative: never later than the touch
 }
 
 }  // namespace
