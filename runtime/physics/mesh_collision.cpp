@@ -309,6 +309,35 @@ int collideMeshPair(const Body& a, const Body& b, Real margin, std::vector<Manif
   return int(out.size() - before);
 }
 
+bool sphereMeshContact(const Vec3& centre, Real radius, const Vec3& position, const Quat& orientation,
+                       const MeshShape& mesh, Vec3* normal, Real* depth) {
+  const Mat3 R = orientation.toRotationMatrix();
+  const Vec3 c = R.transpose() * (centre - position);
+  const Vec3 lo = c - Vec3::Constant(radius), hi = c + Vec3::Constant(radius);
+  Scratch& s = scratch();
+  Real deepest = 0;
+  for (std::uint32_t i = 0; i < mesh.nodes.size();) {
+    const MeshNode& node = mesh.nodes[i];
+    if (!boxesOverlap(lo, hi, node.coverLo_m, node.coverHi_m)) {
+      i = node.subtreeEnd;
+      continue;
+    }
+    for (std::uint32_t ti = node.firstTriangle; ti < node.firstTriangle + node.triangleCount; ++ti) {
+      const MeshTriangle& t = mesh.triangles[ti];
+      if (!boxesOverlap(lo, hi, t.lo_m, t.hi_m) || t.normal.dot(c - t.v[0]) < 0) continue;
+      s.set(t);
+      Vec3 closest, n;
+      const Real d = radius - pointHullDistance(c, Pose{}, s.tri, closest, n);
+      if (d <= deepest || n.dot(t.normal) < -kBackTolerance || !onActiveFeature(t, n)) continue;
+      deepest = d;
+      *normal = R * n;
+      *depth = d;
+    }
+    ++i;
+  }
+  return deepest > 0;
+}
+
 bool rayMesh(const Vec3& origin, const Vec3& dir, Real maxT, const Vec3& position, const Quat& orientation,
              const MeshShape& mesh, Real inflate, Real& tHit, Vec3& nHit, MeshStats* stats) {
   const Mat3 R = orientation.toRotationMatrix();

@@ -23,6 +23,13 @@ constexpr int kMaxMeshManifolds = 4;
 int collideMeshPair(const Body& a, const Body& b, Real margin_m, std::vector<Manifold>& out, MeshStats* stats,
                     bool useTree = true);
 
+/// The deepest overlap of a sphere (centre, radius) with the front of a mesh
+/// placed at (position, orientation): unit normal out of the mesh and depth
+/// (m, > 0). Seam contacts are dropped as for bodies. For particles of
+/// ropes and cloth (deformable.cpp).
+bool sphereMeshContact(const Vec3& centre_m, Real radius_m, const Vec3& position_m, const Quat& orientation,
+                       const MeshShape& mesh, Vec3* normal, Real* depth_m);
+
 /// Ray origin + t * dir (dir unit), 0 <= t <= maxT, against the front faces
 /// of a mesh placed at (position, orientation), each face pushed out along
 /// its normal by inflate_m (continuous collision of a body of that radius).
