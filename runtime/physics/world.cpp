@@ -279,7 +279,7 @@ void World::applyImpulse(BodyId id, const Vec3& J, const Vec3& point) {
   m_externalImpulse += J.cast<double>();
 }
 static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
-                     Real inflate = 0);
+                     Real inflate = 0, MeshStats* meshStats = nullptr);
 
 int World::addSubstepHook(SubstepHook hook) {
   m_substepHooks.emplace_back(m_nextHookId, std::move(hook));
@@ -327,7 +327,7 @@ bool World::rayCastBody(BodyId id, const Vec3& origin, const Vec3& dir, Real max
   const Vec3 d = dir / len;
   Real t;
   Vec3 n;
-  if (!rayShape(m_bodies[id.index], origin, d, maxDistance, t, n)) return false;
+  if (!rayShape(m_bodies[id.index], origin, d, maxDistance, t, n, 0, &m_meshStats)) return false;
   if (hit) *hit = {id, t, origin + d * t, n};
   return true;
 }
@@ -1105,7 +1105,7 @@ std::uint64_t World::stateHash() const {
 // ---- queries -----------------------------------------------------------------------
 
 static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orientation, const Vec3& o, const Vec3& d,
-                       Real maxT, Real& tHit, Vec3& nHit, Real inflate) {
+                       Real maxT, Real& tHit, Vec3& nHit, Real inflate, MeshStats* meshStats = nullptr) {
   // d is unit length here.
   struct {
     const Vec3& position_m;
@@ -1197,7 +1197,7 @@ static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orienta
     }
     case ShapeType::Hull:
       return rayHull(o, d, maxT, Pose{position, orientation.toRotationMatrix()}, *s.hull, inflate, tHit, nHit);
-    case ShapeType::Mesh: return rayMesh(o, d, maxT, position, orientation, *s.mesh, inflate, tHit, nHit);
+    case ShapeType::Mesh: return rayMesh(o, d, maxT, position, orientation, *s.mesh, inflate, tHit, nHit, meshStats);
     case ShapeType::Compound: {
       bool any = false;
       for (const CompoundChild& c : s.compound->children) {
@@ -1214,8 +1214,9 @@ static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orienta
   return false;
 }
 
-static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit, Real inflate) {
-  return rayShapeAt(b.shape, b.position_m, b.orientation, o, d, maxT, tHit, nHit, inflate);
+static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit, Real inflate,
+                     MeshStats* meshStats) {
+  return rayShapeAt(b.shape, b.position_m, b.orientation, o, d, maxT, tHit, nHit, inflate, meshStats);
 }
 
 // Speculative contacts take their normal from the positions at the start of
@@ -1267,7 +1268,7 @@ std::vector<RayHit> World::rayCastAll(const Vec3& origin, const Vec3& dir, Real 
     if (!b.alive) continue;
     Real t;
     Vec3 n;
-    if (rayShape(b, origin, d, maxDistance, t, n)) hits.push_back({idOf(i), t, origin + d * t, n});
+    if (rayShape(b, origin, d, maxDistance, t, n, 0, &m_meshStats)) hits.push_back({idOf(i), t, origin + d * t, n});
   }
   HeightFieldHit fh;
   if (m_heightField && m_heightField->rayCast(origin, d, maxDistance, &fh))

@@ -317,7 +317,7 @@ class World {
   std::vector<BodyPair> m_islandLinks;  ///< sorted; see setIslandLinks
   int m_lastContactPoints = 0;
   ErrorStats m_error;
-  MeshStats m_meshStats;  ///< see meshStats
+  mutable MeshStats m_meshStats;  ///< see meshStats (rays, which are const, count too)
   // Energy / momentum bookkeeping (double: sums over many bodies).
   double m_energy0 = 0, m_energyScale = 0, m_externalWork = 0;
   Eigen::Vector3d m_momentum0 = Eigen::Vector3d::Zero(), m_externalImpulse = Eigen::Vector3d::Zero();

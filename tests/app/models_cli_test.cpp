@@ -79,9 +79,18 @@ TEST(ModelsCli, MistakesInOptionsSayWhatIsValid) {
 
 // The wheels' rays hit a ramp model's triangles: the car climbs it and
 // comes down (with a box around the ramp it stops at the 0.6 m step).
+// The report's mesh_collision counts that work: wheel rays cast at the
+// ramp's mesh and triangles tested.
 TEST(ModelsCli, CarDrivesOverAMeshRamp) {
-  auto r = runTumble(testMods() + " run models:ramp_drive");
+  const std::string dir = outDir("models_ramp");
+  auto r = runTumble(testMods() + " run models:ramp_drive --report " + dir + "/r.json");
   EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const auto& mesh = report["mesh_collision"];
+  EXPECT_GT(mesh["rays"].get<double>(), 1000) << mesh;  // 4 wheels, 480 steps, the ramp nearby
+  EXPECT_GT(mesh["triangles_tested"].get<double>(), 0) << mesh;
+  EXPECT_GE(mesh["triangles_tested"].get<double>(), mesh["exact_tests"].get<double>()) << mesh;
 }
 
 TEST(ModelsCli, StaticModelsCollideThroughTheirMeshesOrBoxes) {
@@ -100,6 +109,7 @@ TEST(ModelsCli, StaticModelsCollideThroughTheirMeshesOrBoxes) {
   const nlohmann::json plainReport = nlohmann::json::parse(plainIn);
   const auto& plainSubsystems = plainReport["subsystems"];
   EXPECT_EQ(std::find(plainSubsystems.begin(), plainSubsystems.end(), "models"), plainSubsystems.end());
+  EXPECT_EQ(plainReport["mesh_collision"]["pairs"], 0) << "no meshes, no mesh work";
 }
 
 TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
