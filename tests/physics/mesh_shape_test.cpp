@@ -117,6 +117,9 @@ TEST(MeshShape, BoxSlidesAcrossSeamsAsOnAPlane) {
   EXPECT_LT(maxVy, Real(1e-2));
   EXPECT_LT(maxDy, Real(2e-3));
   EXPECT_LT(maxDv, Real(0.05));
+  // Stopped on the seams, it keeps its corner contacts (stable ids) and sleeps as on the plane.
+  EXPECT_EQ(onMesh.body(a).awake, onPlane.body(b).awake);
+  EXPECT_FALSE(onMesh.body(a).awake);
 }
 
 // A ball rolling across the seams with rolling resistance C_rr slows at
@@ -181,6 +184,18 @@ TEST(MeshShape, FastSphereDoesNotTunnelThroughAMeshWall) {
     simulate(w, 1);
     EXPECT_LT(w.body(ball).position_m.z(), 10 - Real(0.05)) << "speed " << speed;
   }
+  // A tumbling 0.2 m box at 80 m/s likewise.
+  World w;
+  w.settings().gravity_mps2 = Vec3::Zero();
+  MeshTreeInput tree;
+  tree.nodes.resize(1);
+  addBox(tree.nodes[0], Vec3(-2, -2, Real(-0.05)), Vec3(2, 2, Real(0.05)));
+  addMesh(w, tree, Vec3(0, 0, 10));
+  BodyId box = addBody(w, Shape::box(Vec3::Constant(Real(0.1))), Vec3(Real(-0.4), Real(0.3), 0));
+  w.setLinearVelocity(box, Vec3(0, 0, 80));
+  w.setAngularVelocity(box, Vec3(3, 7, 1));
+  simulate(w, 1);
+  EXPECT_LT(w.body(box).position_m.z(), 10 - Real(0.05));
 }
 
 // A single triangle, scaled by (2, 1, 3), rotated and placed: a ray hits it
