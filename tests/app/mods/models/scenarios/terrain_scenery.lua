@@ -1,5 +1,5 @@
--- Static models on a terrain: each with collision = "box" goes into the
--- terrain's tree of static objects (tests/app/scene_models_test.cpp checks
+-- Static models on a terrain: each with a collision body (its mesh, the
+-- default) goes into the terrain's tree of static objects (tests/app/scene_models_test.cpp checks
 -- the registry); collision = "none" makes no body and nothing to register.
 return {
   duration = 0.2,
