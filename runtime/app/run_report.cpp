@@ -90,6 +90,15 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
     else if (tn.kind == script::Tunable::Kind::Bool) tunables[tn.name] = tn.value() != 0;
     else tunables[tn.name] = tn.valueText();
   }
+  // What the static meshes' object trees saved (all zero without meshes).
+  const physics::MeshStats& mesh = world.meshStats();
+  const json meshCollision = {{"pairs", mesh.pairs},
+                              {"nodes_visited", mesh.nodesVisited},
+                              {"subtrees_skipped", mesh.subtreesSkipped},
+                              {"nodes_skipped_tight", mesh.nodesSkippedTight},
+                              {"triangles_tested", mesh.trianglesTested},
+                              {"exact_tests", mesh.exactTests},
+                              {"rays", mesh.rays}};
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneStateHash(scene)));
   return json{
@@ -126,6 +135,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"script_errors", errors},
       {"game", game},
       {"tunables", tunables},
+      {"mesh_collision", meshCollision},
       {"state_hash", std::string(hash)},
   };
 }

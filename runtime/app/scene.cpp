@@ -186,6 +186,7 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   scene->m_models = std::make_unique<ModelCache>();
   so.modelBounds = [models = scene->m_models.get()](const std::string& file) { return models->bounds(file); };
   so.modelTriangles = [models = scene->m_models.get()](const std::string& file) { return models->triangles(file); };
+  so.modelMeshTree = [models = scene->m_models.get()](const std::string& file) { return models->meshTree(file); };
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
@@ -267,6 +268,12 @@ void Scene::registerStaticObjects() {
   if (!m_terrain) return;
   m_world->forEachBody([&](physics::BodyId id, const physics::Body& b) {
     if (b.type != physics::BodyType::Static || b.shape.type == physics::ShapeType::Plane) return;
+    if (b.shape.type == physics::ShapeType::Mesh) {  // a static model: its tree's covering box, placed
+      Vec3 lo, hi;
+      b.shape.bounds(b.position_m, b.orientation, &lo, &hi);
+      (void)m_terrain->terrain().addStaticObject(id.index, terrain::Aabb{lo, hi});
+      return;
+    }
     Vec3 ext = Vec3::Constant(b.shape.boundingRadius());
     if (b.shape.type == physics::ShapeType::Box)
       ext = b.orientation.toRotationMatrix().cwiseAbs() * b.shape.halfExtents_m;
@@ -363,6 +370,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
         break;
       case physics::ShapeType::Plane: s.kind = render::ShapeKind::Plane; break;
       case physics::ShapeType::Compound: return;  // children are emitted instead
+      case physics::ShapeType::Mesh: return;      // static models' meshes: their model is the picture
     }
     out.shapes.push_back(std::move(s));
   };

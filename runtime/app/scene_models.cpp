@@ -30,6 +30,31 @@ Result<script::ModelTriangles> ModelCache::triangles(const std::string& file) {
   return out;
 }
 
+Result<physics::MeshTreeInput> ModelCache::meshTree(const std::string& file) {
+  auto model = get(file);
+  if (!model) return makeError(model.error());
+  const render::Model& m = **model;
+  physics::MeshTreeInput tree;
+  tree.nodes.resize(m.nodes.size());
+  for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+    const render::ModelNode& node = m.nodes[i];
+    physics::MeshTreeNodeInput& out = tree.nodes[i];
+    out.parent = node.parent;
+    out.name = node.name;
+    const bool mirrored = node.toModel.topLeftCorner<3, 3>().determinant() < 0;
+    for (int meshIndex : node.meshes) {
+      const render::ModelMesh& mesh = m.meshes[std::size_t(meshIndex)];
+      const auto base = static_cast<std::uint32_t>(out.vertices_m.size());
+      for (const Eigen::Vector3f& p : mesh.positions)
+        out.vertices_m.push_back((node.toModel * p.homogeneous()).head<3>().cast<Real>());
+      for (const auto& t : mesh.triangles)
+        out.triangles.push_back(mirrored ? std::array<std::uint32_t, 3>{base + t[0], base + t[2], base + t[1]}
+                                         : std::array<std::uint32_t, 3>{base + t[0], base + t[1], base + t[2]});
+    }
+  }
+  return tree;
+}
+
 namespace {
 
 render::ModelInstance instanceAt(const std::shared_ptr<const render::Model>& model, const Vec3& position,

@@ -27,6 +27,9 @@ class ModelCache {
   Result<script::ModelBox> bounds(const std::string& file);
   /// Every triangle in model space (render::flattenModel).
   Result<script::ModelTriangles> triangles(const std::string& file);
+  /// The object tree as collision data: each node's own triangles in model
+  /// space (mirroring node transforms turn the winding back over).
+  Result<physics::MeshTreeInput> meshTree(const std::string& file);
   std::size_t size() const { return m_models.size(); }
 
  private:

@@ -61,6 +61,7 @@
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
 #include "physics/integrate.h"
+#include "physics/internal/mesh_collision.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
@@ -101,6 +102,15 @@ Eigen::Vector3d d3(const Vec3& v) { return v.cast<double>(); }
 bool shapeContact(const Shape& shape, const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& x,
                   double r, Eigen::Vector3d* n, double* depth) {
   switch (shape.type) {
+    case ShapeType::Mesh: {
+      Vec3 normal;
+      Real d;
+      if (!sphereMeshContact(x.cast<Real>(), Real(r), p.cast<Real>(), q.cast<Real>(), *shape.mesh, &normal, &d))
+        return false;
+      *n = d3(normal);
+      *depth = double(d);
+      return true;
+    }
     case ShapeType::Hull: {
       // The face plane the particle is farthest in front of: the separating
       // distance (exact over a face, a little short of the true distance

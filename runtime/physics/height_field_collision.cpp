@@ -358,6 +358,7 @@ int collideHeightField(const Body& body, const HeightField& field, const Vec3& l
     case ShapeType::Hull: hullContacts(body, field, margin, s); break;
     case ShapeType::Plane: break;
     case ShapeType::Compound: break;  // World passes compounds child by child
+    case ShapeType::Mesh: break;      // static only: never against the (static) height field
   }
   if (s.contacts.empty()) return 0;
   // Deepest first; ties by id so the order never depends on the triangle order.

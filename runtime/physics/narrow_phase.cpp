@@ -19,6 +19,7 @@
 
 #include "physics/compound_shape.h"
 #include "physics/internal/hull_collision.h"
+#include "physics/internal/mesh_collision.h"
 
 namespace tumble::physics {
 namespace {
@@ -438,6 +439,7 @@ int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Sha
         case ShapeType::Hull: collideSphereHull(A.p, sa.radius_m, PB, *sb.hull, margin, m, 0); break;
         case ShapeType::Plane: planePoints(B, &A.p, 1, sa.radius_m, margin, m, false); break;
         case ShapeType::Compound: break;
+        case ShapeType::Mesh: break;
       }
       break;
     case ShapeType::Box:
@@ -482,6 +484,7 @@ int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Sha
       break;
     case ShapeType::Plane: break;     // plane-plane never collides
     case ShapeType::Compound: break;  // children are handled by collidePair
+    case ShapeType::Mesh: break;      // collidePair hands meshes to collideMeshPair
   }
   if (swapped && m.count > 0) m.normal = -m.normal;
   return m.count;
@@ -497,6 +500,8 @@ const Shape& childShape(const Shape& s, std::uint16_t child) {
 
 int collidePair(const Body& a, const Body& b, Real margin, std::vector<Manifold>& out) {
   out.clear();
+  if (a.shape.type == ShapeType::Mesh || b.shape.type == ShapeType::Mesh)
+    return collideMeshPair(a, b, margin, out, nullptr);
   const bool ca = a.shape.type == ShapeType::Compound, cb = b.shape.type == ShapeType::Compound;
   if (!ca && !cb) {
     Manifold m;

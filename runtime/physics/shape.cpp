@@ -4,6 +4,7 @@
 
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
+#include "physics/mesh_shape.h"
 
 namespace tumble::physics {
 
@@ -43,6 +44,7 @@ Real Shape::volume() const {
     case ShapeType::Hull: return hull ? hull->volume_m3 : 0;
     case ShapeType::Compound: return compound ? compound->volume_m3 : 0;
     case ShapeType::Plane: return 0;
+    case ShapeType::Mesh: return 0;  // a surface: no inside, no mass (static bodies only)
   }
   return 0;
 }
@@ -72,6 +74,7 @@ Vec3 Shape::unitInertia() const {
     case ShapeType::Hull: return hull ? Vec3(hull->unitInertia_m2.diagonal()) : Vec3::Zero();
     case ShapeType::Compound: return compound ? compound->unitInertia_m2 : Vec3::Zero();
     case ShapeType::Plane: return Vec3::Zero();
+    case ShapeType::Mesh: return Vec3::Zero();
   }
   return Vec3::Zero();
 }
@@ -84,6 +87,7 @@ Real Shape::boundingRadius() const {
     case ShapeType::Hull: return hull ? hull->boundingRadius_m : 0;
     case ShapeType::Compound: return compound ? compound->boundingRadius_m : 0;
     case ShapeType::Plane: return std::numeric_limits<Real>::infinity();
+    case ShapeType::Mesh: return mesh ? mesh->boundingRadius_m : 0;
   }
   return 0;
 }
@@ -96,6 +100,7 @@ Real Shape::innerRadius() const {
     case ShapeType::Hull: return hull ? std::max<Real>(hull->innerRadius_m, 0) : 0;
     case ShapeType::Compound: return compound ? std::max<Real>(compound->innerRadius_m, 0) : 0;
     case ShapeType::Plane: return 0;
+    case ShapeType::Mesh: return 0;
   }
   return 0;
 }
@@ -125,6 +130,13 @@ void Shape::bounds(const Vec3& p, const Quat& q, Vec3* lo, Vec3* hi) const {
       return;
     }
     case ShapeType::Plane: ext = Vec3::Constant(std::numeric_limits<Real>::infinity()); break;
+    case ShapeType::Mesh: {
+      const MeshNode& root = mesh->nodes[0];
+      const Mat3 R = q.toRotationMatrix();
+      centre = p + R * ((root.coverLo_m + root.coverHi_m) / 2);
+      ext = R.cwiseAbs() * ((root.coverHi_m - root.coverLo_m) / 2);
+      break;
+    }
   }
   *lo = centre - ext;
   *hi = centre + ext;
@@ -158,6 +170,10 @@ Status validateShape(const Shape& s) {
         return makeError("a compound shape must be made with makeCompoundShape (it has no children or no volume)");
       break;
     case ShapeType::Plane: break;
+    case ShapeType::Mesh:
+      if (!s.mesh || s.mesh->nodes.empty() || s.mesh->triangles.empty())
+        return makeError("a mesh shape must be made with makeMeshShape (it has no triangles)");
+      break;
   }
   return Ok{};
 }
@@ -170,6 +186,7 @@ const char* shapeTypeName(ShapeType t) {
     case ShapeType::Hull: return "hull";
     case ShapeType::Plane: return "plane";
     case ShapeType::Compound: return "compound";
+    case ShapeType::Mesh: return "mesh";
   }
   return "?";
 }

@@ -14,10 +14,11 @@
 namespace tumble::physics {
 
 /// The order matters: the narrow phase handles each pair once, as (lower, higher).
-enum class ShapeType { Sphere, Box, Capsule, Hull, Plane, Compound };
+enum class ShapeType { Sphere, Box, Capsule, Hull, Plane, Compound, Mesh };
 
 struct ConvexHull;     // physics/convex_hull.h
 struct CompoundShape;  // physics/compound_shape.h
+struct MeshShape;      // physics/mesh_shape.h
 
 /// Where a shape's body frame (centre of mass, principal axes) sits in the
 /// frame its data was given in: x_given = centre_m + rotation * x_body.
@@ -37,6 +38,9 @@ struct Shape {
   std::shared_ptr<const ConvexHull> hull;
   /// Compound: children in the body frame (shared, immutable; see makeCompoundShape).
   std::shared_ptr<const CompoundShape> compound;
+  /// Mesh: a static triangle tree in the body frame (shared, immutable; see
+  /// makeMeshShape). Static bodies only.
+  std::shared_ptr<const MeshShape> mesh;
 
   static Shape sphere(Real radius_m);
   static Shape box(const Vec3& halfExtents_m);

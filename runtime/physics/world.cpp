@@ -25,6 +25,7 @@
 #include "physics/internal/contact_solver.h"
 #include "physics/internal/height_field_collision.h"
 #include "physics/internal/hull_collision.h"
+#include "physics/internal/mesh_collision.h"
 #include "physics/internal/narrow_phase.h"
 
 namespace tumble::physics {
@@ -77,6 +78,9 @@ Status validateBodyDef(const BodyDef& d) {
     return makeError("body fields 'linear_damping' and 'angular_damping' must be finite numbers >= 0 (1/s)");
   if (d.shape.type == ShapeType::Plane && d.type != BodyType::Static)
     return makeError("a plane must be a static body (type = \"static\")");
+  if (d.shape.type == ShapeType::Mesh && d.type != BodyType::Static)
+    return makeError("a triangle mesh shape must be a static body (type = \"static\"): it has no volume, so no mass; "
+                     "give moving bodies a hull or compound shape");
   return Ok{};
 }
 
@@ -275,7 +279,7 @@ void World::applyImpulse(BodyId id, const Vec3& J, const Vec3& point) {
   m_externalImpulse += J.cast<double>();
 }
 static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit,
-                     Real inflate = 0);
+                     Real inflate = 0, MeshStats* meshStats = nullptr);
 
 int World::addSubstepHook(SubstepHook hook) {
   m_substepHooks.emplace_back(m_nextHookId, std::move(hook));
@@ -323,7 +327,7 @@ bool World::rayCastBody(BodyId id, const Vec3& origin, const Vec3& dir, Real max
   const Vec3 d = dir / len;
   Real t;
   Vec3 n;
-  if (!rayShape(m_bodies[id.index], origin, d, maxDistance, t, n)) return false;
+  if (!rayShape(m_bodies[id.index], origin, d, maxDistance, t, n, 0, &m_meshStats)) return false;
   if (hit) *hit = {id, t, origin + d * t, n};
   return true;
 }
@@ -466,6 +470,21 @@ void World::collide(Real dt) {
     }
     return nullptr;
   };
+  auto findOldByNormal = [&](std::uint32_t a, std::uint32_t b, const Manifold& m) -> const Manifold* {
+    const Manifold* best = nullptr;
+    std::uint32_t bestIndex = 0;
+    Real bestDot = Real(0.95);
+    for (std::uint32_t k = st.oldStart[a]; k < st.oldStart[a + 1]; ++k) {
+      const std::uint32_t oi = st.oldIndex[k];
+      const Manifold& o = old[oi];
+      if (o.b != b || o.childA != m.childA || o.childB != m.childB ||
+          std::find(st.usedOld.begin(), st.usedOld.end(), oi) != st.usedOld.end())
+        continue;
+      if (const Real d = o.normal.dot(m.normal); d > bestDot) bestDot = d, best = &o, bestIndex = oi;
+    }
+    if (best) st.usedOld.push_back(bestIndex);
+    return best;
+  };
 
   // Boxes grown by the distance each body can travel this step
   // (speculative margin), so fast bodies find their contacts in time.
@@ -533,9 +552,13 @@ void World::collide(Real dt) {
       Manifold m;
       if (sweptSphereContact(sphereA ? a : b, other, (sphereA ? Vec3(-dv) : dv) * dt, spec, sphereA, m))
         found.push_back(m);
+    } else if (a.shape.type == ShapeType::Mesh || b.shape.type == ShapeType::Mesh) {
+      collideMeshPair(a, b, margin, found, &m_meshStats, m_settings.meshTree);
     } else {
       collidePair(a, b, margin, found);
     }
+    const bool meshPair = a.shape.type == ShapeType::Mesh || b.shape.type == ShapeType::Mesh;
+    st.usedOld.clear();
     for (Manifold& m : found) {
       m.a = ia;
       m.b = ib;
@@ -554,7 +577,10 @@ void World::collide(Real dt) {
       // Warm start from matching feature ids; a point whose id changed but
       // which sits where an old point was (features flicker when faces are
       // exactly aligned) takes that point's impulses.
-      if (const Manifold* prev = findOld(ia, ib, m.childA, m.childB)) inheritImpulses(*prev, m);
+      // A mesh pair has several manifolds per child pair, one per normal:
+      // each takes last step's with the closest normal.
+      if (const Manifold* prev = meshPair ? findOldByNormal(ia, ib, m) : findOld(ia, ib, m.childA, m.childB))
+        inheritImpulses(*prev, m);
       // A moving body touching a sleeping one wakes it (and its island), and
       // so does one that will close the gap during this step: the speculative
       // contact acts before the bodies touch, and a sleeper still counts as
@@ -1079,7 +1105,7 @@ std::uint64_t World::stateHash() const {
 // ---- queries -----------------------------------------------------------------------
 
 static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orientation, const Vec3& o, const Vec3& d,
-                       Real maxT, Real& tHit, Vec3& nHit, Real inflate) {
+                       Real maxT, Real& tHit, Vec3& nHit, Real inflate, MeshStats* meshStats = nullptr) {
   // d is unit length here.
   struct {
     const Vec3& position_m;
@@ -1171,6 +1197,7 @@ static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orienta
     }
     case ShapeType::Hull:
       return rayHull(o, d, maxT, Pose{position, orientation.toRotationMatrix()}, *s.hull, inflate, tHit, nHit);
+    case ShapeType::Mesh: return rayMesh(o, d, maxT, position, orientation, *s.mesh, inflate, tHit, nHit, meshStats);
     case ShapeType::Compound: {
       bool any = false;
       for (const CompoundChild& c : s.compound->children) {
@@ -1187,8 +1214,9 @@ static bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orienta
   return false;
 }
 
-static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit, Real inflate) {
-  return rayShapeAt(b.shape, b.position_m, b.orientation, o, d, maxT, tHit, nHit, inflate);
+static bool rayShape(const Body& b, const Vec3& o, const Vec3& d, Real maxT, Real& tHit, Vec3& nHit, Real inflate,
+                     MeshStats* meshStats) {
+  return rayShapeAt(b.shape, b.position_m, b.orientation, o, d, maxT, tHit, nHit, inflate, meshStats);
 }
 
 // Speculative contacts take their normal from the positions at the start of
@@ -1240,7 +1268,7 @@ std::vector<RayHit> World::rayCastAll(const Vec3& origin, const Vec3& dir, Real 
     if (!b.alive) continue;
     Real t;
     Vec3 n;
-    if (rayShape(b, origin, d, maxDistance, t, n)) hits.push_back({idOf(i), t, origin + d * t, n});
+    if (rayShape(b, origin, d, maxDistance, t, n, 0, &m_meshStats)) hits.push_back({idOf(i), t, origin + d * t, n});
   }
   HeightFieldHit fh;
   if (m_heightField && m_heightField->rayCast(origin, d, maxDistance, &fh))

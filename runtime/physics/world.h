@@ -20,6 +20,7 @@
 #include "physics/body.h"
 #include "physics/height_field.h"
 #include "physics/integrate.h"
+#include "physics/mesh_shape.h"
 
 namespace tumble::physics {
 
@@ -66,6 +67,10 @@ struct WorldSettings {
   /// velocity (the next step's contact bounces it). Catches bodies deflected
   /// by a collision towards a wall they had no speculative contact with.
   bool continuousStatic = true;
+  /// Static triangle meshes: walk their object tree (covering and tight
+  /// boxes skip subtrees and nodes a body's box misses). false tests every
+  /// triangle's box instead: only for benchmarks that show what the tree saves.
+  bool meshTree = true;
   bool enableSleep = true;
   Real sleepLinearSpeed_mps = Real(0.05);
   Real sleepAngularSpeed_radps = Real(0.1);
@@ -251,6 +256,10 @@ class World {
   /// Hash of every live body's position, orientation and velocities (exact bits).
   std::uint64_t stateHash() const;
   const ErrorStats& errorStats() const { return m_error; }
+  /// Work of the narrow phase against static triangle meshes since the
+  /// world was made or resetMeshStats (nodes the tree skipped, triangles tested).
+  const MeshStats& meshStats() const { return m_meshStats; }
+  void resetMeshStats() { m_meshStats = MeshStats{}; }
   /// Starts energy / momentum bookkeeping from the current state.
   void resetErrorStats();
 
@@ -308,6 +317,7 @@ class World {
   std::vector<BodyPair> m_islandLinks;  ///< sorted; see setIslandLinks
   int m_lastContactPoints = 0;
   ErrorStats m_error;
+  mutable MeshStats m_meshStats;  ///< see meshStats (rays, which are const, count too)
   // Energy / momentum bookkeeping (double: sums over many bodies).
   double m_energy0 = 0, m_energyScale = 0, m_externalWork = 0;
   Eigen::Vector3d m_momentum0 = Eigen::Vector3d::Zero(), m_externalImpulse = Eigen::Vector3d::Zero();

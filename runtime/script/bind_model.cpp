@@ -1,6 +1,7 @@
 // Models from Lua: body:set_model draws a body with a model file (its
 // collision shape stays what it was); world.add_static_model places scenery
-// (rocks, trees, buildings) with an optional static box collision shape.
+// (rocks, trees, buildings) that collide with their own triangles (through
+// the model's object tree), with one box around them, or not at all.
 //
 //   crate:set_model("base:assets/models/barrier.obj", {offset = {0, -0.4, 0}})
 //   world.add_static_model("base:assets/models/rock.obj", {position = {5, 0, 3}, scale = 1.5})
@@ -13,6 +14,7 @@
 #include <tuple>
 
 #include "physics/mass_properties.h"
+#include "physics/mesh_shape.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -130,15 +132,25 @@ int bodyClearModel(lua_State* L) {
 /// @field position? Vec3Arg where the model's origin goes, m (default {0, 0, 0})
 /// @field rotation? Vec3Arg rotation vector (axis times angle, rad)
 /// @field scale? number|Vec3Arg factor per axis, > 0 (default 1)
-/// @field collision? string "box" (default): a static box around the model; "none": only drawn
-/// @field friction? number of the collision box (default 0.6)
-/// @field color? Vec3Arg colour of the collision box where models are not drawn (headless: unused)
+/// @field collision? string "mesh" (default): the model's own triangles; "box": one box around the model; "none": only drawn
+/// @field friction? number of the collision body (default 0.6)
+/// @field color? Vec3Arg colour of the collision body where models are not drawn (headless: unused)
 
 /// @function world.add_static_model
 /// Places a static model: scenery such as rocks, trees, buildings and
-/// barriers. With collision = "box" (the default) a static box body is made
-/// around the model's bounds; static bodies are never tested against each
-/// other and, over a terrain, go into its tree of static objects.
+/// barriers. With collision = "mesh" (the default) bodies collide with the
+/// model's own triangles, as drawn: a car drives under a tree's canopy and
+/// hits its trunk, a ball rolls through an arch. The model's object tree
+/// (each node's box and the box around its children) skips the parts a
+/// body is not near, so a detailed model costs little. Triangles collide
+/// from their front (outside) only: a model made of single flat quads (a
+/// sign) stops bodies from its front side; use "box" for such props, or as
+/// a cheap stand-in for a complicated model nobody reaches. collision =
+/// "box" makes one static box around the model's bounds (its empty space
+/// is solid too). Static bodies are never tested against each other and,
+/// over a terrain, go into its tree of static objects. A model with no
+/// triangles, or a vertex that is not a finite number, is an error naming
+/// the file and the node.
 /// @param path string "MOD:path/in/mod" or a path in this mod
 /// @param def? StaticModelDef placement and collision
 /// @return Body? the collision body, or nil with collision = "none"
@@ -147,7 +159,7 @@ int worldAddStaticModel(lua_State* L) {
   const char* fn = "world.add_static_model";
   StaticModel s;
   s.file = resolve(L, 1, fn);
-  std::string collision = "box";
+  std::string collision = "mesh";
   Real friction = Real(0.6);
   Eigen::Vector3f color(0.55f, 0.5f, 0.45f);
   if (!lua_isnoneornil(L, 2)) {
@@ -157,7 +169,7 @@ int worldAddStaticModel(lua_State* L) {
       optVec3Field(L, 2, "position", &s.position_m);
       s.rotation = readRotation(L, 2);
       s.scale = readScale(L, 2);
-      collision = optStringField(L, 2, "collision", "box");
+      collision = optStringField(L, 2, "collision", "mesh");
       friction = Real(optNumberField(L, 2, "friction", friction));
       Vec3 c;
       if (optVec3Field(L, 2, "color", &c)) color = c.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
@@ -165,8 +177,9 @@ int worldAddStaticModel(lua_State* L) {
       throw LuaArgError(std::string(fn) + ": " + e.what());
     }
   }
-  if (collision != "box" && collision != "none") {
-    throw LuaArgError(std::string(fn) + ": option 'collision' must be \"box\" or \"none\", got \"" + collision + "\"");
+  if (collision != "mesh" && collision != "box" && collision != "none") {
+    throw LuaArgError(std::string(fn) + ": option 'collision' must be \"mesh\", \"box\" or \"none\", got \"" +
+                      collision + "\"");
   }
   ScenarioHost* host = ScenarioHost::from(L);
   const ModelBoundsFn& bounds = host->options().modelBounds;
@@ -176,7 +189,24 @@ int worldAddStaticModel(lua_State* L) {
     if (!b) throw LuaArgError(std::string(fn) + ": " + b.error());
     box = *b;
   }
-  if (collision == "box") {
+  if (collision == "mesh") {
+    const ModelMeshTreeFn& meshTree = host->options().modelMeshTree;
+    if (!meshTree) throw LuaArgError(std::string(fn) + ": this run cannot read model meshes; use collision = \"none\"");
+    auto tree = meshTree(s.file);
+    if (!tree) throw LuaArgError(std::string(fn) + ": " + tree.error());
+    auto shape = physics::makeMeshShape(*tree, s.scale);
+    if (!shape) throw LuaArgError(std::string(fn) + ": " + s.file + ": " + shape.error());
+    physics::BodyDef d;
+    d.type = physics::BodyType::Static;
+    d.shape = std::move(*shape);
+    d.position_m = s.position_m;  // the body frame is the model's frame, placed
+    d.orientation = s.rotation;
+    d.friction = friction;
+    auto body = host->world().createBody(d);
+    if (!body) throw LuaArgError(std::string(fn) + ": " + body.error());
+    s.body = *body;
+    host->setColor(*body, color);
+  } else if (collision == "box") {
     if (!box) throw LuaArgError(std::string(fn) + ": this run cannot read model bounds; use collision = \"none\"");
     physics::BodyDef d;
     d.type = physics::BodyType::Static;

@@ -15,6 +15,7 @@
 #include "core/math.h"
 #include "core/result.h"
 #include "physics/body.h"
+#include "physics/mesh_shape.h"
 
 namespace tumble::script {
 
@@ -36,6 +37,11 @@ struct ModelTriangles {
 };
 using ModelTrianglesFn = std::function<Result<ModelTriangles>(const std::string& file)>;
 
+/// A model file's object tree as collision data (world.add_static_model
+/// with collision = "mesh"): per node its own triangles in the model's frame
+/// (node transforms applied, before the placement's scale) and its parent.
+using ModelMeshTreeFn = std::function<Result<physics::MeshTreeInput>(const std::string& file)>;
+
 /// body:set_model: drawn at body transform * translate(offset) * rotate(rotation) * scale.
 struct ModelAttachment {
   physics::BodyId body;
@@ -45,8 +51,8 @@ struct ModelAttachment {
   Vec3 scale = Vec3::Ones();
 };
 
-/// world.add_static_model: a model placed once; `body` is its static box
-/// collision body (null id when collision = "none").
+/// world.add_static_model: a model placed once; `body` is its static
+/// collision body, a mesh or a box (null id when collision = "none").
 struct StaticModel {
   std::string file;  ///< absolute path
   Vec3 position_m = Vec3::Zero();

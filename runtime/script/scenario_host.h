@@ -99,6 +99,9 @@ struct ScenarioOptions {
   std::string jointSolver;
   /// Triangles of a model file (world.model_mass_properties); from the app.
   ModelTrianglesFn modelTriangles;
+  /// The object tree of a model file (world.add_static_model's collision =
+  /// "mesh"); from the app. Unset: static models cannot have mesh collision.
+  ModelMeshTreeFn modelMeshTree;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number

@@ -366,9 +366,9 @@ function Joint:force() end
 ---@field position? Vec3Arg where the model's origin goes, m (default {0, 0, 0})
 ---@field rotation? Vec3Arg rotation vector (axis times angle, rad)
 ---@field scale? number|Vec3Arg factor per axis, > 0 (default 1)
----@field collision? string "box" (default): a static box around the model; "none": only drawn
----@field friction? number of the collision box (default 0.6)
----@field color? Vec3Arg colour of the collision box where models are not drawn (headless: unused)
+---@field collision? string "mesh" (default): the model's own triangles; "box": one box around the model; "none": only drawn
+---@field friction? number of the collision body (default 0.6)
+---@field color? Vec3Arg colour of the collision body where models are not drawn (headless: unused)
 
 ---@class MeshMassProperties
 ---@field mass number kg
@@ -1377,9 +1377,19 @@ function world.set_dt(dt) end
 function world.dt() end
 
 ---Places a static model: scenery such as rocks, trees, buildings and
----barriers. With collision = "box" (the default) a static box body is made
----around the model's bounds; static bodies are never tested against each
----other and, over a terrain, go into its tree of static objects.
+---barriers. With collision = "mesh" (the default) bodies collide with the
+---model's own triangles, as drawn: a car drives under a tree's canopy and
+---hits its trunk, a ball rolls through an arch. The model's object tree
+---(each node's box and the box around its children) skips the parts a
+---body is not near, so a detailed model costs little. Triangles collide
+---from their front (outside) only: a model made of single flat quads (a
+---sign) stops bodies from its front side; use "box" for such props, or as
+---a cheap stand-in for a complicated model nobody reaches. collision =
+---"box" makes one static box around the model's bounds (its empty space
+---is solid too). Static bodies are never tested against each other and,
+---over a terrain, go into its tree of static objects. A model with no
+---triangles, or a vertex that is not a finite number, is an error naming
+---the file and the node.
 ---
 ---```lua
 ---world.add_static_model("base:assets/models/tree.obj", {position = {8, 0, -4}, rotation = {0, 1.2, 0}})

@@ -54,6 +54,7 @@ TEST(ModelsCli, BadModelReferencesAreScriptErrorsNamingTheFile) {
   } cases[] = {
       {"missing_model", "no_such_car.obj\": no such file in mod \"base\""},
       {"broken_model", "broken.obj: not a readable model"},
+      {"broken_mesh", "no_area.obj: mesh has no triangles with area"},
       {"escape", "leaves the folder of mod \"models\""},
       {"chase_no_target", "mode \"chase\" needs a body to follow"},
   };
@@ -76,7 +77,23 @@ TEST(ModelsCli, MistakesInOptionsSayWhatIsValid) {
   EXPECT_EQ(r.exitCode, 0) << "every mistake refused with the right words:\n" << r.output;
 }
 
-TEST(ModelsCli, StaticModelsCollideThroughTheirBoxes) {
+// The wheels' rays hit a ramp model's triangles: the car climbs it and
+// comes down (with a box around the ramp it stops at the 0.6 m step).
+// The report's mesh_collision counts that work: wheel rays cast at the
+// ramp's mesh and triangles tested.
+TEST(ModelsCli, CarDrivesOverAMeshRamp) {
+  const std::string dir = outDir("models_ramp");
+  auto r = runTumble(testMods() + " run models:ramp_drive --report " + dir + "/r.json");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const auto& mesh = report["mesh_collision"];
+  EXPECT_GT(mesh["rays"].get<double>(), 1000) << mesh;  // 4 wheels, 480 steps, the ramp nearby
+  EXPECT_GT(mesh["triangles_tested"].get<double>(), 0) << mesh;
+  EXPECT_GE(mesh["triangles_tested"].get<double>(), mesh["exact_tests"].get<double>()) << mesh;
+}
+
+TEST(ModelsCli, StaticModelsCollideThroughTheirMeshesOrBoxes) {
   const std::string dir = outDir("models_static");
   auto r = runTumble(testMods() + " run models:static_scenery --report " + dir + "/r.json");
   EXPECT_EQ(r.exitCode, 0) << r.output;
@@ -92,6 +109,7 @@ TEST(ModelsCli, StaticModelsCollideThroughTheirBoxes) {
   const nlohmann::json plainReport = nlohmann::json::parse(plainIn);
   const auto& plainSubsystems = plainReport["subsystems"];
   EXPECT_EQ(std::find(plainSubsystems.begin(), plainSubsystems.end(), "models"), plainSubsystems.end());
+  EXPECT_EQ(plainReport["mesh_collision"]["pairs"], 0) << "no meshes, no mesh work";
 }
 
 TEST(ModelsCli, ShowroomChaseAndCockpitViews) {

@@ -5,9 +5,12 @@
 // definitions.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
+#include "physics/convex_hull.h"
 #include "physics/deformable.h"
+#include "physics/mesh_shape.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
@@ -143,6 +146,55 @@ TEST(Deformable, ClothStaysAboveTheGroundAndOutOfABox) {
   EXPECT_GT((*cloth)->position(4 * 16 + 12).y(), 1 + r - 1e-3);
   EXPECT_LT((*cloth)->position(4 * 16 + 12).y(), 1 + r + 0.06);
   EXPECT_LT((*cloth)->velocity(4 * 16 + 0).norm(), 0.01);
+}
+
+// The same cloth over a table that is a static triangle mesh (a closed
+// box model): the particles rest on its top face and never enter it.
+TEST(Deformable, ClothLiesOnAMeshTable) {
+  World world;
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  ground.shape = Shape::plane();
+  ASSERT_TRUE(world.createBody(ground));
+  std::array<Vec3, 8> corners;
+  for (int i = 0; i < 8; ++i) corners[i] = Vec3((i & 1) ? 0.5f : -0.5f, (i & 2) ? 1.0f : 0.0f, (i & 4) ? 0.5f : -0.5f);
+  const ConvexHull hull = computeConvexHull(corners).value();
+  MeshTreeInput tree;
+  tree.nodes.resize(1);
+  tree.nodes[0].vertices_m = hull.vertices_m;
+  for (const auto& t : hull.triangles) tree.nodes[0].triangles.push_back({t[0], t[1], t[2]});
+  BodyDef table;
+  table.type = BodyType::Static;
+  table.shape = makeMeshShape(tree).value();
+  table.position_m = Vec3(2, 0, 0);
+  ASSERT_TRUE(world.createBody(table));
+  ClothDef def;
+  def.columns = 16;
+  def.rows = 8;
+  def.pins = ClothPins::None;
+  def.origin_m = Vec3(-1, 2, -0.5);
+  def.edgeU_m = Vec3(4, 0, 0);
+  def.edgeV_m = Vec3(0, 0, 1);
+  def.material.stiffness_Npm = 2000;
+  auto cloth = Deformable::cloth(def);
+  ASSERT_TRUE(cloth);
+  DeformableEnvironment env;
+  env.world = &world;
+  const double r = def.material.radius_m;
+  double insideBox = 0;
+  for (int i = 0; i < 180; ++i) {
+    (*cloth)->step(kDt, env);
+    for (int p = 0; p < (*cloth)->particleCount(); ++p) {
+      const Eigen::Vector3d x = ((*cloth)->position(p) - Vec3(2, Real(0.5), 0)).cast<double>();
+      const Eigen::Vector3d outside = (x.cwiseAbs() - Eigen::Vector3d::Constant(0.5)).cwiseMax(0.0);
+      const double gap = outside.norm() > 0 ? outside.norm() : -(0.5 - x.cwiseAbs().maxCoeff());
+      insideBox = std::max(insideBox, r - gap);
+    }
+  }
+  EXPECT_LT(insideBox, 1e-3) << "no particle inside the mesh table";
+  EXPECT_GT((*cloth)->position(4 * 16 + 12).y(), 1 + r - 1e-3);
+  EXPECT_LT((*cloth)->position(4 * 16 + 12).y(), 1 + r + 0.06);
+  EXPECT_NEAR((*cloth)->position(4 * 16 + 0).y(), r, 2e-3);
 }
 
 // A smooth height field y = 0.5 sin x, enough for the particles (they ask

@@ -1,4 +1,4 @@
--- Drive: free roam on generated hills among scattered static rocks. With
+-- Drive: free roam on generated hills among scattered rocks and trees. With
 -- the autopilot (the default until the input module lands; --set
 -- autopilot=0 hands the car to drive.player) the car drives a loop of
 -- waypoints over the hills.
@@ -29,17 +29,24 @@ return {
       expect("terrain present", false)
       return
     end
-    -- Static rocks scattered off the route (a ring of radius 60 m is the route).
+    -- Rocks and trees scattered off the route (a ring of radius 60 m is the
+    -- route). They collide with their own triangles (collision = "mesh", the
+    -- default): a car hits a tree's trunk, not the air under its crown.
     local rng = random.new(ctx.seed)
+    local M = "base:assets/models/"
     for i = 1, param("rocks", 40) do
       local a, r = rng:float(0, 2 * math.pi), rng:float(10, 140)
       if math.abs(r - 60) > 12 then
         local x, z = math.cos(a) * r, math.sin(a) * r
         local s = rng:float(0.8, 2.2)
         local g = ground(x, z)
-        if g then
-          world.box{type = "static", size = {s, s * 0.7, s * 1.1}, position = {x, g + s * 0.2, z},
-                    rotation = {0, rng:float(0, 3), 0}, friction = 0.8, color = {0.45, 0.43, 0.4}}
+        local heading = rng:float(0, 3)
+        if g and i % 3 == 0 then
+          world.add_static_model(M .. "tree.obj", {position = {x, g - 0.1, z}, rotation = {0, heading, 0},
+                                                   scale = 0.6 + 0.4 * s, friction = 0.8})
+        elseif g then
+          world.add_static_model(M .. "rock.obj", {position = {x, g - 0.1 * s, z}, rotation = {0, heading, 0},
+                                                   scale = {s, s * 0.9, s}, friction = 0.8})
         end
       end
     end

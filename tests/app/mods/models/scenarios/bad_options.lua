@@ -14,8 +14,10 @@ return {duration = 0.1, on_start = function()
   fails("zero scale", function() crate:set_model(M .. "barrier.obj", {scale = 0}) end, "'scale' must be a number > 0")
   fails("not a path", function() crate:set_model(42) end, "expected a model path")
   fails("unknown mod", function() crate:set_model("nomod:assets/x.obj") end, "no mod named \"nomod\"")
-  fails("bad collision", function() world.add_static_model(M .. "rock.obj", {collision = "mesh"}) end,
-        "'collision' must be \"box\" or \"none\"")
+  fails("bad collision", function() world.add_static_model(M .. "rock.obj", {collision = "hull"}) end,
+        "'collision' must be \"mesh\", \"box\" or \"none\"")
+  fails("misspelt collision option", function() world.add_static_model(M .. "rock.obj", {colision = "mesh"}) end,
+        "unknown option 'colision'")
   fails("unknown camera mode", function() camera.set_mode("helicopter") end, "mode must be \"orbit\"")
   fails("bad interior", function() camera.set_mode("cockpit", {target = crate, interior = M .. "nothing.obj"}) end,
         "option 'interior'")

@@ -1,6 +1,7 @@
--- Static models on a terrain: each with collision = "box" goes into the
--- terrain's tree of static objects (tests/app/scene_models_test.cpp checks
--- the registry); collision = "none" makes no body and nothing to register.
+-- Static models on a terrain: each with a collision body (its mesh, the
+-- default) goes into the terrain's tree of static objects
+-- (tests/app/scene_models_test.cpp checks the registry); collision = "none"
+-- makes no body and nothing to register.
 return {
   duration = 0.2,
   terrain = {generate = 3, size = 129},
