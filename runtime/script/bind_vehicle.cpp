@@ -324,6 +324,7 @@ int vGear(lua_State* L) {
 /// @field drive_torque number torque the differential gives this wheel, N m (mean over the last step; 0 on an undriven axle). Open: the same on both wheels of an axle; limited slip: up to lsd_bias times the other's
 /// @field steer number steering angle, rad (+ to the left)
 /// @field spring_length number hub below full bump, m (0..travel)
+/// @field static_length number spring length at rest on level ground (rest_length minus the static sag), m
 /// @field position Vec3 hub, world, m
 /// @field radius number m
 
@@ -358,14 +359,15 @@ int vTelemetry(lua_State* L) {
   lua_createtable(L, s.wheelCount(id), 0);
   for (int i = 0; i < s.wheelCount(id); ++i) {
     const vehicle::WheelTelemetry& w = s.wheel(id, i);
-    lua_createtable(L, 0, 12);
+    lua_createtable(L, 0, 13);
     lua_pushboolean(L, w.contact);
     lua_setfield(L, -2, "contact");
     const std::pair<const char*, Real> numbers[] = {
         {"load", w.load_N},       {"slip_ratio", w.slipRatio},         {"slip_angle", w.slipAngle_rad},
         {"slip_speed", w.slipSpeed_mps}, {"surface_friction", w.surfaceFriction}, {"spin", w.spin_radps},
         {"drive_torque", w.driveTorque_Nm},
-        {"steer", w.steer_rad},   {"spring_length", w.springLength_m}, {"radius", w.radius_m}};
+        {"steer", w.steer_rad},   {"spring_length", w.springLength_m},
+        {"static_length", w.staticLength_m}, {"radius", w.radius_m}};
     for (const auto& [k, v] : numbers) {
       lua_pushnumber(L, v);
       lua_setfield(L, -2, k);

@@ -150,11 +150,11 @@ void VehicleSystem::configure(Vehicle& v) {
       w.mount_local = Vec3(side * p.x(), p.y(), p.z()) - d.chassis.centerOfMass_m;
       w.t.radius_m = d.axles[i].wheelRadius_m;
       w.t.width_m = d.axles[i].wheelWidth_m;
-      w.t.springLength_m = v.derived[i].staticLength_m;
+      w.t.springLength_m = w.t.staticLength_m = v.derived[i].staticLength_m;
       if (v.wheels.size() < old.size()) {  // keep the wheel's state across a change of parameters
-        const Real radius = w.t.radius_m, width = w.t.width_m;
+        const Real radius = w.t.radius_m, width = w.t.width_m, rest = w.t.staticLength_m;
         w.t = old[v.wheels.size()].t;
-        w.t.radius_m = radius, w.t.width_m = width;
+        w.t.radius_m = radius, w.t.width_m = width, w.t.staticLength_m = rest;
       }
       v.wheels.push_back(w);
     }

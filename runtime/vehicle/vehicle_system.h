@@ -50,6 +50,10 @@ struct WheelTelemetry {
   Real rotation_rad = 0;      ///< accumulated spin angle (for drawing)
   Real steer_rad = 0;         ///< + to the left
   Real springLength_m = 0;    ///< hub below full bump, 0..travel
+  /// Spring length at rest on level ground (rest_length minus the static
+  /// sag), m: where the hub sits when the car stands still. Drawing puts
+  /// the chassis model's ground a wheel radius below it.
+  Real staticLength_m = 0;
   Vec3 hub_m = Vec3::Zero();  ///< world
   Vec3 contactPoint_m = Vec3::Zero();
   Vec3 contactNormal = Vec3::UnitY();

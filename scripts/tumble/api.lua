@@ -678,6 +678,7 @@ function Vehicle:remove() end
 ---@field drive_torque number torque the differential gives this wheel, N m (mean over the last step; 0 on an undriven axle). Open: the same on both wheels of an axle; limited slip: up to lsd_bias times the other's
 ---@field steer number steering angle, rad (+ to the left)
 ---@field spring_length number hub below full bump, m (0..travel)
+---@field static_length number spring length at rest on level ground (rest_length minus the static sag), m
 ---@field position Vec3 hub, world, m
 ---@field radius number m
 
