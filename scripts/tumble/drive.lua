@@ -189,8 +189,9 @@ local Effects = {}
 Effects.__index = Effects
 
 -- Tyre dust per wheel and exhaust smoke, in particles per second:
---   dust  = opts.dust_per_mps (default 40) * slip speed (m/s), on soft ground
---           (surface friction < 0.7) twice that, 0 without contact
+--   dust  = opts.dust_per_mps (default 40) * slip speed (m/s), on loose
+--           ground (surface softness >= 0.3: grass, sand, snow, mud) twice
+--           that, 0 without contact
 --   smoke = opts.smoke_idle (default 4) + opts.smoke_throttle (default 60)
 --           * throttle * rpm / max_rpm
 -- update() spawns "base:dust" at each wheel's contact patch and
@@ -210,7 +211,7 @@ function Effects:update(dt)
   local car = self.car
   local t = car:telemetry()
   for i, w in ipairs(t.wheels) do
-    local soft = w.surface_friction < 0.7 and 2 or 1
+    local soft = w.surface_softness >= 0.3 and 2 or 1
     self.dust[i] = w.contact and self.dust_per_mps * w.slip_speed * soft or 0
   end
   self.smoke = self.smoke_idle + self.smoke_throttle * car:controls().throttle * t.rpm / self.max_rpm
