@@ -472,8 +472,9 @@ const std::vector<Material>& materials() {
 // are painted faces of the body.
 ObjModel hatchback() {
   PrismSolid h;
-  // The lights' edges across the width (0.40 .. 0.70 m from the middle).
-  h.stations = {-0.78, -0.70, -0.40, 0.40, 0.70, 0.78};
+  // The lights' edges across the width (0.40 .. 0.70 m from the middle)
+  // and the rear window's (0.6 m).
+  h.stations = {-0.78, -0.70, -0.60, -0.40, 0.40, 0.60, 0.70, 0.78};
   auto all = [](double) { return true; };
   // Lower body, front to back; the front and rear faces are cut where the
   // bumpers and the lights end.
@@ -489,7 +490,7 @@ ObjModel hatchback() {
   // glass runs from y = lo to hi, inset from both lines, split by a B pillar.
   auto screen = [](double y) { return 1.25 - 0.8 * (y - 0.92) / 0.5; };
   auto hatch = [](double y) { return -2.0 + 0.45 * (y - 0.95) / 0.5; };
-  const double lo = 1.0, hi = 1.33;
+  const double lo = 1.05, hi = 1.33;
   const int wlo = h.point(screen(lo), lo), whi = h.point(screen(hi), hi), hlo = h.point(hatch(lo), lo),
             hhi = h.point(hatch(hi), hi);
   const int flo = h.point(screen(lo) - 0.14, lo), fhi = h.point(screen(hi) - 0.14, hi);   // A pillar's back
@@ -504,10 +505,10 @@ ObjModel hatchback() {
   h.cell({clo, blo1, bhi1, chi}, "glass", all);
   h.cell({hlo, clo, chi, hhi}, "paint_red", all);
   h.cell({hhi, chi, bhi1, bhi0, fhi, whi, roof0, roof1}, "paint_red", all);
-  h.paint = [](const V3& c, const V3& n, const std::string& material) -> std::string {
+  h.paint = [lo, hi](const V3& c, const V3& n, const std::string& material) -> std::string {
     const double ax = std::abs(c.x());
     if (n.z() > 0.4 && n.y() > 0.5 && c.y() > 0.95 && ax < 0.7) return "glass";      // windscreen
-    if (n.z() < -0.5 && n.y() > 0.3 && c.y() > 1.0 && ax < 0.7) return "glass";      // rear window
+    if (n.z() < -0.5 && n.y() > 0.3 && c.y() > lo && c.y() < hi && ax < 0.6) return "glass";  // rear window
     if (ax > 0.4 && ax < 0.7 && n.z() > 0.9 && c.z() > 1.99 && c.y() > 0.62 && c.y() < 0.74) return "headlight";
     if (ax > 0.4 && ax < 0.7 && n.z() < -0.9 && c.z() < -1.99 && c.y() > 0.74 && c.y() < 0.88) return "taillight";
     return material;
