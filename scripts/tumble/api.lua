@@ -569,7 +569,7 @@ function Trigger:count() end
 ---@field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
 ---@field lateral? number[][] {{slip angle rad, friction}, ...}
 ---@field rolling_resistance? number C_rr (default 0.012)
----@field soft_ground_drag? number extra C_rr per unit of (1 - surface friction) (default 0.08)
+---@field soft_ground_drag? number extra C_rr per unit of surface softness (terrain softness layer or vehicle.set_softness; mud 0.7, grass 0.4, ice 0) (default 0.08)
 
 ---@class VehicleEngine
 ---@field torque? number[][] {{rpm, N m}, ...} at full throttle
