@@ -1,8 +1,7 @@
 // The generated model set (meshgen.h). Geometry is built from a few closed
-// primitives (box, extruded side profile, cylinder / cone frustum, torus,
-// noisy icosphere); every triangle is given an outward hint and turned to
+// primitives (box, cylinder / cone frustum, torus, noisy icosphere); every triangle is given an outward hint and turned to
 // face it, so each part is a closed outward-wound surface by construction.
-// The truck and buggy bodies are each one closed solid of prisms
+// The hatchback, truck and buggy bodies are each one closed solid of prisms
 // (PrismSolid), split into parts by material, so chassis.inertia = "mesh"
 // can integrate over them.
 // Textures are 64 x 64 procedural images (integer-hash value noise).
@@ -94,38 +93,6 @@ Part box(const std::string& name, const std::string& material, const V3& center,
       }
       part.quad(idx[0], idx[1], idx[2], idx[3], n);
     }
-  }
-  return part;
-}
-
-// A side profile (z, y), star-shaped around its centroid, extruded along X
-// from x0 to x1: car bodies.
-Part extrusion(const std::string& name, const std::string& material, const std::vector<V2>& profile, double x0,
-               double x1, double uvPerMetre = 0.5) {
-  Part part{name, material, {}, {}};
-  V2 c = V2::Zero();
-  for (const V2& q : profile) c += q;
-  c /= double(profile.size());
-  const std::size_t n = profile.size();
-  for (double x : {x0, x1}) {
-    const V3 normal(x > 0.5 * (x0 + x1) ? 1 : -1, 0, 0);
-    const int centre = part.add(V3(x, c.y(), c.x()), normal, c * uvPerMetre);
-    std::vector<int> ring;
-    for (const V2& q : profile) ring.push_back(part.add(V3(x, q.y(), q.x()), normal, q * uvPerMetre));
-    for (std::size_t i = 0; i < n; ++i) part.tri(centre, ring[i], ring[(i + 1) % n], normal);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const V2 a = profile[i], b = profile[(i + 1) % n];
-    const V2 edge = b - a;
-    V2 out(edge.y(), -edge.x());
-    if (out.dot(0.5 * (a + b) - c) < 0) out = -out;
-    const V3 normal(0, out.y(), out.x());
-    const double len = edge.norm() * uvPerMetre;
-    const int i0 = part.add(V3(x0, a.y(), a.x()), normal, V2(0, 0));
-    const int i1 = part.add(V3(x0, b.y(), b.x()), normal, V2(len, 0));
-    const int i2 = part.add(V3(x1, b.y(), b.x()), normal, V2(len, (x1 - x0) * uvPerMetre));
-    const int i3 = part.add(V3(x1, a.y(), a.x()), normal, V2(0, (x1 - x0) * uvPerMetre));
-    part.quad(i0, i1, i2, i3, normal);
   }
   return part;
 }
@@ -496,24 +463,57 @@ const std::vector<Material>& materials() {
   return list;
 }
 
-// Hatchback, 4.0 m long, 1.56 m wide body (wheels outside it at x = +-0.8,
-// z = +-1.3, radius 0.32).
+// Hatchback, 4.14 m long with its bumpers, 1.56 m wide body (wheels outside
+// it at x = +-0.8, z = +-1.3, radius 0.32). One closed solid (a
+// PrismSolid), so chassis.inertia = "mesh" counts no volume twice: the
+// lower body up to the belt line, the greenhouse above it cut into a side
+// window, a B pillar and a rear side window framed by pillars, and the
+// bumpers as cells in front and behind. Windscreen, rear window and lights
+// are painted faces of the body.
 ObjModel hatchback() {
-  ObjModel m{"hatchback", {}};
-  const std::vector<V2> side = {{-2.0, 0.28}, {2.0, 0.28}, {2.0, 0.78}, {1.25, 0.92},
-                                {0.45, 1.42}, {-1.55, 1.45}, {-2.0, 0.95}};
-  m.parts.push_back(extrusion("body", "paint_red", side, -0.78, 0.78));
-  m.parts.push_back(box("windscreen", "glass", {0, 1.17, 0.86}, {0.70, 0.22, 0.02}));
-  m.parts.push_back(box("side_windows_left", "glass", {0.785, 1.2, -0.5}, {0.01, 0.17, 0.85}));
-  m.parts.push_back(box("side_windows_right", "glass", {-0.785, 1.2, -0.5}, {0.01, 0.17, 0.85}));
-  m.parts.push_back(box("rear_window", "glass", {0, 1.2, -1.79}, {0.66, 0.18, 0.02}));
-  m.parts.push_back(box("front_bumper", "plastic_black", {0, 0.36, 2.02}, {0.80, 0.09, 0.05}));
-  m.parts.push_back(box("rear_bumper", "plastic_black", {0, 0.36, -2.02}, {0.80, 0.09, 0.05}));
-  for (double x : {0.55, -0.55}) {
-    m.parts.push_back(box(x > 0 ? "headlight_left" : "headlight_right", "headlight", {x, 0.68, 2.005}, {0.16, 0.06, 0.01}));
-    m.parts.push_back(box(x > 0 ? "taillight_left" : "taillight_right", "taillight", {x, 0.80, -2.005}, {0.14, 0.07, 0.01}));
-  }
-  return m;
+  PrismSolid h;
+  // The lights' edges across the width (0.40 .. 0.70 m from the middle)
+  // and the rear window's (0.6 m).
+  h.stations = {-0.78, -0.70, -0.60, -0.40, 0.40, 0.60, 0.70, 0.78};
+  auto all = [](double) { return true; };
+  // Lower body, front to back; the front and rear faces are cut where the
+  // bumpers and the lights end.
+  const int b0 = h.point(-2.0, 0.28), b1 = h.point(2.0, 0.28), f045 = h.point(2.0, 0.45), f062 = h.point(2.0, 0.62);
+  const int f074 = h.point(2.0, 0.74), f078 = h.point(2.0, 0.78), belt0 = h.point(1.25, 0.92), belt1 = h.point(-2.0, 0.95);
+  const int r088 = h.point(-2.0, 0.88), r074 = h.point(-2.0, 0.74), r045 = h.point(-2.0, 0.45);
+  h.cell({b0, b1, f045, f062, f074, f078, belt0, belt1, r088, r074, r045}, "paint_red", all);
+  const int fb0 = h.point(2.07, 0.28), fb1 = h.point(2.07, 0.45), rb0 = h.point(-2.07, 0.28), rb1 = h.point(-2.07, 0.45);
+  h.cell({b1, fb0, fb1, f045}, "plastic_black", all);
+  h.cell({rb0, b0, r045, rb1}, "plastic_black", all);
+  // Greenhouse: the windscreen line from (1.25, 0.92) to (0.45, 1.42), the
+  // roof to (-1.55, 1.45), the hatch line down to (-2.0, 0.95). The side
+  // glass runs from y = lo to hi, inset from both lines, split by a B pillar.
+  auto screen = [](double y) { return 1.25 - 0.8 * (y - 0.92) / 0.5; };
+  auto hatch = [](double y) { return -2.0 + 0.45 * (y - 0.95) / 0.5; };
+  const double lo = 1.05, hi = 1.33;
+  const int wlo = h.point(screen(lo), lo), whi = h.point(screen(hi), hi), hlo = h.point(hatch(lo), lo),
+            hhi = h.point(hatch(hi), hi);
+  const int flo = h.point(screen(lo) - 0.14, lo), fhi = h.point(screen(hi) - 0.14, hi);   // A pillar's back
+  const int blo0 = h.point(-0.25, lo), bhi0 = h.point(-0.25, hi);                          // B pillar
+  const int blo1 = h.point(-0.37, lo), bhi1 = h.point(-0.37, hi);
+  const int clo = h.point(hatch(lo) + 0.2, lo), chi = h.point(hatch(hi) + 0.2, hi);        // C pillar's front
+  const int roof0 = h.point(0.45, 1.42), roof1 = h.point(-1.55, 1.45);
+  h.cell({belt1, belt0, wlo, flo, blo0, blo1, clo, hlo}, "paint_red", all);
+  h.cell({flo, wlo, whi, fhi}, "paint_red", all);
+  h.cell({blo0, flo, fhi, bhi0}, "glass", all);
+  h.cell({blo1, blo0, bhi0, bhi1}, "paint_red", all);
+  h.cell({clo, blo1, bhi1, chi}, "glass", all);
+  h.cell({hlo, clo, chi, hhi}, "paint_red", all);
+  h.cell({hhi, chi, bhi1, bhi0, fhi, whi, roof0, roof1}, "paint_red", all);
+  h.paint = [lo, hi](const V3& c, const V3& n, const std::string& material) -> std::string {
+    const double ax = std::abs(c.x());
+    if (n.z() > 0.4 && n.y() > 0.5 && c.y() > 0.95 && ax < 0.7) return "glass";      // windscreen
+    if (n.z() < -0.5 && n.y() > 0.3 && c.y() > lo && c.y() < hi && ax < 0.6) return "glass";  // rear window
+    if (ax > 0.4 && ax < 0.7 && n.z() > 0.9 && c.z() > 1.99 && c.y() > 0.62 && c.y() < 0.74) return "headlight";
+    if (ax > 0.4 && ax < 0.7 && n.z() < -0.9 && c.z() < -1.99 && c.y() > 0.74 && c.y() < 0.88) return "taillight";
+    return material;
+  };
+  return {"hatchback", buildPrismSolid(h), true};
 }
 
 // Off-road truck: a cab with side windows and a flatbed, 4.9 m long, high

@@ -32,6 +32,7 @@ bool TerrainHeightField::surfaceAt(Real x, Real z, Real* height, Vec3* normal) c
 }
 
 Real TerrainHeightField::frictionAt(Real x, Real z) const { return m_terrain.frictionAt(x, z); }
+Real TerrainHeightField::softnessAt(Real x, Real z) const { return m_terrain.softnessAt(x, z); }
 
 bool TerrainHeightField::rayCast(const Vec3& origin, const Vec3& dir, Real maxDistance,
                                  physics::HeightFieldHit* hit) const {
@@ -102,15 +103,16 @@ bool TerrainScene::requested(const Settings& s) {
 // steep, snow high up, sand at the shore of an island, mud in patches on
 // flat low ground, grass elsewhere. Each material sets the texture the
 // renderer draws (render::TerrainSurface indices), the bump strength, the
-// friction physics reads through the drag map, and the surface sound.
+// friction physics reads through the drag map, the surface sound, and the
+// softness (rolling drag on soft ground) vehicles read.
 struct Material {
-  std::uint8_t texture, bump, friction, sound;  // friction: mu * 100
+  std::uint8_t texture, bump, friction, sound, softness;  // friction: mu * 100; softness * 100
 };
-constexpr Material kGrass{0, 80, 60, std::uint8_t(terrain::SurfaceSound::Grass)};
-constexpr Material kRock{1, 220, 80, std::uint8_t(terrain::SurfaceSound::Rock)};
-constexpr Material kSand{2, 40, 45, std::uint8_t(terrain::SurfaceSound::Sand)};
-constexpr Material kMud{3, 60, 30, std::uint8_t(terrain::SurfaceSound::Mud)};
-constexpr Material kSnow{4, 30, 20, std::uint8_t(terrain::SurfaceSound::Snow)};
+constexpr Material kGrass{0, 80, 60, std::uint8_t(terrain::SurfaceSound::Grass), 40};
+constexpr Material kRock{1, 220, 80, std::uint8_t(terrain::SurfaceSound::Rock), 0};
+constexpr Material kSand{2, 40, 45, std::uint8_t(terrain::SurfaceSound::Sand), 55};
+constexpr Material kMud{3, 60, 30, std::uint8_t(terrain::SurfaceSound::Mud), 70};
+constexpr Material kSnow{4, 30, 20, std::uint8_t(terrain::SurfaceSound::Snow), 50};
 
 void paintMaterials(terrain::Terrain& t, bool island) {
   const terrain::HeightMap& h = t.heights();
@@ -120,6 +122,7 @@ void paintMaterials(terrain::Terrain& t, bool island) {
   auto& bump = m.layer(terrain::MaterialLayer::Bump);
   auto& friction = m.layer(terrain::MaterialLayer::Friction);
   auto& sound = m.layer(terrain::MaterialLayer::Sound);
+  auto& softness = m.layer(terrain::MaterialLayer::Softness);
   std::uint16_t lo = 65535, hi = 0;
   for (std::uint16_t v : h.samples()) lo = std::min(lo, v), hi = std::max(hi, v);
   const double range = std::max(1.0, double(hi) - double(lo));
@@ -143,6 +146,7 @@ void paintMaterials(terrain::Terrain& t, bool island) {
       bump[i] = mat.bump;
       friction[i] = mat.friction;
       sound[i] = mat.sound;
+      softness[i] = mat.softness;
     }
 }
 

@@ -30,16 +30,19 @@
 #include "physics/height_field.h"
 #include "render/renderer.h"
 #include "terrain/terrain.h"
+#include "vehicle/ground_softness.h"
 
 namespace tumble::app {
 
-/// physics::HeightField over a terrain::Terrain (no copy of the heights).
-class TerrainHeightField final : public physics::HeightField {
+/// physics::HeightField over a terrain::Terrain (no copy of the heights);
+/// also the ground softness vehicles read (the terrain's softness layer).
+class TerrainHeightField final : public physics::HeightField, public vehicle::GroundSoftness {
  public:
   explicit TerrainHeightField(const terrain::Terrain& terrain) : m_terrain(terrain) {}
   void visitTriangles(const Vec3& lo, const Vec3& hi, TriangleVisitor visit, void* ctx) const override;
   bool surfaceAt(Real x_m, Real z_m, Real* height_m, Vec3* normal) const override;
   Real frictionAt(Real x_m, Real z_m) const override;
+  Real softnessAt(Real x_m, Real z_m) const override;
   bool rayCast(const Vec3& origin_m, const Vec3& unitDir, Real maxDistance_m,
                physics::HeightFieldHit* hit) const override;
   void bounds(Vec3* lo, Vec3* hi) const override;

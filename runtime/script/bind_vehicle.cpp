@@ -179,7 +179,7 @@ int vehicleSpawn(lua_State* L) {
 /// @field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
 /// @field lateral? number[][] {{slip angle rad, friction}, ...}
 /// @field rolling_resistance? number C_rr (default 0.012)
-/// @field soft_ground_drag? number extra C_rr per unit of (1 - surface friction) (default 0.08)
+/// @field soft_ground_drag? number extra C_rr per unit of surface softness (terrain softness layer or vehicle.set_softness; mud 0.7, grass 0.4, ice 0) (default 0.08)
 
 /// @class VehicleEngine
 /// @field torque? number[][] {{rpm, N m}, ...} at full throttle
@@ -215,12 +215,15 @@ int vehicleDefinition(lua_State* L) {
 }
 
 /// @function vehicle.surface
-/// The terrain under (x, z): its height and its friction (the drag map:
-/// mud 0.3, grass 0.6, rock 0.8). Nothing when there is no terrain there.
+/// The terrain under (x, z): its height, its friction (the drag map:
+/// mud 0.3, grass 0.6, rock 0.8) and its softness (the softness layer:
+/// mud 0.7, grass 0.4, rock 0; rolling drag, see docs/vehicles.md).
+/// Nothing when there is no terrain there.
 /// @param x number m
 /// @param z number m
 /// @return number? height, m
 /// @return number? friction coefficient
+/// @return number? softness, unitless (0 hard)
 int vehicleSurface(lua_State* L) {
   const double x = checkNumber(L, 1, "x"), z = checkNumber(L, 2, "z");
   const physics::HeightField* field = ScenarioHost::from(L)->world().heightField();
@@ -229,7 +232,28 @@ int vehicleSurface(lua_State* L) {
   if (!field || !field->surfaceAt(Real(x), Real(z), &h, &n)) return 0;
   lua_pushnumber(L, h);
   lua_pushnumber(L, field->frictionAt(Real(x), Real(z)));
-  return 2;
+  const auto* soft = dynamic_cast<const vehicle::GroundSoftness*>(field);
+  lua_pushnumber(L, soft ? soft->softnessAt(Real(x), Real(z)) : 0);
+  return 3;
+}
+
+/// @function vehicle.set_softness
+/// Makes a body's surface soft ground for tyres (a static box of mud, a
+/// sand pit): rolling drag tyre.soft_ground_drag times the softness on top
+/// of the tyre's rolling resistance. Bodies are hard (0) until set. The
+/// body's friction stays what it is: set both for mud (friction 0.3,
+/// softness 0.7); ice is a low friction with softness 0.
+/// @param body Body the surface
+/// @param softness number unitless, >= 0 (0 hard, 0.4 grass, 0.7 mud)
+/// @example local pit = world.box{size = {6, 1, 20}, position = {0, -0.5, 30}, type = "static", friction = 0.3}
+/// vehicle.set_softness(pit, 0.7)
+int vehicleSetSoftness(lua_State* L) {
+  const physics::BodyId body = checkBody(L, 1);
+  const double s = checkNumber(L, 2, "softness");
+  if (!systemOf(L).setSurfaceSoftness(body, Real(s)))
+    throw LuaArgError("vehicle.set_softness: softness must be a finite number >= 0 (0 hard, 0.4 grass, 0.7 mud), got " +
+                      std::to_string(s));
+  return 0;
 }
 
 /// @class Vehicle
@@ -320,10 +344,12 @@ int vGear(lua_State* L) {
 /// @field slip_angle number rad, signed
 /// @field slip_speed number speed of the contact patch over the ground, m/s (dust)
 /// @field surface_friction number friction of what the tyre touches (terrain drag map or body)
+/// @field surface_softness number softness of what the tyre touches, unitless (terrain softness layer or vehicle.set_softness; 0 hard, 0.4 grass, 0.7 mud)
 /// @field spin number wheel angular velocity, rad/s (+ rolling forward)
 /// @field drive_torque number torque the differential gives this wheel, N m (mean over the last step; 0 on an undriven axle). Open: the same on both wheels of an axle; limited slip: up to lsd_bias times the other's
 /// @field steer number steering angle, rad (+ to the left)
 /// @field spring_length number hub below full bump, m (0..travel)
+/// @field static_length number spring length at rest on level ground (rest_length minus the static sag), m
 /// @field position Vec3 hub, world, m
 /// @field radius number m
 
@@ -358,14 +384,16 @@ int vTelemetry(lua_State* L) {
   lua_createtable(L, s.wheelCount(id), 0);
   for (int i = 0; i < s.wheelCount(id); ++i) {
     const vehicle::WheelTelemetry& w = s.wheel(id, i);
-    lua_createtable(L, 0, 12);
+    lua_createtable(L, 0, 14);
     lua_pushboolean(L, w.contact);
     lua_setfield(L, -2, "contact");
     const std::pair<const char*, Real> numbers[] = {
         {"load", w.load_N},       {"slip_ratio", w.slipRatio},         {"slip_angle", w.slipAngle_rad},
-        {"slip_speed", w.slipSpeed_mps}, {"surface_friction", w.surfaceFriction}, {"spin", w.spin_radps},
+        {"slip_speed", w.slipSpeed_mps}, {"surface_friction", w.surfaceFriction},
+        {"surface_softness", w.surfaceSoftness}, {"spin", w.spin_radps},
         {"drive_torque", w.driveTorque_Nm},
-        {"steer", w.steer_rad},   {"spring_length", w.springLength_m}, {"radius", w.radius_m}};
+        {"steer", w.steer_rad},   {"spring_length", w.springLength_m},
+        {"static_length", w.staticLength_m}, {"radius", w.radius_m}};
     for (const auto& [k, v] : numbers) {
       lua_pushnumber(L, v);
       lua_setfield(L, -2, k);
@@ -519,6 +547,7 @@ const luaL_Reg kFunctions[] = {
     {"spawn", guarded<vehicleSpawn>},
     {"definition", guarded<vehicleDefinition>},
     {"surface", guarded<vehicleSurface>},
+    {"set_softness", guarded<vehicleSetSoftness>},
     {nullptr, nullptr},
 };
 

@@ -9,7 +9,7 @@
 namespace tumble::terrain {
 
 namespace {
-constexpr std::array<const char*, kMaterialLayerCount> kLayerNames = {"texture", "bump", "friction", "sound"};
+constexpr std::array<const char*, kMaterialLayerCount> kLayerNames = {"texture", "bump", "friction", "sound", "softness"};
 }
 
 const char* materialLayerName(MaterialLayer layer) { return kLayerNames[std::size_t(layer)]; }
@@ -17,7 +17,7 @@ const char* materialLayerName(MaterialLayer layer) { return kLayerNames[std::siz
 Result<MaterialLayer> parseMaterialLayer(const std::string& name) {
   for (std::size_t k = 0; k < kLayerNames.size(); ++k)
     if (name == kLayerNames[k]) return MaterialLayer(k);
-  return makeError("unknown material layer \"" + name + "\" (valid: texture, bump, friction, sound)");
+  return makeError("unknown material layer \"" + name + "\" (valid: texture, bump, friction, sound, softness)");
 }
 
 MaterialMaps::MaterialMaps(int blocksX, int blocksZ, const MaterialDefaults& d) : m_blocksX(blocksX), m_blocksZ(blocksZ) {
@@ -27,6 +27,7 @@ MaterialMaps::MaterialMaps(int blocksX, int blocksZ, const MaterialDefaults& d) 
   m_layers[index(MaterialLayer::Bump)].assign(n, d.bump);
   m_layers[index(MaterialLayer::Friction)].assign(n, d.friction);
   m_layers[index(MaterialLayer::Sound)].assign(n, d.sound);
+  m_layers[index(MaterialLayer::Softness)].assign(n, d.softness);
 }
 
 std::size_t MaterialMaps::offset(int bi, int bj) const {

@@ -11,8 +11,14 @@
 //               paint mud or puddles darker. Physics reads it via frictionAt().
 //   Sound    -- SurfaceSound (grass, gravel, mud, ...), values above the
 //               last enum are kept and passed to the sound code unchanged.
+//   Softness -- how far a tyre sinks into the ground, s = value * 0.01
+//               (unitless; 0 hard: asphalt, rock, ice; 0.4 grass; 0.7 mud;
+//               up to 2.55). Vehicles add tyre.soft_ground_drag * s to their
+//               rolling resistance coefficient (docs/vehicles.md); separate
+//               from friction, so ice is slippery but drags like asphalt.
 // Layers are kept separate (structure of arrays) because physics reads only
-// friction every step and the renderer reads only texture and bump.
+// friction (and vehicles softness) every step and the renderer reads only
+// texture and bump.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -22,15 +28,17 @@
 
 namespace tumble::terrain {
 
-enum class MaterialLayer : std::uint8_t { Texture = 0, Bump = 1, Friction = 2, Sound = 3 };
-constexpr int kMaterialLayerCount = 4;
+enum class MaterialLayer : std::uint8_t { Texture = 0, Bump = 1, Friction = 2, Sound = 3, Softness = 4 };
+constexpr int kMaterialLayerCount = 5;
 
 enum class SurfaceSound : std::uint8_t { Grass = 0, Gravel, Mud, Water, Rock, Sand, Snow, Asphalt, Wood, Metal };
 
 /// mu per unit of the Friction layer.
 constexpr double kFrictionPerUnit = 0.01;
+/// Softness (unitless) per unit of the Softness layer.
+constexpr double kSoftnessPerUnit = 0.01;
 
-/// Name used on the command line and in messages: "texture", "bump", "friction", "sound".
+/// Name used on the command line and in messages: "texture", "bump", "friction", "sound", "softness".
 const char* materialLayerName(MaterialLayer layer);
 /// Parse a layer name; error lists the valid names.
 Result<MaterialLayer> parseMaterialLayer(const std::string& name);
@@ -40,6 +48,7 @@ struct MaterialDefaults {
   std::uint8_t bump = 0;
   std::uint8_t friction = 60;  ///< mu = 0.6: dry grass and packed dirt against rubber
   std::uint8_t sound = std::uint8_t(SurfaceSound::Grass);
+  std::uint8_t softness = 40;  ///< s = 0.4: grass, as the default friction
 };
 
 class MaterialMaps {
@@ -54,6 +63,10 @@ class MaterialMaps {
   void set(MaterialLayer layer, int bi, int bj, std::uint8_t v) { m_layers[index(layer)][offset(bi, bj)] = v; }
   double frictionCoefficient(int bi, int bj) const {
     return kFrictionPerUnit * m_layers[index(MaterialLayer::Friction)][offset(bi, bj)];
+  }
+
+  double softness(int bi, int bj) const {
+    return kSoftnessPerUnit * m_layers[index(MaterialLayer::Softness)][offset(bi, bj)];
   }
 
   const std::vector<std::uint8_t>& layer(MaterialLayer l) const { return m_layers[index(l)]; }

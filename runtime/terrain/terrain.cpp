@@ -413,6 +413,13 @@ Real Terrain::frictionAt(Real x_m, Real z_m) const {
   return Real(m_materials->frictionCoefficient(bi, bj));
 }
 
+Real Terrain::softnessAt(Real x_m, Real z_m) const {
+  if (!m_materials) return Real(MaterialDefaults{}.softness * kSoftnessPerUnit);
+  int bi, bj;
+  blockAt(x_m, z_m, bi, bj);
+  return Real(m_materials->softness(bi, bj));
+}
+
 // --- memory ------------------------------------------------------------------------
 
 TerrainMemory Terrain::memory() const {

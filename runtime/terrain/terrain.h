@@ -17,7 +17,7 @@
 // these planes, so they agree with the triangles, the ray cast and the box
 // query (points on the diagonal belong to half 0).
 //
-// Outside the grid, heightAt/normalAt/frictionAt clamp to the nearest edge
+// Outside the grid, heightAt/normalAt/frictionAt/softnessAt clamp to the nearest edge
 // block; use contains() to tell.
 #include <cstdint>
 #include <optional>
@@ -108,6 +108,9 @@ class Terrain {
   /// Coulomb friction coefficient of the block under (x, z): from the
   /// friction layer, or the default (0.6) without material maps.
   Real frictionAt(Real x_m, Real z_m) const;
+  /// Softness of the block under (x, z) (unitless, material_map.h): from
+  /// the softness layer, or the default (0.4) without material maps.
+  Real softnessAt(Real x_m, Real z_m) const;
 
   // --- static objects -------------------------------------------------------
   Status addStaticObject(std::uint32_t id, const Aabb& box) { return m_objects.add(m_tree, m_desc, id, box); }

@@ -81,8 +81,9 @@ struct TyreDef {
   /// Friction coefficient against slip angle (rad).
   Curve lateral{{{0, 0}, {Real(0.14), Real(1.05)}, {Real(0.4), Real(0.9)}, {Real(1.57), Real(0.8)}}};
   Real rollingResistance = Real(0.012);  ///< C_rr: rolling torque C_rr N r per wheel
-  /// Extra C_rr per unit of surface softness (1 - surface friction, for
-  /// surfaces below friction 1): mud (0.3) adds 0.7 * this.
+  /// Extra C_rr per unit of surface softness (ground_softness.h; the
+  /// terrain's softness layer, not its friction): mud (softness 0.7) adds
+  /// 0.7 * this, grass (0.4) 0.4 * this, asphalt, rock and ice nothing.
   Real softGroundDrag = Real(0.08);
 };
 

@@ -62,7 +62,12 @@
 //    (P / Pmax)^2 + (Q / Qmax)^2 <= 1 with Pmax = mu_long N h, Qmax =
 //    mu_lat N h, each mu from its curve beyond the peak (the sliding value
 //    once the tyre slides) times the surface friction (the terrain drag
-//    map: mud 0.3, grass 0.6, rock 0.8; or the body's friction). Two
+//    map: mud 0.3, grass 0.6, rock 0.8; or the body's friction). Rolling
+//    resistance is a torque C_rr N r against the spin, with C_rr =
+//    tyre.rolling_resistance + tyre.soft_ground_drag * s for the surface's
+//    softness s (ground_softness.h: the terrain's softness layer, mud 0.7,
+//    grass 0.4; bodies 0 unless setSurfaceSoftness). Rejected: softness
+//    inferred as 1 - friction: ice (0.1) dragged harder than mud. Two
 //    Gauss-Seidel passes over the wheels per substep, each followed by the
 //    limited-slip locks (1.); a wheel's spin changes through its axle's
 //    M^-1, so a tyre impulse on one wheel of an open axle also turns the
@@ -150,11 +155,11 @@ void VehicleSystem::configure(Vehicle& v) {
       w.mount_local = Vec3(side * p.x(), p.y(), p.z()) - d.chassis.centerOfMass_m;
       w.t.radius_m = d.axles[i].wheelRadius_m;
       w.t.width_m = d.axles[i].wheelWidth_m;
-      w.t.springLength_m = v.derived[i].staticLength_m;
+      w.t.springLength_m = w.t.staticLength_m = v.derived[i].staticLength_m;
       if (v.wheels.size() < old.size()) {  // keep the wheel's state across a change of parameters
-        const Real radius = w.t.radius_m, width = w.t.width_m;
+        const Real radius = w.t.radius_m, width = w.t.width_m, rest = w.t.staticLength_m;
         w.t = old[v.wheels.size()].t;
-        w.t.radius_m = radius, w.t.width_m = width;
+        w.t.radius_m = radius, w.t.width_m = width, w.t.staticLength_m = rest;
       }
       v.wheels.push_back(w);
     }
@@ -399,7 +404,7 @@ FastRay surfaceRay(const physics::HeightField& f, const Vec3& o, const Vec3& d, 
 }  // namespace
 
 bool VehicleSystem::castWheel(const Vehicle& v, const Vec3& origin, const Vec3& down, Real length,
-                              physics::RayHit* best, Real* friction) const {
+                              physics::RayHit* best, Real* friction, Real* softness) const {
   bool found = false;
   if (const physics::HeightField* field = m_world.heightField()) {
     physics::HeightFieldHit h;
@@ -408,6 +413,7 @@ bool VehicleSystem::castWheel(const Vehicle& v, const Vec3& origin, const Vec3& 
     if (fast == FastRay::Hit) {
       *best = physics::RayHit{physics::BodyId{}, h.distance_m, h.point_m, h.normal};
       *friction = field->frictionAt(h.point_m.x(), h.point_m.z());
+      *softness = m_groundSoftness ? std::max<Real>(m_groundSoftness->softnessAt(h.point_m.x(), h.point_m.z()), 0) : 0;
       length = h.distance_m;
       found = true;
     }
@@ -417,6 +423,7 @@ bool VehicleSystem::castWheel(const Vehicle& v, const Vec3& origin, const Vec3& 
     if (m_world.rayCastBody(id, origin, down, length, &hit) && hit.distance_m <= length) {
       *best = hit;
       *friction = m_world.body(id).friction;
+      *softness = surfaceSoftness(id);
       length = hit.distance_m;
       found = true;
     }
@@ -424,7 +431,21 @@ bool VehicleSystem::castWheel(const Vehicle& v, const Vec3& origin, const Vec3& 
   return found;
 }
 
+bool VehicleSystem::setSurfaceSoftness(physics::BodyId body, Real softness) {
+  if (!std::isfinite(softness) || softness < 0) return false;
+  std::erase_if(m_softBodies, [&](const auto& e) { return e.first == body || !m_world.isValid(e.first); });
+  if (softness > 0) m_softBodies.emplace_back(body, softness);
+  return true;
+}
+
+Real VehicleSystem::surfaceSoftness(physics::BodyId body) const {
+  for (const auto& [id, s] : m_softBodies)
+    if (id == body) return s;
+  return 0;
+}
+
 void VehicleSystem::substep(Real h) {
+  m_groundSoftness = dynamic_cast<const GroundSoftness*>(m_world.heightField());
   for (Vehicle& v : m_vehicles)
     if (v.alive && m_world.isValid(v.chassis)) substepVehicle(v, h);
 }
@@ -576,7 +597,7 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
   // Suspension: ray casts and spring lengths first (the anti-roll bar needs both sides).
   struct Contact {
     Vec3 point, normal, longDir, latDir;
-    Real load = 0, friction = 1, cLong = 0, cLat = 0, pMaxMu = 0, qMaxMu = 0, brakeLimit = 0;
+    Real load = 0, friction = 1, softness = 0, cLong = 0, cLat = 0, pMaxMu = 0, qMaxMu = 0, brakeLimit = 0;
     Real P = 0, Q = 0;
     physics::BodyId ground;
   };
@@ -587,16 +608,16 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
     const AxleDef& a = d.axles[std::size_t(w.axle)];
     const Vec3 mount = com + q * w.mount_local;
     physics::RayHit hit;
-    Real friction = 1;
+    Real friction = 1, softness = 0;
     const Real reach = a.suspension.travel_m + a.wheelRadius_m;
-    w.t.contact = castWheel(v, mount, -up, reach, &hit, &friction) && hit.normal.dot(up) > Real(0.2);
+    w.t.contact = castWheel(v, mount, -up, reach, &hit, &friction, &softness) && hit.normal.dot(up) > Real(0.2);
     w.t.springLength_m = w.t.contact ? hit.distance_m - a.wheelRadius_m : a.suspension.travel_m;
     w.t.hub_m = mount - up * std::max<Real>(w.t.springLength_m, 0);
     w.t.steer_rad = a.steered ? v.steer_rad : 0;
     w.t.load_N = 0;
     if (!w.t.contact) {
       w.t.ground = {};
-      w.t.slipRatio = w.t.slipAngle_rad = w.t.slipSpeed_mps = w.t.surfaceFriction = 0;
+      w.t.slipRatio = w.t.slipAngle_rad = w.t.slipSpeed_mps = w.t.surfaceFriction = w.t.surfaceSoftness = 0;
       continue;
     }
     Contact& c = contacts[i];
@@ -604,10 +625,12 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
     c.normal = hit.normal;
     c.ground = hit.body;
     c.friction = friction;
+    c.softness = softness;
     w.t.ground = hit.body;
     w.t.contactPoint_m = hit.point_m;
     w.t.contactNormal = hit.normal;
     w.t.surfaceFriction = friction;
+    w.t.surfaceSoftness = softness;
   }
   for (std::size_t i = 0; i < nw; ++i) {
     Wheel& w = v.wheels[i];
@@ -680,9 +703,10 @@ void VehicleSystem::substepVehicle(Vehicle& v, Real h) {
     c.pMaxMu = c.friction * tyre.longitudinal.eval(std::max(std::abs(kappa), peakLong));
     c.qMaxMu = c.friction * tyre.lateral.eval(std::max(std::abs(alpha), peakLat));
     c.brakeLimit = w.locked ? (a.brakeTorque_Nm * brakeIn + a.handbrakeTorque_Nm * handIn) * h / r : 0;
-    // Rolling resistance (more on soft ground): a torque against the spin.
+    // Rolling resistance (more on soft ground: the surface's softness, not
+    // its friction, so ice drags like asphalt): a torque against the spin.
     if (!w.locked) {
-      const Real crr = tyre.rollingResistance + tyre.softGroundDrag * std::max<Real>(0, 1 - c.friction);
+      const Real crr = tyre.rollingResistance + tyre.softGroundDrag * c.softness;
       const Real Wii = v.axleDrive[i / 2].invInertia[i % 2][i % 2];
       const Real p = std::min(std::abs(w.t.spin_radps) / Wii, crr * c.load * r * h);
       spinImpulse(v, i, -std::copysign(p, w.t.spin_radps));

@@ -18,6 +18,7 @@
 #include "core/math.h"
 #include "core/result.h"
 #include "physics/world.h"
+#include "vehicle/ground_softness.h"
 #include "vehicle/vehicle_def.h"
 
 namespace tumble::vehicle {
@@ -41,6 +42,11 @@ struct WheelTelemetry {
   Real slipAngle_rad = 0;     ///< atan(v_lateral / |v_forward|), signed
   Real slipSpeed_mps = 0;     ///< speed of the contact patch over the ground (dust)
   Real surfaceFriction = 0;   ///< of what the tyre touches (terrain drag map or body friction)
+  /// Softness of what the tyre touches (ground_softness.h; unitless: 0
+  /// hard, 0.4 grass, 0.7 mud): adds tyre.soft_ground_drag times it to the
+  /// rolling resistance coefficient. Terrain softness layer, or a body's
+  /// setSurfaceSoftness (0 by default).
+  Real surfaceSoftness = 0;
   Real spin_radps = 0;        ///< wheel angular velocity, + rolling forward
   /// Torque the differential delivered to this wheel, mean over the last
   /// step's substeps, N m (+ drives forward; 0 on an undriven axle). Open:
@@ -50,6 +56,10 @@ struct WheelTelemetry {
   Real rotation_rad = 0;      ///< accumulated spin angle (for drawing)
   Real steer_rad = 0;         ///< + to the left
   Real springLength_m = 0;    ///< hub below full bump, 0..travel
+  /// Spring length at rest on level ground (rest_length minus the static
+  /// sag), m: where the hub sits when the car stands still. Drawing puts
+  /// the chassis model's ground a wheel radius below it.
+  Real staticLength_m = 0;
   Vec3 hub_m = Vec3::Zero();  ///< world
   Vec3 contactPoint_m = Vec3::Zero();
   Vec3 contactNormal = Vec3::UnitY();
@@ -84,6 +94,13 @@ class VehicleSystem {
 
   void setControls(VehicleId id, const VehicleControls& controls);
   const VehicleControls& controls(VehicleId id) const;
+  /// Softness (unitless, >= 0; ground_softness.h) of a body's surface under
+  /// the tyres: a static box of mud, say. Bodies are hard (0) unless set;
+  /// setting 0 forgets the body. Terrain softness comes from the height
+  /// field (its softness layer). Not finite or negative: false, unchanged.
+  bool setSurfaceSoftness(physics::BodyId body, Real softness);
+  /// The softness set for a body, or 0.
+  Real surfaceSoftness(physics::BodyId body) const;
   /// Replaces the definition while running (tunables): validated; the
   /// chassis keeps its pose and velocity, the wheels their spin. A new
   /// chassis size or mass remakes the chassis body (a new chassis() id).
@@ -155,12 +172,14 @@ class VehicleSystem {
   void spinImpulse(Vehicle& v, std::size_t wheel, Real impulse_Nms);
   void solveLimitedSlip(Vehicle& v, Real h);
   bool castWheel(const Vehicle& v, const Vec3& origin, const Vec3& down, Real length, physics::RayHit* hit,
-                 Real* friction) const;
+                 Real* friction, Real* softness) const;
 
   physics::World& m_world;
   int m_hook = 0;
   std::vector<Vehicle> m_vehicles;
   std::vector<std::uint32_t> m_free;
+  std::vector<std::pair<physics::BodyId, Real>> m_softBodies;  ///< setSurfaceSoftness (few: a linear search)
+  const GroundSoftness* m_groundSoftness = nullptr;            ///< the height field's, this substep (or none)
   int m_alive = 0;
 };
 

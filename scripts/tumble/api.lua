@@ -569,7 +569,7 @@ function Trigger:count() end
 ---@field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
 ---@field lateral? number[][] {{slip angle rad, friction}, ...}
 ---@field rolling_resistance? number C_rr (default 0.012)
----@field soft_ground_drag? number extra C_rr per unit of (1 - surface friction) (default 0.08)
+---@field soft_ground_drag? number extra C_rr per unit of surface softness (terrain softness layer or vehicle.set_softness; mud 0.7, grass 0.4, ice 0) (default 0.08)
 
 ---@class VehicleEngine
 ---@field torque? number[][] {{rpm, N m}, ...} at full throttle
@@ -674,10 +674,12 @@ function Vehicle:remove() end
 ---@field slip_angle number rad, signed
 ---@field slip_speed number speed of the contact patch over the ground, m/s (dust)
 ---@field surface_friction number friction of what the tyre touches (terrain drag map or body)
+---@field surface_softness number softness of what the tyre touches, unitless (terrain softness layer or vehicle.set_softness; 0 hard, 0.4 grass, 0.7 mud)
 ---@field spin number wheel angular velocity, rad/s (+ rolling forward)
 ---@field drive_torque number torque the differential gives this wheel, N m (mean over the last step; 0 on an undriven axle). Open: the same on both wheels of an axle; limited slip: up to lsd_bias times the other's
 ---@field steer number steering angle, rad (+ to the left)
 ---@field spring_length number hub below full bump, m (0..travel)
+---@field static_length number spring length at rest on level ground (rest_length minus the static sag), m
 ---@field position Vec3 hub, world, m
 ---@field radius number m
 
@@ -1317,13 +1319,30 @@ function vehicle.spawn(name, opts) end
 ---@return VehicleDefinition # the definition
 function vehicle.definition(name) end
 
----The terrain under (x, z): its height and its friction (the drag map:
----mud 0.3, grass 0.6, rock 0.8). Nothing when there is no terrain there.
+---The terrain under (x, z): its height, its friction (the drag map:
+---mud 0.3, grass 0.6, rock 0.8) and its softness (the softness layer:
+---mud 0.7, grass 0.4, rock 0; rolling drag, see docs/vehicles.md).
+---Nothing when there is no terrain there.
 ---@param x number m
 ---@param z number m
 ---@return number? # height, m
 ---@return number? # friction coefficient
+---@return number? # softness, unitless (0 hard)
 function vehicle.surface(x, z) end
+
+---Makes a body's surface soft ground for tyres (a static box of mud, a
+---sand pit): rolling drag tyre.soft_ground_drag times the softness on top
+---of the tyre's rolling resistance. Bodies are hard (0) until set. The
+---body's friction stays what it is: set both for mud (friction 0.3,
+---softness 0.7); ice is a low friction with softness 0.
+---vehicle.set_softness(pit, 0.7)
+---
+---```lua
+---local pit = world.box{size = {6, 1, 20}, position = {0, -0.5, 30}, type = "static", friction = 0.3}
+---```
+---@param body Body the surface
+---@param softness number unitless, >= 0 (0 hard, 0.4 grass, 0.7 mud)
+function vehicle.set_softness(body, softness) end
 
 ---The physics world of the scenario: create and remove bodies, set gravity,
 ---cast rays. Units are SI (m, kg, s, rad); Y is up and the ground is y = 0.

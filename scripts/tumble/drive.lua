@@ -189,8 +189,9 @@ local Effects = {}
 Effects.__index = Effects
 
 -- Tyre dust per wheel and exhaust smoke, in particles per second:
---   dust  = opts.dust_per_mps (default 40) * slip speed (m/s), on soft ground
---           (surface friction < 0.7) twice that, 0 without contact
+--   dust  = opts.dust_per_mps (default 40) * slip speed (m/s), on loose
+--           ground (surface softness >= 0.3: grass, sand, snow, mud) twice
+--           that, 0 without contact
 --   smoke = opts.smoke_idle (default 4) + opts.smoke_throttle (default 60)
 --           * throttle * rpm / max_rpm
 -- update() spawns "base:dust" at each wheel's contact patch and
@@ -210,7 +211,7 @@ function Effects:update(dt)
   local car = self.car
   local t = car:telemetry()
   for i, w in ipairs(t.wheels) do
-    local soft = w.surface_friction < 0.7 and 2 or 1
+    local soft = w.surface_softness >= 0.3 and 2 or 1
     self.dust[i] = w.contact and self.dust_per_mps * w.slip_speed * soft or 0
   end
   self.smoke = self.smoke_idle + self.smoke_throttle * car:controls().throttle * t.rpm / self.max_rpm
@@ -249,13 +250,29 @@ function drive.show(car)
   local body = car:body()
   if mesh and body.set_model then
     -- The shipped models stand on their origin (the ground) with the front
-    -- along +Z; the body's frame is the centre of mass. Put the model's
-    -- ground where the tyres touch it at rest.
-    local com, axle = def.chassis.com, def.axles[1]
-    local ground = axle.position[2] - axle.suspension.rest_length - axle.radius
+    -- along +Z; the body's frame is the centre of mass. At rest each axle's
+    -- hub hangs its static spring length (rest_length less the sag under
+    -- the car's weight) below full bump, and the ground is a wheel radius
+    -- lower: through those points (z, y), one per axle, runs the ground in
+    -- the body's frame. The model's ground goes on that line (a least
+    -- squares fit, tilted when the axles sag differently), its origin below
+    -- the box centre, so the drawn car sits where the physics car is.
+    local com, wheels = def.chassis.com, car:telemetry().wheels
+    local n, sz, sy, szz, szy = 0, 0, 0, 0, 0
+    for i, axle in ipairs(def.axles) do
+      local w = wheels[2 * i - 1]
+      local z = axle.position[3] - com[3]
+      local y = axle.position[2] - com[2] - w.static_length - w.radius
+      n, sz, sy, szz, szy = n + 1, sz + z, sy + y, szz + z * z, szy + z * y
+    end
+    local spread = szz - sz * sz / n
+    local slope = spread > 1e-9 and (szy - sz * sy / n) / spread or 0  -- dy/dz of the ground, body frame
+    local z0 = -com[3]
+    local y0 = sy / n + slope * (z0 - sz / n)
     -- The mesh path is inside the vehicle's mod, which need not be the scenario's.
     local mod = car:name():match("^([^:]+):")
-    body:set_model(mod and (mod .. ":" .. mesh) or mesh, {offset = {-com[1], ground - com[2], -com[3]}})
+    body:set_model(mod and (mod .. ":" .. mesh) or mesh,
+                   {offset = {-com[1], y0, z0}, rotation = {-math.atan(slope), 0, 0}})
     done = done + 1
   end
   return done

@@ -61,11 +61,11 @@ TEST(ShippedModels, EveryPartIsAClosedSurface) {
                            "tree.obj", "building.obj", "barrier.obj", "checkpoint_arch.obj"}) {
     auto model = load(name);
     ASSERT_TRUE(model);
-    // The wheel's tread and sides, and the truck's and buggy's bodies, are
+    // The wheel's tread and sides, and the three car bodies, are
     // materials of one closed surface; every other object (node) is closed
     // on its own.
     const std::string n = name;
-    if (n == "wheel.obj" || n == "truck.obj" || n == "buggy.obj") {
+    if (n == "wheel.obj" || n == "hatchback.obj" || n == "truck.obj" || n == "buggy.obj") {
       const render::FlatMesh flat = render::flattenModel(*model);
       std::vector<Vec3> v;
       for (const auto& p : flat.positions) v.push_back(p.cast<Real>());
@@ -137,13 +137,15 @@ int checkOneManifoldSurface(const render::FlatMesh& flat, const std::string& nam
 }
 
 // chassis.inertia = "mesh" needs the chassis to be one closed solid: the
-// truck and buggy bodies are one connected, closed, outward-wound manifold
-// each (no overlapping parts counted twice), of the topology they are built
-// with: the truck a sphere with a pocket (Euler characteristic 2), the
-// buggy a pan with a roll cage of four independent loops (each side frame,
-// and the two cross tubes joining them), genus 4: 2 - 2 * 4 = -6.
-TEST(ShippedModels, TruckAndBuggyBodiesAreEachOneClosedManifoldSolid) {
-  for (const auto& [name, euler] : {std::pair{"truck.obj", 2}, std::pair{"buggy.obj", -6}}) {
+// hatchback, truck and buggy bodies are one connected, closed, outward-wound
+// manifold each (no overlapping parts counted twice), of the topology they
+// are built with: the hatchback a sphere (Euler characteristic 2), the truck
+// a sphere with a pocket (2), the buggy a pan with a roll cage of four
+// independent loops (each side frame, and the two cross tubes joining
+// them), genus 4: 2 - 2 * 4 = -6.
+TEST(ShippedModels, CarBodiesAreEachOneClosedManifoldSolid) {
+  for (const auto& [name, euler] :
+       {std::pair{"hatchback.obj", 2}, std::pair{"truck.obj", 2}, std::pair{"buggy.obj", -6}}) {
     auto model = load(name);
     ASSERT_TRUE(model);
     const render::FlatMesh flat = render::flattenModel(*model);
@@ -151,6 +153,28 @@ TEST(ShippedModels, TruckAndBuggyBodiesAreEachOneClosedManifoldSolid) {
     const physics::MassProperties p = massOf(*model, 1);
     EXPECT_TRUE(p.valid && p.volume_m3 > 0) << name << " must be wound outward";
   }
+}
+
+// The hatchback is its side profile extruded across the 1.56 m body plus
+// the two bumpers, every cell solid across the whole width: its volume is
+// the profile's area times the width. Parts that overlap (glass or bumpers
+// laid over the body) would count their shared volume twice.
+TEST(ShippedModels, HatchbackVolumeIsItsProfileTimesItsWidth) {
+  auto model = load("hatchback.obj");
+  ASSERT_TRUE(model);
+  const physics::MassProperties p = massOf(*model, 1);
+  ASSERT_TRUE(p.valid);
+  // Outline (z, y) in m, shoelace area.
+  const double outline[][2] = {{-2.0, 0.28}, {2.0, 0.28}, {2.0, 0.78}, {1.25, 0.92}, {0.45, 1.42}, {-1.55, 1.45}, {-2.0, 0.95}};
+  double area = 0;
+  for (std::size_t i = 0; i < std::size(outline); ++i) {
+    const auto& a = outline[i];
+    const auto& b = outline[(i + 1) % std::size(outline)];
+    area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
+  }
+  const double width = 1.56, bumpers = 2 * 0.07 * 0.17;  // m, m^2
+  EXPECT_NEAR(p.volume_m3, std::abs(area) * width + bumpers * width, 1e-3);
+  EXPECT_LT(std::abs(p.centreOfMass_m.x()), 1e-4) << "symmetric across the width";
 }
 
 TEST(ShippedModels, WheelMassPropertiesMatchTheCylinder) {

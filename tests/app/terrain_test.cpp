@@ -59,10 +59,11 @@ TEST(Terrain, MaterialsCommandWritesEditableLayersBesideTheMap) {
   std::filesystem::remove(dir + "/m.friction.png");
   auto r = runTumble("terrain gen --width 33 --height 17 --seed 3 --out " + map);
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* layer : {"texture", "bump", "friction", "sound"}) std::filesystem::remove(dir + "/m." + layer + ".png");
+  for (const char* layer : {"texture", "bump", "friction", "sound", "softness"})
+    std::filesystem::remove(dir + "/m." + layer + ".png");
   r = runTumble("terrain materials " + map);
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* layer : {"texture", "bump", "friction", "sound"})
+  for (const char* layer : {"texture", "bump", "friction", "sound", "softness"})
     EXPECT_TRUE(std::filesystem::exists(dir + "/m." + layer + ".png")) << layer;
   // A second call would destroy edits: refused, naming the file.
   r = runTumble("terrain materials " + map);

@@ -15,7 +15,7 @@ TEST(MaterialMaps, DefaultsAndCompactStorage) {
   EXPECT_EQ(m.get(MaterialLayer::Friction, 10, 10), 60);
   EXPECT_DOUBLE_EQ(m.frictionCoefficient(10, 10), 0.6);
   EXPECT_EQ(m.get(MaterialLayer::Sound, 0, 0), std::uint8_t(SurfaceSound::Grass));
-  EXPECT_EQ(m.bytes(), 64u * 32u * 4u);  // one byte per block per layer
+  EXPECT_EQ(m.bytes(), 64u * 32u * std::size_t(kMaterialLayerCount));  // one byte per block per layer
 }
 
 TEST(MaterialMaps, EachLayerRoundTripsThroughAn8BitPng) {

@@ -302,3 +302,23 @@ TEST(Friction, ComesFromTheDragMapOrTheDefault) {
   const Vec3 next = t->samplePosition(3, 3) + Vec3(1.0f, 0, 1.0f);
   EXPECT_FLOAT_EQ(t->frictionAt(next.x(), next.z()), 0.6f);
 }
+
+// Softness (rolling drag on soft ground) is a layer of its own: a block of
+// ice keeps the default softness when only its friction is painted low, and
+// a block of mud gets its softness from the softness layer.
+TEST(Softness, ComesFromItsOwnLayerNotFromFriction) {
+  auto t = Terrain::create(HeightMap(9, 9, 0), oddDesc());
+  ASSERT_TRUE(t.ok());
+  EXPECT_FLOAT_EQ(t->softnessAt(0, 100), 0.4f);  // no material maps: grass
+  MaterialMaps& mat = t->createMaterials();
+  mat.set(MaterialLayer::Friction, 2, 3, 10);  // ice: slippery...
+  mat.set(MaterialLayer::Softness, 2, 3, 0);   // ...and hard
+  mat.set(MaterialLayer::Friction, 3, 3, 30);  // mud
+  mat.set(MaterialLayer::Softness, 3, 3, 70);
+  const Vec3 ice = t->samplePosition(2, 3) + Vec3(1.0f, 0, 1.0f), mud = t->samplePosition(3, 3) + Vec3(1.0f, 0, 1.0f);
+  EXPECT_FLOAT_EQ(t->frictionAt(ice.x(), ice.z()), 0.1f);
+  EXPECT_FLOAT_EQ(t->softnessAt(ice.x(), ice.z()), 0.0f);
+  EXPECT_FLOAT_EQ(t->softnessAt(mud.x(), mud.z()), 0.7f);
+  const Vec3 grass = t->samplePosition(4, 3) + Vec3(1.0f, 0, 1.0f);
+  EXPECT_FLOAT_EQ(t->softnessAt(grass.x(), grass.z()), 0.4f);
+}

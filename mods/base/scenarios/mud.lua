@@ -1,10 +1,11 @@
 -- Mud: two identical cars launched side by side on flat generated land, one
 -- along a lane of mud, one along grass. The terrain's material map paints
--- mud (friction 0.3) in patches on flat low ground and grass (0.6)
--- elsewhere (app/terrain_scene.cpp); tyre grip scales with the surface
--- friction and soft ground adds rolling drag, so the car in the mud spins
--- its wheels and falls behind. Both drive the same autopilot straight ahead.
--- Expectations: the lanes were found, the mud car's tyres report mud, it
+-- mud (friction 0.3, softness 0.7) in patches on flat low ground and grass
+-- (0.6, 0.4) elsewhere (app/terrain_scene.cpp); tyre grip scales with the
+-- surface friction and its softness adds rolling drag (docs/vehicles.md
+-- "Surfaces"), so the car in the mud spins its wheels and falls behind. Both drive the same autopilot straight ahead.
+-- Expectations: the lanes were found, the mud car's tyres report mud
+-- (friction and softness), it
 -- covered clearly less ground and its driven wheels slipped more.
 --
 --   tumble run base:mud
@@ -43,7 +44,7 @@ local function launch(entry, start)
   local h = vehicle.surface(start[1], start[2])
   entry.car = vehicle.spawn(param("car", "base:hatchback"), {position = {start[1], h, start[2]}, heading = math.pi / 2})
   entry.pilot = drive.autopilot(entry.car, {waypoints = {{start[1] + 400, start[2]}}, speed = 30, traction = false})
-  entry.start, entry.slip, entry.friction_min = start, 0, math.huge
+  entry.start, entry.slip, entry.friction_min, entry.softness_max = start, 0, math.huge, 0
   entry.driven = {}
   for i, axle in ipairs(entry.car:definition().axles) do
     if axle.driven then entry.driven[#entry.driven + 1] = 2 * i - 1; entry.driven[#entry.driven + 1] = 2 * i end
@@ -74,6 +75,7 @@ return {
           local w = t.wheels[i]
           if w.contact then
             e.friction_min = math.min(e.friction_min, w.surface_friction)
+            e.softness_max = math.max(e.softness_max, w.surface_softness)
             e.slip = e.slip + math.abs(w.spin * w.radius - t.speed) * dt
           end
         end
@@ -89,6 +91,7 @@ return {
     local function dist(e) local p = e.car:position() return math.abs(p.x - e.start[1]) end
     expect("mud car's tyres on mud (surface friction)", mud.friction_min, {max = 0.31})
     expect("grass car's tyres on grass (surface friction)", grass.friction_min, {min = 0.59})
+    expect("mud car's tyres in soft mud (surface softness)", mud.softness_max, {min = 0.69, max = 0.71})
     expect("mud car behind: distance ratio mud / grass", dist(mud) / dist(grass), {max = 0.85})
     expect("wheelspin in the mud vs on grass (ratio of slip distance)", mud.slip / math.max(grass.slip, 1e-3), {min = 1.2})
   end,

@@ -10,7 +10,10 @@ end
 return {
   duration = 3,
   on_start = function(ctx)
-    world.plane{friction = 1}
+    local ground = world.plane{friction = 1}
+    -- Softness (rolling drag) of a body's surface: hard until set, checked input.
+    expect("bad softness refused with what is valid", (fails_with("finite number >= 0", vehicle.set_softness, ground, -1)))
+    vehicle.set_softness(ground, 0.05)
     expect("misspelt field named with its path", (fails_with("axles[1].suspension.frequncy: unknown field",
       vehicle.spawn, "vtest:broken")))
     expect("unknown vehicle lists the mod's vehicles", (fails_with("this mod has: broken, kart", vehicle.spawn, "vtest:nope")))
@@ -44,6 +47,7 @@ return {
       local t = car:telemetry()
       expect("moving forward after 1 s of throttle (m/s)", t.speed, {min = 1.5})
       expect("four wheels report contact", #t.wheels == 4 and t.wheels[1].contact and t.wheels[4].contact)
+      expect("tyres report the ground's softness and friction", math.abs(t.wheels[1].surface_softness - 0.05) < 1e-6 and t.wheels[1].surface_friction == 1)
       -- Rear drive, open differential on even ground: the rear wheels get
       -- the same drive torque, the undriven front wheels none.
       expect("driven rear wheels get drive torque (N m)", t.wheels[3].drive_torque, {min = 1})
