@@ -117,6 +117,8 @@
 // World uses (60 Hz has a margin of 1.8).
 #include "physics/joints/joint_system.h"
 
+#include "physics/constraint_solver.h"
+#include "physics/internal/contact_solver.h"
 #include "physics/internal/impulse_joints.h"
 
 #include <Eigen/SparseCholesky>
@@ -182,7 +184,8 @@ struct Row {
   bool angular = false;  ///< counts as torque for breaking
   bool active = true;
   int index = -1;  ///< position in the solved system
-  double lambda = 0;
+  double lambda = 0;  ///< multiplier: constraint force (N) or torque (N m) of the row
+  double target = 0;  ///< substeps: J v the row's velocity must end the substep with
 };
 
 V3 wide3(const Vec3& v) { return v.cast<double>(); }
@@ -200,6 +203,7 @@ struct JointPose {
 struct Evaluation {
   std::vector<JointDef*> defs;
   std::vector<std::uint32_t> slots;         ///< joint slot per evaluation joint
+  std::vector<std::uint32_t> generations;   ///< its generation (the slot may be reused later)
   std::vector<std::pair<int, int>> bodies;  ///< state index of A and B per joint (-1 = world)
 };
 
@@ -215,6 +219,26 @@ struct JointSystem::Impl {
   Eigen::VectorXd rhs, lambda;
   Eigen::SparseMatrix<double> A;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+  /// Sparsity pattern the factorization was last analysed for: while it
+  /// stays the same (same joints, same active limits) only the numeric
+  /// factorization runs.
+  std::vector<int> patternOuter, patternInner;
+
+  // ---- formulation A inside World::step (see "Time stepping") ----
+  double h = 0;             ///< substep length, s
+  bool inStep = false;      ///< prepared for the World step in progress
+  std::uint64_t serial = 0; ///< World steps prepared so far
+  std::vector<V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
+  /// Per World body slot: the velocity right after the joints last changed
+  /// it, and in which World step (q' of the last solve; see "Time stepping").
+  struct Memo {
+    std::uint32_t generation = 0;
+    std::uint64_t serial = 0;
+    V3 v = V3::Zero(), w = V3::Zero();
+  };
+  std::vector<Memo> memo;
+  std::vector<JointBreakEvent> pendingBreaks;  ///< found in the last World step, removed before the next
+  bool resultsPending = false;                 ///< forces of the last World step not yet recorded
 };
 
 JointSystem::JointSystem(World& world, const JointSettings& settings)
@@ -224,18 +248,43 @@ JointSystem::JointSystem(World& world, const JointSettings& settings)
   setSolver(kind);
 }
 
+/// Formulation A as the World's ConstraintSolver (constraint_solver.h): the
+/// acceleration-level solve once per substep (warmStart), the projection
+/// before each contact sweep (solve). See "Time stepping" above.
+class LagrangeSubsteps final : public ConstraintSolver {
+ public:
+  explicit LagrangeSubsteps(JointSystem& joints) : m_joints(joints) {}
+  void prepare(const World&, Real dt_s, int substeps) override {
+    m_joints.substepPrepare(double(dt_s) / std::max(1, substeps));
+  }
+  void warmStart(SolverVelocity* vel, const Body* bodies) override { m_joints.substepSolve(vel, bodies); }
+  Real solve(SolverVelocity* vel, const Body*, bool) override { return Real(m_joints.substepProject(vel)); }
+  void finish(const World&) override { m_joints.substepFinish(); }
+
+ private:
+  JointSystem& m_joints;
+};
+
 JointSystem::~JointSystem() {
   if (m_impulse && m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
+  if (m_lagrange && m_world.constraintSolver() == m_lagrange.get()) m_world.setConstraintSolver(nullptr);
 }
 
 void JointSystem::setSolver(JointSolverKind kind) {
   m_settings.solver = kind;
   if (kind == JointSolverKind::Impulse && !m_impulse) {
+    if (m_lagrange && m_world.constraintSolver() == m_lagrange.get()) m_world.setConstraintSolver(nullptr);
+    m_lagrange.reset();
+    m_impl->inStep = false;
+    m_impl->resultsPending = false;
+    m_impl->pendingBreaks.clear();
     m_impulse = std::make_unique<ImpulseJoints>(*this, m_settings.impulseHertz, m_settings.impulseDampingRatio);
     m_world.setConstraintSolver(m_impulse.get());
-  } else if (kind == JointSolverKind::Lagrange && m_impulse) {
-    if (m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
+  } else if (kind == JointSolverKind::Lagrange && !m_lagrange) {
+    if (m_impulse && m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
     m_impulse.reset();
+    m_lagrange = std::make_unique<LagrangeSubsteps>(*this);
+    m_world.setConstraintSolver(m_lagrange.get());
   }
 }
 
@@ -656,17 +705,30 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
   }
   im.A.resize(m, m);
   im.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
-  im.ldlt.compute(im.A);
+  // The symbolic analysis (elimination tree, column counts) depends only on
+  // the pattern: redone only when the rows changed (joints, active limits).
+  const int* outer = im.A.outerIndexPtr();
+  const int* inner = im.A.innerIndexPtr();
+  const bool samePattern = im.patternOuter.size() == std::size_t(m) + 1 &&
+                           std::equal(outer, outer + m + 1, im.patternOuter.begin()) &&
+                           im.patternInner.size() == std::size_t(outer[m]) &&
+                           std::equal(inner, inner + outer[m], im.patternInner.begin());
+  if (!samePattern) {
+    im.ldlt.analyzePattern(im.A);
+    im.patternOuter.assign(outer, outer + m + 1);
+    im.patternInner.assign(inner, inner + outer[m]);
+    ++stats.patternAnalyses;
+  }
+  im.ldlt.factorize(im.A);
   ++stats.factorizations;
   if (im.ldlt.info() != Eigen::Success) {
     // Redundant rows (a loop of joints, two joints on one pair): a tiny
-    // compliance on the diagonal makes the system definite again.
+    // compliance on the diagonal makes the system definite again (the
+    // diagonal is stored, so the pattern does not change).
     double trace = 0;
     for (int i = 0; i < m; ++i) trace += im.A.coeff(i, i);
-    Eigen::SparseMatrix<double> reg(m, m);
-    reg.setIdentity();
-    im.A += reg * (1e-9 * trace / m);
-    im.ldlt.compute(im.A);
+    for (int i = 0; i < m; ++i) im.A.coeffRef(i, i) += 1e-9 * trace / m;
+    im.ldlt.factorize(im.A);
     ++stats.factorizations;
   }
   stats.nonZerosA = long(im.A.nonZeros()) - m;
@@ -866,6 +928,7 @@ void JointSystem::prepare() {
   Evaluation& ev = im.ev;
   ev.defs.clear();
   ev.slots.clear();
+  ev.generations.clear();
   ev.bodies.clear();
   for (BodyState& s : im.states)
     if (s.id.index < im.slotOf.size()) im.slotOf[s.id.index] = -1;
@@ -884,6 +947,7 @@ void JointSystem::prepare() {
     Slot& s = m_slots[slot];
     ev.defs.push_back(&s.def);
     ev.slots.push_back(slot);
+    ev.generations.push_back(s.generation);
     ev.bodies.emplace_back(stateOf(s.def.bodyA), stateOf(s.def.bodyB));
   }
 }
@@ -892,6 +956,7 @@ void JointSystem::recordForces() {
   const Impl& im = *m_impl;
   for (std::size_t k = 0; k < im.ev.slots.size() && k < im.jointForce.size(); ++k) {
     Slot& s = m_slots[im.ev.slots[k]];
+    if (!s.alive || s.generation != im.ev.generations[k]) continue;  // destroyed since
     s.force_N = im.jointForce[k].cast<Real>();
     s.torque_Nm = im.jointTorque[k].cast<Real>();
   }
@@ -900,6 +965,7 @@ void JointSystem::recordForces() {
 void JointSystem::finishBreaks(std::vector<JointBreakEvent>& events) {
   for (JointBreakEvent& e : events) {
     if (e.id.index >= m_slots.size() || !m_slots[e.id.index].alive) continue;  // reported already
+    if (e.id.generation != 0 && e.id.generation != m_slots[e.id.index].generation) continue;  // slot reused since
     e.id.generation = m_slots[e.id.index].generation;
     destroyJoint(e.id);
     m_broken.push_back(e);
@@ -917,31 +983,6 @@ bool JointSystem::dropJointsOfDeadBodies() {
     }
   }
   return m_jointCount > 0;
-}
-
-void JointSystem::applyConstraintForces() {
-  const auto t0 = std::chrono::steady_clock::now();
-  m_broken.clear();
-  if (!dropJointsOfDeadBodies()) {
-    m_stats = JointSolveStats{};
-    return;
-  }
-  wakeJointedSleepers();
-  prepare();
-  Impl& im = *m_impl;
-  const V3 g = wide3(m_world.settings().gravity_mps2);
-  std::vector<JointBreakEvent> events = solveConstraints(im, m_settings, g, true, m_stats);
-  recordForces();
-  for (const BodyState& s : im.states) {
-    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0 && s.Tm.squaredNorm() == 0)) continue;
-    // wake = false: the joint forces alone must not keep an island awake
-    // (they never vanish on a resting rag-doll: gravity keeps them busy).
-    m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>(), false);
-    m_world.applyTorque(s.id, (s.Tc + s.Tm).cast<Real>(), false);
-  }
-  finishBreaks(events);
-  m_stats.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  measureError();
 }
 
 void JointSystem::wakeJointedSleepers() {
@@ -972,21 +1013,247 @@ void JointSystem::step(Real dt_s) {
   beforeWorldStep();
   m_world.step(dt_s);
   if (m_impulse) collectImpulseResults();
+  else collectLagrangeResults();
   measureError();
 }
 
 void JointSystem::beforeWorldStep() {
-  if (m_impulse) {
-    // Formulation B: the solve happens inside World::step (ImpulseJoints).
-    m_broken.clear();
-    collectImpulseResults();
-    if (dropJointsOfDeadBodies()) wakeJointedSleepers();
-    refreshLinks();
-    measureError();
-    return;
+  // Both formulations solve inside World::step (ImpulseJoints,
+  // LagrangeSubsteps); here: the results of the last step, dead bodies,
+  // sleepers, the joint order.
+  m_broken.clear();
+  if (m_impulse) collectImpulseResults();
+  else collectLagrangeResults();
+  if (dropJointsOfDeadBodies()) wakeJointedSleepers();
+  refreshLinks();
+  if (!m_impulse && m_settings.postStabilize) postStabilize();
+  measureError();
+}
+
+void JointSystem::collectLagrangeResults() {
+  Impl& im = *m_impl;
+  if (!im.resultsPending) return;
+  im.resultsPending = false;
+  recordForces();
+  finishBreaks(im.pendingBreaks);
+  im.pendingBreaks.clear();
+}
+
+// ---- formulation A inside World::step -------------------------------------------------
+
+void JointSystem::substepPrepare(double h) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Impl& im = *m_impl;
+  im.inStep = false;
+  m_stats = JointSolveStats{};
+  if (m_jointCount == 0 || !dropJointsOfDeadBodies()) return;
+  prepare();  // joints (in elimination order) and their bodies, as of now
+  if (im.ev.defs.empty() || !(h > 0)) return;
+  im.h = h;
+  ++im.serial;
+  im.inStep = true;
+  im.resultsPending = true;
+  im.pendingBreaks.clear();
+  im.vk.resize(im.states.size());
+  im.wk.resize(im.states.size());
+  if (im.memo.size() < im.slotOf.size()) im.memo.resize(im.slotOf.size());
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// J q' of one row for the velocities v, w (per state; -1 = the world, at rest).
+static double rowVelocity(const Row& r, const std::vector<V3>& v, const std::vector<V3>& w) {
+  double c = 0;
+  if (r.a >= 0) c += r.ja.head<3>().dot(v[r.a]) + r.ja.tail<3>().dot(w[r.a]);
+  if (r.b >= 0) c += r.jb.head<3>().dot(v[r.b]) + r.jb.tail<3>().dot(w[r.b]);
+  return c;
+}
+
+void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
+  Impl& im = *m_impl;
+  if (!im.inStep) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double h = im.h;
+  const V3 g = wide3(m_world.settings().gravity_mps2);
+  std::vector<BodyState>& st = im.states;
+  // The state of the substep: poses as integrated so far; q' = the velocity
+  // the joints left at their last update (the memo), so that everything that
+  // changed the velocities since (the free step's gravity, forces and
+  // gyroscopic term, the contacts' impulses, scripts) is the known force Q,
+  // not a velocity the joints have to live with. See "Time stepping".
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    BodyState& s = st[i];
+    const Body& b = bodies[s.id.index];
+    s.x = wide3(b.position_m);
+    s.q = b.orientation.cast<double>().normalized();
+    const bool moves = b.moves();
+    im.vk[i] = moves ? V3(narrow(vel[s.id.index].linear).cast<double>()) : V3::Zero();
+    im.wk[i] = moves ? V3(narrow(vel[s.id.index].angular).cast<double>()) : V3::Zero();
+    s.v = im.vk[i];
+    s.w = im.wk[i];
+    if (!s.dynamic) continue;
+    const Impl::Memo& memo = im.memo[s.id.index];
+    if (memo.generation == s.id.generation && memo.serial + 1 >= im.serial) {
+      s.v = memo.v;
+      s.w = memo.w;
+    } else {
+      // Not seen last step (new, just woken): the velocity before this
+      // substep's free step, gravity and the applied force and torque taken out.
+      s.v = im.vk[i] - h * (g + s.invMass * wide3(b.force_N));
+      s.w = im.wk[i] - h * (b.invInertiaWorld.cast<double>() * wide3(b.torque_Nm));
+    }
   }
-  if (m_settings.postStabilize) postStabilize();
-  applyConstraintForces();
+  deriveStates(st, m_settings, V3::Zero(), false);  // R, W at the substep's poses
+  buildRows(im.ev.defs, im.ev.slots, im.ev.bodies, st, im.rows);  // C, J, J'q', C' = J q'
+  addMotorTorques(im.ev, st, m_settings);
+  // The parts of Q the World does not apply: springs (soft rows, lambda =
+  // -k C - c C') and hinge motors, as impulses over the substep.
+  auto kick = [&](int b, const V6& p) {
+    if (!st[b].dynamic) return;
+    im.vk[b] += st[b].invMass * p.head<3>();
+    im.wk[b] += st[b].invI * p.tail<3>();
+  };
+  for (Row& r : im.rows)
+    if (r.soft) {
+      r.lambda = -(r.k * r.c + r.d * r.cdot);
+      scatterRow(r, h * r.lambda, kick);
+    }
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st[i].dynamic) im.wk[i] += h * (st[i].invI * st[i].Tm);
+  // Hard rows. Baumgarte's C'' = -k_s C - k_d C' over the substep asks for
+  //   J v_end = (1 - h k_d) C' - h (J'q' + k_s C)        (the row's target),
+  // and J W J^T (h lambda) = target - J v_k is the paper's equation times h
+  // (J v_k - C' = h J W Q). A limit row stops the approach inelastically
+  // (C' < 0 is not carried on) and pushes out with k_s.
+  const double ks = m_settings.stiffness_per_s2, kd = m_settings.damping_per_s;
+  for (Row& r : im.rows) {
+    const double carried = r.limit ? std::max(r.cdot, 0.0) : r.cdot;
+    r.target = (carried - h * (r.jdq + ks * r.c)) / (1 + h * kd + h * h * ks);
+    if (!r.soft) r.lambda = 0;
+  }
+  const int maxIter = std::max(0, m_settings.maxActiveSetIterations);
+  for (int iter = 0;; ++iter) {
+    const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
+    m_stats.rows = m;
+    if (m == 0) break;
+    assembleAndFactorize(im, m, m_stats);
+    im.rhs.resize(m);
+    for (const Row& r : im.rows)
+      if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+    im.lambda = im.ldlt.solve(im.rhs);  // impulses h lambda (N s, N m s)
+    // Active set: a limit row that would pull leaves and the rest is solved again.
+    bool changed = false;
+    if (iter < maxIter)
+      for (Row& r : im.rows)
+        if (r.limit && r.index >= 0 && im.lambda[r.index] < 0) r.active = false, changed = true;
+    if (!changed) break;
+  }
+  for (Row& r : im.rows)
+    if (r.index >= 0) {
+      r.lambda = im.lambda[r.index] / h;
+      scatterRow(r, im.lambda[r.index], kick);
+    }
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const BodyState& s = st[i];
+    if (!s.dynamic) continue;
+    vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
+    vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
+    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
+  }
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double JointSystem::substepProject(SolverVelocity* vel) {
+  Impl& im = *m_impl;
+  if (!im.inStep || m_stats.rows == 0) return 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double h = im.h;
+  std::vector<BodyState>& st = im.states;
+  // The contacts changed the velocities since the joints' last update: with
+  // their impulses in Q, the joints' multipliers change by
+  // J W J^T dmu = target - J v (the same factorization). Contacts and joints
+  // take turns (block Gauss-Seidel) until both hold.
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st[i].dynamic) {
+      im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
+      im.wk[i] = narrow(vel[st[i].id.index].angular).cast<double>();
+    }
+  auto kick = [&](int b, const V6& p) {
+    if (!st[b].dynamic) return;
+    im.vk[b] += st[b].invMass * p.head<3>();
+    im.wk[b] += st[b].invI * p.tail<3>();
+  };
+  Eigen::VectorXd& dmu = im.lambda;
+  double changed2 = 0, total2 = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    const int m = m_stats.rows;
+    if (m == 0) break;
+    for (const Row& r : im.rows)
+      if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+    dmu = im.ldlt.solve(im.rhs);
+    // A limit row may only push: one whose total would pull gives back what
+    // it applied and leaves; the rest is solved again.
+    bool dropped = false;
+    for (Row& r : im.rows)
+      if (r.limit && r.index >= 0 && pass < 2 && h * r.lambda + dmu[r.index] < 0) {
+        scatterRow(r, -h * r.lambda, kick);
+        r.lambda = 0;
+        r.active = false;
+        dropped = true;
+      }
+    if (dropped) {
+      m_stats.rows = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
+      if (m_stats.rows > 0) {
+        assembleAndFactorize(im, m_stats.rows, m_stats);
+        im.rhs.resize(m_stats.rows);
+      }
+      continue;
+    }
+    for (Row& r : im.rows)
+      if (r.index >= 0) {
+        const double d = r.limit ? std::max(dmu[r.index], -h * r.lambda) : dmu[r.index];
+        r.lambda += d / h;
+        scatterRow(r, d, kick);
+        changed2 += d * d;
+        total2 += h * h * r.lambda * r.lambda;
+      }
+    break;
+  }
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const BodyState& s = st[i];
+    if (!s.dynamic) continue;
+    vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
+    vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
+    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
+  }
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return total2 > 0 ? changed2 / total2 : 0;
+}
+
+void JointSystem::substepFinish() {
+  Impl& im = *m_impl;
+  if (!im.inStep) return;
+  im.inStep = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Evaluation& ev = im.ev;
+  // The constraint force of the last substep, per joint (on body A).
+  im.jointForce.assign(ev.defs.size(), V3::Zero());
+  im.jointTorque.assign(ev.defs.size(), V3::Zero());
+  std::size_t k = 0;
+  for (const Row& r : im.rows) {
+    while (k < ev.slots.size() && ev.slots[k] != r.joint) ++k;  // rows are grouped by joint in evaluation order
+    if (k == ev.slots.size()) break;
+    if (!r.active || (r.index < 0 && !r.soft)) continue;
+    if (r.angular) im.jointTorque[k] += r.lambda * r.ja.tail<3>();
+    else im.jointForce[k] += r.lambda * r.ja.head<3>();
+  }
+  for (std::size_t j = 0; j < ev.defs.size(); ++j) {
+    const JointDef& d = *ev.defs[j];
+    const double f = im.jointForce[j].norm(), t = im.jointTorque[j].norm();
+    if ((d.breakForce_N > 0 && f > d.breakForce_N) || (d.breakTorque_Nm > 0 && t > d.breakTorque_Nm))
+      im.pendingBreaks.push_back(
+          JointBreakEvent{JointId{ev.slots[j], ev.generations[j]}, d.bodyA, d.bodyB, f, t, d.userData});
+  }
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void JointSystem::collectImpulseResults() {
@@ -1058,6 +1325,11 @@ void JointSystem::postStabilize() {
     }
     m_world.setLinearVelocity(s.id, v.cast<Real>(), false);
     m_world.setAngularVelocity(s.id, w.cast<Real>(), false);
+    // The projection is the joints' own update: the next substep solve
+    // starts from it (the memo) rather than resisting it as a force.
+    if (s.id.index >= im.memo.size()) im.memo.resize(s.id.index + 1);
+    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, V3(v.cast<Real>().cast<double>()),
+                                     V3(w.cast<Real>().cast<double>())};
   }
 }
 
