@@ -217,16 +217,20 @@ struct JointSystem::Impl {
   std::vector<std::vector<int>> bodyRows;  ///< per state: solved rows touching it
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs, lambda;
-  Eigen::SparseMatrix<double> A;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
-  /// Sparsity pattern the factorization was last analysed for: while it
-  /// stays the same (same joints, same active limits) only the numeric
-  /// factorization runs.
-  std::vector<int> patternOuter, patternInner;
+  /// J W J^T and its factorization. The sparsity pattern it was last
+  /// analysed for is kept: while it stays the same (same joints, same active
+  /// limits) only the numeric factorization runs.
+  struct Factor {
+    Eigen::SparseMatrix<double> A;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+    std::vector<int> patternOuter, patternInner;
+  };
+  Factor factor;
 
   // ---- formulation A inside World::step (see "Time stepping") ----
   double h = 0;             ///< substep length, s
   bool inStep = false;      ///< prepared for the World step in progress
+  bool coupleContacts = false;  ///< some joint's two bodies collide: re-project between contact sweeps
   std::uint64_t serial = 0; ///< World steps prepared so far
   std::vector<V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
   /// Per World body slot: the velocity right after the joints last changed
@@ -685,6 +689,7 @@ static int numberRows(JointSystem::Impl& im, Pred&& pred) {
 /// A = J W J^T over the numbered rows (lower triangle: for every body, every
 /// pair of its rows), then its LDL^T factorization.
 static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats) {
+  JointSystem::Impl::Factor& f = im.factor;
   const std::vector<BodyState>& st = im.states;
   const std::vector<Row>& rows = im.rows;
   im.triplets.clear();
@@ -703,36 +708,36 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
       }
     }
   }
-  im.A.resize(m, m);
-  im.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
+  f.A.resize(m, m);
+  f.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
   // The symbolic analysis (elimination tree, column counts) depends only on
   // the pattern: redone only when the rows changed (joints, active limits).
-  const int* outer = im.A.outerIndexPtr();
-  const int* inner = im.A.innerIndexPtr();
-  const bool samePattern = im.patternOuter.size() == std::size_t(m) + 1 &&
-                           std::equal(outer, outer + m + 1, im.patternOuter.begin()) &&
-                           im.patternInner.size() == std::size_t(outer[m]) &&
-                           std::equal(inner, inner + outer[m], im.patternInner.begin());
+  const int* outer = f.A.outerIndexPtr();
+  const int* inner = f.A.innerIndexPtr();
+  const bool samePattern = f.patternOuter.size() == std::size_t(m) + 1 &&
+                           std::equal(outer, outer + m + 1, f.patternOuter.begin()) &&
+                           f.patternInner.size() == std::size_t(outer[m]) &&
+                           std::equal(inner, inner + outer[m], f.patternInner.begin());
   if (!samePattern) {
-    im.ldlt.analyzePattern(im.A);
-    im.patternOuter.assign(outer, outer + m + 1);
-    im.patternInner.assign(inner, inner + outer[m]);
+    f.ldlt.analyzePattern(f.A);
+    f.patternOuter.assign(outer, outer + m + 1);
+    f.patternInner.assign(inner, inner + outer[m]);
     ++stats.patternAnalyses;
   }
-  im.ldlt.factorize(im.A);
+  f.ldlt.factorize(f.A);
   ++stats.factorizations;
-  if (im.ldlt.info() != Eigen::Success) {
+  if (f.ldlt.info() != Eigen::Success) {
     // Redundant rows (a loop of joints, two joints on one pair): a tiny
     // compliance on the diagonal makes the system definite again (the
     // diagonal is stored, so the pattern does not change).
     double trace = 0;
-    for (int i = 0; i < m; ++i) trace += im.A.coeff(i, i);
-    for (int i = 0; i < m; ++i) im.A.coeffRef(i, i) += 1e-9 * trace / m;
-    im.ldlt.factorize(im.A);
+    for (int i = 0; i < m; ++i) trace += f.A.coeff(i, i);
+    for (int i = 0; i < m; ++i) f.A.coeffRef(i, i) += 1e-9 * trace / m;
+    f.ldlt.factorize(f.A);
     ++stats.factorizations;
   }
-  stats.nonZerosA = long(im.A.nonZeros()) - m;
-  stats.nonZerosL = long(im.ldlt.matrixL().nestedExpression().nonZeros());
+  stats.nonZerosA = long(f.A.nonZeros()) - m;
+  stats.nonZerosL = long(f.ldlt.matrixL().nestedExpression().nonZeros());
   // Fill-in: entries of L beyond those of A's strictly lower triangle.
   stats.fillIn = std::max(0L, stats.nonZerosL - stats.nonZerosA);
 }
@@ -838,7 +843,7 @@ static std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, cons
         }
       }
       assembleAndFactorize(im, m, stats);
-      im.lambda = im.ldlt.solve(im.rhs);
+      im.lambda = im.factor.ldlt.solve(im.rhs);
       for (Row& r : rows)
         if (r.index >= 0) r.lambda = im.lambda[r.index];
     }
@@ -1025,9 +1030,26 @@ void JointSystem::beforeWorldStep() {
   if (m_impulse) collectImpulseResults();
   else collectLagrangeResults();
   if (dropJointsOfDeadBodies()) wakeJointedSleepers();
+  const bool fresh = m_orderDirty || !allJointedBodiesKnown();
   refreshLinks();
-  if (!m_impulse && m_settings.postStabilize) postStabilize();
+  if (!m_impulse && m_settings.postStabilize && fresh) postStabilize();
   measureError();
+}
+
+bool JointSystem::allJointedBodiesKnown() const {
+  // Known: solved in the last World step (a valid memo, see substepSolve).
+  const Impl& im = *m_impl;
+  auto known = [&](BodyId id) {
+    if (id.isNull() || !m_world.isValid(id)) return true;
+    const Body& b = m_world.body(id);
+    if (!b.isDynamic() || !b.awake) return true;
+    if (id.index >= im.memo.size()) return false;
+    const Impl::Memo& memo = im.memo[id.index];
+    return memo.generation == id.generation && memo.serial >= im.serial;
+  };
+  for (const Slot& s : m_slots)
+    if (s.alive && (!known(s.def.bodyA) || !known(s.def.bodyB))) return false;
+  return true;
 }
 
 void JointSystem::collectLagrangeResults() {
@@ -1054,6 +1076,14 @@ void JointSystem::substepPrepare(double h) {
   im.inStep = true;
   im.resultsPending = true;
   im.pendingBreaks.clear();
+  // Joints whose own two bodies still collide (JointDef has no filter; Lua's
+  // world.joint{collide = true}, C++ callers that do not call
+  // World::disableCollision): see substepProject.
+  im.coupleContacts = false;
+  for (std::size_t k = 0; k < im.ev.defs.size() && !im.coupleContacts; ++k) {
+    const JointDef& d = *im.ev.defs[k];
+    im.coupleContacts = !d.bodyB.isNull() && !m_world.collisionDisabled(d.bodyA, d.bodyB);
+  }
   im.vk.resize(im.states.size());
   im.wk.resize(im.states.size());
   if (im.memo.size() < im.slotOf.size()) im.memo.resize(im.slotOf.size());
@@ -1139,7 +1169,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     im.rhs.resize(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
-    im.lambda = im.ldlt.solve(im.rhs);  // impulses h lambda (N s, N m s)
+    im.lambda = im.factor.ldlt.solve(im.rhs);  // impulses h lambda (N s, N m s)
     // Active set: a limit row that would pull leaves and the rest is solved again.
     bool changed = false;
     if (iter < maxIter)
@@ -1164,63 +1194,65 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
 
 double JointSystem::substepProject(SolverVelocity* vel) {
   Impl& im = *m_impl;
-  if (!im.inStep || m_stats.rows == 0) return 0;
+  if (!im.inStep || !im.coupleContacts || m_stats.rows == 0) return 0;
   const auto t0 = std::chrono::steady_clock::now();
   const double h = im.h;
   std::vector<BodyState>& st = im.states;
-  // The contacts changed the velocities since the joints' last update: with
-  // their impulses in Q, the joints' multipliers change by
-  // J W J^T dmu = target - J v (the same factorization). Contacts and joints
-  // take turns (block Gauss-Seidel) until both hold.
+  // Only when some joint's own two bodies collide (coupleContacts): the
+  // contact between them pushes apart where the joint holds them together.
+  // Left to the next substep's solve, the two fight from substep to substep
+  // and blow up (a chain whose neighbours collide, 10 links released
+  // horizontally: NaN within 10 s); taking turns within the substep settles
+  // it (3.4 mm). Not in general: with it, 10 rag-dolls piled (adjacent
+  // parts filtered) blew up at 0.9 s; without it they stay finite (16.6 cm).
+  // The contacts changed the velocities since the joints' solve: with their
+  // impulses in Q, the multipliers change by J W J^T dmu = target - J v
+  // (the same factorization), and contacts and joints take turns (block
+  // Gauss-Seidel) between the contact sweeps.
+  double ke1 = 0;
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st[i].dynamic) {
       im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
       im.wk[i] = narrow(vel[st[i].id.index].angular).cast<double>();
     }
+  const int m = m_stats.rows;
+  im.rhs.resize(m);
+  for (const Row& r : im.rows)
+    if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+  const Eigen::VectorXd& dmu = im.lambda = im.factor.ldlt.solve(im.rhs);
+  double changed2 = 0, total2 = 0;
+  std::vector<V3> dv(st.size(), V3::Zero()), dw(st.size(), V3::Zero());
   auto kick = [&](int b, const V6& p) {
     if (!st[b].dynamic) return;
-    im.vk[b] += st[b].invMass * p.head<3>();
-    im.wk[b] += st[b].invI * p.tail<3>();
+    dv[b] += st[b].invMass * p.head<3>();
+    dw[b] += st[b].invI * p.tail<3>();
   };
-  Eigen::VectorXd& dmu = im.lambda;
-  double changed2 = 0, total2 = 0;
-  for (int pass = 0; pass < 3; ++pass) {
-    const int m = m_stats.rows;
-    if (m == 0) break;
-    for (const Row& r : im.rows)
-      if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
-    dmu = im.ldlt.solve(im.rhs);
-    // A limit row may only push: one whose total would pull gives back what
-    // it applied and leaves; the rest is solved again.
-    bool dropped = false;
-    for (Row& r : im.rows)
-      if (r.limit && r.index >= 0 && pass < 2 && h * r.lambda + dmu[r.index] < 0) {
-        scatterRow(r, -h * r.lambda, kick);
-        r.lambda = 0;
-        r.active = false;
-        dropped = true;
-      }
-    if (dropped) {
-      m_stats.rows = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
-      if (m_stats.rows > 0) {
-        assembleAndFactorize(im, m_stats.rows, m_stats);
-        im.rhs.resize(m_stats.rows);
-      }
-      continue;
-    }
-    for (Row& r : im.rows)
-      if (r.index >= 0) {
-        const double d = r.limit ? std::max(dmu[r.index], -h * r.lambda) : dmu[r.index];
-        r.lambda += d / h;
-        scatterRow(r, d, kick);
-        changed2 += d * d;
-        total2 += h * h * r.lambda * r.lambda;
-      }
-    break;
+  std::vector<double> d(im.rows.size(), 0);
+  for (std::size_t k = 0; k < im.rows.size(); ++k) {
+    const Row& r = im.rows[k];
+    if (r.index < 0) continue;
+    // A limit row may only push: its total impulse stays >= 0.
+    d[k] = r.limit ? std::max(dmu[r.index], -h * r.lambda) : dmu[r.index];
+    scatterRow(r, d[k], kick);
+  }
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st[i].dynamic) ke1 += (im.vk[i] + dv[i]).squaredNorm() + (im.wk[i] + dw[i]).squaredNorm();
+  if (!std::isfinite(ke1)) {  // a degenerate system: leave this turn to the contacts
+    m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return 0;
+  }
+  for (std::size_t k = 0; k < im.rows.size(); ++k) {
+    Row& r = im.rows[k];
+    if (r.index < 0) continue;
+    r.lambda += d[k] / h;
+    changed2 += d[k] * d[k];
+    total2 += h * h * r.lambda * r.lambda;
   }
   for (std::size_t i = 0; i < st.size(); ++i) {
     const BodyState& s = st[i];
     if (!s.dynamic) continue;
+    im.vk[i] += dv[i];
+    im.wk[i] += dw[i];
     vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
     vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
     im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
@@ -1294,8 +1326,8 @@ void JointSystem::postStabilize() {
     Eigen::VectorXd cdot(m), c(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) cdot[r.index] = r.limit ? -std::min(r.cdot, 0.0) : -r.cdot, c[r.index] = -r.c;
-    mu = im.ldlt.solve(cdot);
-    nu = im.ldlt.solve(c);
+    mu = im.factor.ldlt.solve(cdot);
+    nu = im.factor.ldlt.solve(c);
     if (pass == 2) break;
     bool changed = false;
     for (Row& r : im.rows)

@@ -228,6 +228,7 @@ class JointSystem {
   void wakeJointedSleepers();
   void collectImpulseResults();  ///< impulse solver: forces of the last step, breaks
   void collectLagrangeResults(); ///< Lagrange solver: forces of the last step, breaks
+  bool allJointedBodiesKnown() const;  ///< Lagrange: every moving jointed body was solved in the last step
   // Formulation A inside World::step (LagrangeSubsteps calls these).
   void substepPrepare(double h_s);
   void substepSolve(SolverVelocity* vel, const Body* bodies);
