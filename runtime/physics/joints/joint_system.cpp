@@ -69,31 +69,52 @@
 // analysis that our post-order gives for free).
 //
 // ---- Time stepping ------------------------------------------------------------
-// With the World (JointSystem::step): lambda is computed from the state at
-// the start of the step and applied as forces; World::step integrates with
-// semi-implicit Euler and its contact solver. The force is held through the
-// World's substeps, so with a 60 Hz step a fast-turning chain drifts by
-// O(h^2) per step, and Baumgarte's k_d C' term then pumps energy in: the
-// constraint directions turn between the step that measures C' and the step
-// that corrects it (measured: a 10-link chain released horizontally blew up
-// within 3 s for every (k_s, k_d) tried, also at 240 Hz). Hence the
-// post-stabilization projection (JointSettings::postStabilize, Cline and Pai
-// 2003) at the start of each step: with it the same chain stays together
-// (anchors apart by at most 4.2 cm right after a World step, before the next
-// projection) and loses 10% of its energy in 10 s instead of exploding.
-// Rejected: estimating the contact forces from the last step's velocity
-// change and adding them to Q (so resting limbs would not stretch their
-// joints by g / k_s): with a one-step delay it oscillated (parts at 0.1-1
-// m/s) and it sees the projection's own velocity changes as forces.
-// Rejected too (issue 4, second session): the contact solver's own impulses
-// of the last substep as forces in Q. ragdoll_pile blew up (33 NaN events;
-// at half the force as well); only for parts slower than 0.2-0.5 m/s it
-// stayed finite but the worst joint stayed 10.9-11.2 cm open (10.3 cm
-// without). Stiffer Baumgarte gains (k_s = 900, 1600 /s^2) left it at 10.4
-// and 9.1 cm: the stretch there is not a spring sag but a conflict the
-// Lagrange solve cannot see, a part held by contacts (split impulses remove
-// overlap at once) where its joint wants it. Formulation B (impulse_joints.cpp)
-// solves joints and contacts together: 1.7 cm on the same pile.
+// With the World (JointSystem::step, or beforeWorldStep + World::step): the
+// multipliers are solved in every World substep, through the World's
+// ConstraintSolver hook (LagrangeSubsteps below), at the substep's state:
+// poses as integrated so far, after the World's free step (gravity, applied
+// forces, springs, gyroscopic term, by whichever integrator it runs) and the
+// contacts' warm start. Let q'_J be the velocity the joints left at their
+// last solve (a per-body memo) and v_k the velocity handed over now.
+// Everything that changed v since, v_k - q'_J, is the known force: h W Q.
+// With C' = J q'_J, the paper's equation times h is
+//   J W J^T (h lambda) = target - J v_k,
+//   target = (C' - h (J'q'_J + k_s C)) / (1 + h k_d + h^2 k_s),
+// and v = v_k + W J^T (h lambda). The target is Baumgarte's C'' = -k_s C -
+// k_d C' over the substep, with C and C' taken at the end of the substep
+// (backward Euler on the error dynamics). Taken at its start, (1 - h k_d) C'
+// - h (J'q' + k_s C), a 10-link chain released horizontally gained 6.6 % of
+// its m g L in 10 s and blew up with 4 substeps; implicit, it never gains
+// and holds with 1 substep. Limit rows carry max(C', 0): they stop the
+// approach inelastically. One factorization per substep (8 per step); the
+// pattern is analysed once and reused while the rows stay the same.
+// What changed, and why. Before, lambda was solved once per step and held
+// as a force through the 8 substeps: a free chain whose links do not touch
+// blew up (base:chain, WILL_FAIL), and the contacts were not in Q (10.3 cm
+// on ragdoll_pile). Now the contacts' impulses of the substep before (their
+// warm start, in v_k) are known forces, W comes from the substep's poses,
+// and: chain 3.7 mm, 100 links 2.2 cm, ragdoll_pile 2.6 cm, asleep.
+// Measured and rejected (ragdoll_pile, stairs, hit, 10 piled dolls):
+//   - re-projecting the joints between the contact sweeps (J W J^T dmu =
+//     target - J v after each sweep, block Gauss-Seidel with the contacts):
+//     1.6-1.9 cm on the pile, but 10 piled dolls blew up at 0.9 s, a head
+//     jittered at 9 cm/s on the stairs. It is kept only when a joint's own
+//     two bodies collide (substepProject), where without it the contact
+//     between them and the joint fight from substep to substep and blow up;
+//   - the same with W taken as the contact rows take it (step start): a
+//     chain link spun to 130 rad/s by a grab got joint impulses that do work;
+//   - q' after the contacts instead of q'_J (so that the contacts' impulse
+//     is a velocity, not a force): the pile and the hit blew up;
+//   - the post-stabilization projection at every step: the contacts then
+//     push back into the projected parts (a head jittering on the stairs);
+//     it now runs only when a joint or a jointed body is new to the solver
+//     (a link added to a swinging chain: 13.7 cm without, 8 mm with);
+//   - larger gains (k_s, k_d) = (1600, 80) .. (14400, 240), measured with
+//     the re-projection on: smaller errors on chains (100 links: 2.2 cm ->
+//     0.8 cm), but ragdoll_hit blew up at (1600, 80) and the stairs doll
+//     caught on a step; the defaults stay those of the stability table.
+// Known limit: piles of many dolls (10) stay finite but their joints open by
+// 17 cm and some parts keep moving (B: 5 cm, at rest).
 //
 // Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
 // semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
