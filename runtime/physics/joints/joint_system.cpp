@@ -256,6 +256,8 @@ struct JointSystem::Impl {
   bool coupleContacts = false;  ///< some joint's two bodies collide: re-project between contact sweeps
   std::uint64_t serial = 0; ///< World steps prepared so far
   std::vector<V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
+  std::vector<V3> dv, dw;   ///< per state: velocity change of a projection (substepProject)
+  std::vector<double> rowImpulse;  ///< per row: impulse of a projection
   /// Per World body slot: the velocity right after the joints last changed
   /// it, and in which World step (q' of the last solve; see "Time stepping").
   struct Memo {
@@ -1172,8 +1174,9 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     }
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st[i].dynamic) im.wk[i] += h * (st[i].invI * st[i].Tm);
-  // Hard rows. Baumgarte's C'' = -k_s C - k_d C' over the substep asks for
-  //   J v_end = (1 - h k_d) C' - h (J'q' + k_s C)        (the row's target),
+  // Hard rows. Baumgarte's C'' = -k_s C - k_d C' over the substep, with C
+  // and C' at its end (implicit), asks for the row's target
+  //   J v_end = (C' - h (J'q' + k_s C)) / (1 + h k_d + h^2 k_s),
   // and J W J^T (h lambda) = target - J v_k is the paper's equation times h
   // (J v_k - C' = h J W Q). A limit row stops the approach inelastically
   // (C' < 0 is not carried on) and pushes out with k_s.
@@ -1232,7 +1235,6 @@ double JointSystem::substepProject(SolverVelocity* vel) {
   // impulses in Q, the multipliers change by J W J^T dmu = target - J v
   // (the same factorization), and contacts and joints take turns (block
   // Gauss-Seidel) between the contact sweeps.
-  double ke1 = 0;
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st[i].dynamic) {
       im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
@@ -1244,13 +1246,17 @@ double JointSystem::substepProject(SolverVelocity* vel) {
     if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
   const Eigen::VectorXd& dmu = im.lambda = im.factor.ldlt.solve(im.rhs);
   double changed2 = 0, total2 = 0;
-  std::vector<V3> dv(st.size(), V3::Zero()), dw(st.size(), V3::Zero());
+  std::vector<V3>& dv = im.dv;
+  std::vector<V3>& dw = im.dw;
+  std::vector<double>& d = im.rowImpulse;
+  dv.assign(st.size(), V3::Zero());
+  dw.assign(st.size(), V3::Zero());
+  d.assign(im.rows.size(), 0);
   auto kick = [&](int b, const V6& p) {
     if (!st[b].dynamic) return;
     dv[b] += st[b].invMass * p.head<3>();
     dw[b] += st[b].invI * p.tail<3>();
   };
-  std::vector<double> d(im.rows.size(), 0);
   for (std::size_t k = 0; k < im.rows.size(); ++k) {
     const Row& r = im.rows[k];
     if (r.index < 0) continue;
@@ -1258,9 +1264,10 @@ double JointSystem::substepProject(SolverVelocity* vel) {
     d[k] = r.limit ? std::max(dmu[r.index], -h * r.lambda) : dmu[r.index];
     scatterRow(r, d[k], kick);
   }
+  double size2 = 0;
   for (std::size_t i = 0; i < st.size(); ++i)
-    if (st[i].dynamic) ke1 += (im.vk[i] + dv[i]).squaredNorm() + (im.wk[i] + dw[i]).squaredNorm();
-  if (!std::isfinite(ke1)) {  // a degenerate system: leave this turn to the contacts
+    if (st[i].dynamic) size2 += dv[i].squaredNorm() + dw[i].squaredNorm();
+  if (!std::isfinite(size2)) {  // a degenerate system: leave this turn to the contacts
     m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return 0;
   }
