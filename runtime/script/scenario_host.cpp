@@ -852,15 +852,9 @@ vehicle::VehicleSystem& ScenarioHost::vehicles() {
 
 physics::JointSystem& ScenarioHost::joints() {
   if (!m_joints) {
-    // Velocity-only projection: with the World's separate contact solver a
-    // rag-doll lying on the ground then comes to rest and sleeps (the
-    // position projection fights the contacts: parts keep moving at
-    // ~0.3 m/s); see JointSettings::projectPositions. Measured limit of A
-    // (issue 4, second session): a free chain whose links do not collide
-    // with each other blows up under A with the World's 8 substeps, with
-    // either projection and any Baumgarte gains tried (with 1 substep a
-    // 60-degree release holds, a horizontal one does not); formulation B
-    // holds it (base:chain).
+    // Velocity-only projection when joints or jointed bodies are new (see
+    // JointSettings::postStabilize): moving positions would push bodies
+    // lying on the ground into it.
     physics::JointSettings js;
     js.projectPositions = false;
     js.solver = m_impulseJoints ? physics::JointSolverKind::Impulse : physics::JointSolverKind::Lagrange;

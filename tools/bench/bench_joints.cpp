@@ -5,10 +5,11 @@
 // anchor separation over the timed steps (5 s simulated each, so both
 // formulations see the same motion). Compare ratios within one run:
 //   build/bin/tumble_bench_joints
-// Measured 2026-11-22: formulation A's chains come apart here (errors of
-// km): with neighbours that do not collide, A's held forces drift even for
-// a nudged hanging chain; the A tests pass only because their adjacent
-// links touch and the contacts hold them. B keeps 0.3 mm / 5 mm / 6.6 cm.
+// Counter solve_ms (formulation A): its own share of the step (assembly,
+// factorizations, solves in the 8 substeps; JointSolveStats::solveMs).
+// Measured 2026-11-22 (see README, "Joints"): A solves in the World's
+// substeps and keeps 4 um / 48 um / 21 um on 10 / 100 / 1000 links where B
+// keeps 0.3 mm / 5 mm / 6.6 cm; A's solve time grows linearly with links.
 #include <benchmark/benchmark.h>
 
 #include "physics/joints/joint_system.h"
@@ -49,8 +50,13 @@ void BM_HangingChain(benchmark::State& state) {
   world.applyImpulse(links.back(), Vec3(Real(0.05), 0, 0), world.body(links.back()).position_m);
   for (int i = 0; i < 30; ++i) joints.step(kDt);  // warm start
   joints.resetErrorStats();
-  for (auto _ : state) joints.step(kDt);
+  double solveMs = 0;
+  for (auto _ : state) {
+    joints.step(kDt);
+    solveMs += joints.lastSolve().solveMs;
+  }
   state.counters["joint_error_m"] = joints.maxAnchorError_m();
+  state.counters["solve_ms"] = solveMs / double(state.iterations());
   state.SetLabel(jointSolverName(js.solver));
 }
 BENCHMARK(BM_HangingChain)

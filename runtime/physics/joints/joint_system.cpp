@@ -69,31 +69,54 @@
 // analysis that our post-order gives for free).
 //
 // ---- Time stepping ------------------------------------------------------------
-// With the World (JointSystem::step): lambda is computed from the state at
-// the start of the step and applied as forces; World::step integrates with
-// semi-implicit Euler and its contact solver. The force is held through the
-// World's substeps, so with a 60 Hz step a fast-turning chain drifts by
-// O(h^2) per step, and Baumgarte's k_d C' term then pumps energy in: the
-// constraint directions turn between the step that measures C' and the step
-// that corrects it (measured: a 10-link chain released horizontally blew up
-// within 3 s for every (k_s, k_d) tried, also at 240 Hz). Hence the
-// post-stabilization projection (JointSettings::postStabilize, Cline and Pai
-// 2003) at the start of each step: with it the same chain stays together
-// (anchors apart by at most 4.2 cm right after a World step, before the next
-// projection) and loses 10% of its energy in 10 s instead of exploding.
-// Rejected: estimating the contact forces from the last step's velocity
-// change and adding them to Q (so resting limbs would not stretch their
-// joints by g / k_s): with a one-step delay it oscillated (parts at 0.1-1
-// m/s) and it sees the projection's own velocity changes as forces.
-// Rejected too (issue 4, second session): the contact solver's own impulses
-// of the last substep as forces in Q. ragdoll_pile blew up (33 NaN events;
-// at half the force as well); only for parts slower than 0.2-0.5 m/s it
-// stayed finite but the worst joint stayed 10.9-11.2 cm open (10.3 cm
-// without). Stiffer Baumgarte gains (k_s = 900, 1600 /s^2) left it at 10.4
-// and 9.1 cm: the stretch there is not a spring sag but a conflict the
-// Lagrange solve cannot see, a part held by contacts (split impulses remove
-// overlap at once) where its joint wants it. Formulation B (impulse_joints.cpp)
-// solves joints and contacts together: 1.7 cm on the same pile.
+// With the World (JointSystem::step, or beforeWorldStep + World::step): the
+// multipliers are solved in every World substep, through the World's
+// ConstraintSolver hook (LagrangeSubsteps below), at the substep's state:
+// poses as integrated so far, after the World's free step (gravity, applied
+// forces, springs, gyroscopic term, by whichever integrator it runs) and the
+// contacts' warm start. Let q'_J be the velocity the joints left at their
+// last solve (a per-body memo) and v_k the velocity handed over now.
+// Everything that changed v since, v_k - q'_J, is the known force: h W Q.
+// With C' = J q'_J, the paper's equation times h is
+//   J W J^T (h lambda) = target - J v_k,
+//   target = (C' - h (J'q'_J + k_s C)) / (1 + h k_d + h^2 k_s),
+// and v = v_k + W J^T (h lambda). The target is Baumgarte's C'' = -k_s C -
+// k_d C' over the substep, with C and C' taken at the end of the substep
+// (backward Euler on the error dynamics). Taken at its start, (1 - h k_d) C'
+// - h (J'q' + k_s C), a 10-link chain released horizontally gained 6.6 % of
+// its m g L in 10 s and blew up with 4 substeps; implicit, it never gains
+// and holds with 1 substep. Limit rows carry max(C', 0): they stop the
+// approach inelastically. One factorization per substep (8 per step); the
+// pattern is analysed once and reused while the rows stay the same.
+// What changed, and why. Before, lambda was solved once per step and held
+// as a force through the 8 substeps: a free chain whose links do not touch
+// blew up (base:chain, WILL_FAIL), and the contacts were not in Q (10.3 cm
+// on ragdoll_pile). Now the contacts' impulses of the substep before (their
+// warm start, in v_k) are known forces, W comes from the substep's poses,
+// and: chain 3.7 mm, 100 links 2.2 cm, ragdoll_pile 2.6 cm, asleep.
+// Measured and rejected (ragdoll_pile, stairs, hit, 10 piled dolls):
+//   - re-projecting the joints between the contact sweeps (J W J^T dmu =
+//     target - J v after each sweep, block Gauss-Seidel with the contacts):
+//     1.6-1.9 cm on the pile, but 10 piled dolls blew up at 0.9 s, a head
+//     jittered at 9 cm/s on the stairs. It is kept only when a joint's own
+//     two bodies collide (substepProject), where without it the contact
+//     between them and the joint fight from substep to substep and blow up;
+//   - the same with W taken as the contact rows take it (step start): a
+//     chain link spun to 130 rad/s by a grab got joint impulses that do work;
+//   - q' after the contacts instead of q'_J (so that the contacts' impulse
+//     is a velocity, not a force): the pile and the hit blew up;
+//   - the post-stabilization projection at every step: the contacts then
+//     push back into the projected parts (a head jittering on the stairs);
+//     it now runs only when a joint or a jointed body is new to the solver
+//     (a link added to a swinging chain: 13.7 cm without, 8 mm with);
+//   - larger gains (k_s, k_d): smaller errors on chains (100 links 2.2 cm
+//     -> 1.4 cm at (1600, 80), 0.8 cm at (14400, 240); a grabbed chain 8.8
+//     -> 2.2 cm), but (1600, 80) blew up 6 piled dolls and a 20 m/s
+//     ragdoll_hit, (3600, 120) that hit too, and (14400, 240) opened the
+//     stairs doll by 7.3 cm. The defaults (400, 40), those of the stability
+//     table, blew up none of these scenes.
+// Known limit: piles of many dolls (10) stay finite but their joints open by
+// 17 cm and some parts keep moving (B: 5 cm, at rest).
 //
 // Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
 // semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
@@ -117,6 +140,8 @@
 // World uses (60 Hz has a margin of 1.8).
 #include "physics/joints/joint_system.h"
 
+#include "physics/constraint_solver.h"
+#include "physics/internal/contact_solver.h"
 #include "physics/internal/impulse_joints.h"
 
 #include <Eigen/SparseCholesky>
@@ -182,7 +207,8 @@ struct Row {
   bool angular = false;  ///< counts as torque for breaking
   bool active = true;
   int index = -1;  ///< position in the solved system
-  double lambda = 0;
+  double lambda = 0;  ///< multiplier: constraint force (N) or torque (N m) of the row
+  double target = 0;  ///< substeps: J v the row's velocity must end the substep with
 };
 
 V3 wide3(const Vec3& v) { return v.cast<double>(); }
@@ -200,6 +226,7 @@ struct JointPose {
 struct Evaluation {
   std::vector<JointDef*> defs;
   std::vector<std::uint32_t> slots;         ///< joint slot per evaluation joint
+  std::vector<std::uint32_t> generations;   ///< its generation (the slot may be reused later)
   std::vector<std::pair<int, int>> bodies;  ///< state index of A and B per joint (-1 = world)
 };
 
@@ -213,8 +240,34 @@ struct JointSystem::Impl {
   std::vector<std::vector<int>> bodyRows;  ///< per state: solved rows touching it
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs, lambda;
-  Eigen::SparseMatrix<double> A;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+  /// J W J^T and its factorization. The sparsity pattern it was last
+  /// analysed for is kept: while it stays the same (same joints, same active
+  /// limits) only the numeric factorization runs.
+  struct Factor {
+    Eigen::SparseMatrix<double> A;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+    std::vector<int> patternOuter, patternInner;
+  };
+  Factor factor;
+
+  // ---- formulation A inside World::step (see "Time stepping") ----
+  double h = 0;             ///< substep length, s
+  bool inStep = false;      ///< prepared for the World step in progress
+  bool coupleContacts = false;  ///< some joint's two bodies collide: re-project between contact sweeps
+  std::uint64_t serial = 0; ///< World steps prepared so far
+  std::vector<V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
+  std::vector<V3> dv, dw;   ///< per state: velocity change of a projection (substepProject)
+  std::vector<double> rowImpulse;  ///< per row: impulse of a projection
+  /// Per World body slot: the velocity right after the joints last changed
+  /// it, and in which World step (q' of the last solve; see "Time stepping").
+  struct Memo {
+    std::uint32_t generation = 0;
+    std::uint64_t serial = 0;
+    V3 v = V3::Zero(), w = V3::Zero();
+  };
+  std::vector<Memo> memo;
+  std::vector<JointBreakEvent> pendingBreaks;  ///< found in the last World step, removed before the next
+  bool resultsPending = false;                 ///< forces of the last World step not yet recorded
 };
 
 JointSystem::JointSystem(World& world, const JointSettings& settings)
@@ -224,18 +277,43 @@ JointSystem::JointSystem(World& world, const JointSettings& settings)
   setSolver(kind);
 }
 
+/// Formulation A as the World's ConstraintSolver (constraint_solver.h): the
+/// acceleration-level solve once per substep (warmStart), the projection
+/// before each contact sweep (solve). See "Time stepping" above.
+class LagrangeSubsteps final : public ConstraintSolver {
+ public:
+  explicit LagrangeSubsteps(JointSystem& joints) : m_joints(joints) {}
+  void prepare(const World&, Real dt_s, int substeps) override {
+    m_joints.substepPrepare(double(dt_s) / std::max(1, substeps));
+  }
+  void warmStart(SolverVelocity* vel, const Body* bodies) override { m_joints.substepSolve(vel, bodies); }
+  Real solve(SolverVelocity* vel, const Body*, bool) override { return Real(m_joints.substepProject(vel)); }
+  void finish(const World&) override { m_joints.substepFinish(); }
+
+ private:
+  JointSystem& m_joints;
+};
+
 JointSystem::~JointSystem() {
   if (m_impulse && m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
+  if (m_lagrange && m_world.constraintSolver() == m_lagrange.get()) m_world.setConstraintSolver(nullptr);
 }
 
 void JointSystem::setSolver(JointSolverKind kind) {
   m_settings.solver = kind;
   if (kind == JointSolverKind::Impulse && !m_impulse) {
+    if (m_lagrange && m_world.constraintSolver() == m_lagrange.get()) m_world.setConstraintSolver(nullptr);
+    m_lagrange.reset();
+    m_impl->inStep = false;
+    m_impl->resultsPending = false;
+    m_impl->pendingBreaks.clear();
     m_impulse = std::make_unique<ImpulseJoints>(*this, m_settings.impulseHertz, m_settings.impulseDampingRatio);
     m_world.setConstraintSolver(m_impulse.get());
-  } else if (kind == JointSolverKind::Lagrange && m_impulse) {
-    if (m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
+  } else if (kind == JointSolverKind::Lagrange && !m_lagrange) {
+    if (m_impulse && m_world.constraintSolver() == m_impulse.get()) m_world.setConstraintSolver(nullptr);
     m_impulse.reset();
+    m_lagrange = std::make_unique<LagrangeSubsteps>(*this);
+    m_world.setConstraintSolver(m_lagrange.get());
   }
 }
 
@@ -636,6 +714,7 @@ static int numberRows(JointSystem::Impl& im, Pred&& pred) {
 /// A = J W J^T over the numbered rows (lower triangle: for every body, every
 /// pair of its rows), then its LDL^T factorization.
 static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats) {
+  JointSystem::Impl::Factor& f = im.factor;
   const std::vector<BodyState>& st = im.states;
   const std::vector<Row>& rows = im.rows;
   im.triplets.clear();
@@ -654,23 +733,36 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
       }
     }
   }
-  im.A.resize(m, m);
-  im.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
-  im.ldlt.compute(im.A);
+  f.A.resize(m, m);
+  f.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
+  // The symbolic analysis (elimination tree, column counts) depends only on
+  // the pattern: redone only when the rows changed (joints, active limits).
+  const int* outer = f.A.outerIndexPtr();
+  const int* inner = f.A.innerIndexPtr();
+  const bool samePattern = f.patternOuter.size() == std::size_t(m) + 1 &&
+                           std::equal(outer, outer + m + 1, f.patternOuter.begin()) &&
+                           f.patternInner.size() == std::size_t(outer[m]) &&
+                           std::equal(inner, inner + outer[m], f.patternInner.begin());
+  if (!samePattern) {
+    f.ldlt.analyzePattern(f.A);
+    f.patternOuter.assign(outer, outer + m + 1);
+    f.patternInner.assign(inner, inner + outer[m]);
+    ++stats.patternAnalyses;
+  }
+  f.ldlt.factorize(f.A);
   ++stats.factorizations;
-  if (im.ldlt.info() != Eigen::Success) {
+  if (f.ldlt.info() != Eigen::Success) {
     // Redundant rows (a loop of joints, two joints on one pair): a tiny
-    // compliance on the diagonal makes the system definite again.
+    // compliance on the diagonal makes the system definite again (the
+    // diagonal is stored, so the pattern does not change).
     double trace = 0;
-    for (int i = 0; i < m; ++i) trace += im.A.coeff(i, i);
-    Eigen::SparseMatrix<double> reg(m, m);
-    reg.setIdentity();
-    im.A += reg * (1e-9 * trace / m);
-    im.ldlt.compute(im.A);
+    for (int i = 0; i < m; ++i) trace += f.A.coeff(i, i);
+    for (int i = 0; i < m; ++i) f.A.coeffRef(i, i) += 1e-9 * trace / m;
+    f.ldlt.factorize(f.A);
     ++stats.factorizations;
   }
-  stats.nonZerosA = long(im.A.nonZeros()) - m;
-  stats.nonZerosL = long(im.ldlt.matrixL().nestedExpression().nonZeros());
+  stats.nonZerosA = long(f.A.nonZeros()) - m;
+  stats.nonZerosL = long(f.ldlt.matrixL().nestedExpression().nonZeros());
   // Fill-in: entries of L beyond those of A's strictly lower triangle.
   stats.fillIn = std::max(0L, stats.nonZerosL - stats.nonZerosA);
 }
@@ -776,7 +868,7 @@ static std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, cons
         }
       }
       assembleAndFactorize(im, m, stats);
-      im.lambda = im.ldlt.solve(im.rhs);
+      im.lambda = im.factor.ldlt.solve(im.rhs);
       for (Row& r : rows)
         if (r.index >= 0) r.lambda = im.lambda[r.index];
     }
@@ -866,6 +958,7 @@ void JointSystem::prepare() {
   Evaluation& ev = im.ev;
   ev.defs.clear();
   ev.slots.clear();
+  ev.generations.clear();
   ev.bodies.clear();
   for (BodyState& s : im.states)
     if (s.id.index < im.slotOf.size()) im.slotOf[s.id.index] = -1;
@@ -884,6 +977,7 @@ void JointSystem::prepare() {
     Slot& s = m_slots[slot];
     ev.defs.push_back(&s.def);
     ev.slots.push_back(slot);
+    ev.generations.push_back(s.generation);
     ev.bodies.emplace_back(stateOf(s.def.bodyA), stateOf(s.def.bodyB));
   }
 }
@@ -892,6 +986,7 @@ void JointSystem::recordForces() {
   const Impl& im = *m_impl;
   for (std::size_t k = 0; k < im.ev.slots.size() && k < im.jointForce.size(); ++k) {
     Slot& s = m_slots[im.ev.slots[k]];
+    if (!s.alive || s.generation != im.ev.generations[k]) continue;  // destroyed since
     s.force_N = im.jointForce[k].cast<Real>();
     s.torque_Nm = im.jointTorque[k].cast<Real>();
   }
@@ -900,6 +995,7 @@ void JointSystem::recordForces() {
 void JointSystem::finishBreaks(std::vector<JointBreakEvent>& events) {
   for (JointBreakEvent& e : events) {
     if (e.id.index >= m_slots.size() || !m_slots[e.id.index].alive) continue;  // reported already
+    if (e.id.generation != 0 && e.id.generation != m_slots[e.id.index].generation) continue;  // slot reused since
     e.id.generation = m_slots[e.id.index].generation;
     destroyJoint(e.id);
     m_broken.push_back(e);
@@ -917,31 +1013,6 @@ bool JointSystem::dropJointsOfDeadBodies() {
     }
   }
   return m_jointCount > 0;
-}
-
-void JointSystem::applyConstraintForces() {
-  const auto t0 = std::chrono::steady_clock::now();
-  m_broken.clear();
-  if (!dropJointsOfDeadBodies()) {
-    m_stats = JointSolveStats{};
-    return;
-  }
-  wakeJointedSleepers();
-  prepare();
-  Impl& im = *m_impl;
-  const V3 g = wide3(m_world.settings().gravity_mps2);
-  std::vector<JointBreakEvent> events = solveConstraints(im, m_settings, g, true, m_stats);
-  recordForces();
-  for (const BodyState& s : im.states) {
-    if (!s.dynamic || (s.Fc.squaredNorm() == 0 && s.Tc.squaredNorm() == 0 && s.Tm.squaredNorm() == 0)) continue;
-    // wake = false: the joint forces alone must not keep an island awake
-    // (they never vanish on a resting rag-doll: gravity keeps them busy).
-    m_world.applyForce(s.id, s.Fc.cast<Real>(), s.x.cast<Real>(), false);
-    m_world.applyTorque(s.id, (s.Tc + s.Tm).cast<Real>(), false);
-  }
-  finishBreaks(events);
-  m_stats.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  measureError();
 }
 
 void JointSystem::wakeJointedSleepers() {
@@ -972,21 +1043,279 @@ void JointSystem::step(Real dt_s) {
   beforeWorldStep();
   m_world.step(dt_s);
   if (m_impulse) collectImpulseResults();
+  else collectLagrangeResults();
   measureError();
 }
 
 void JointSystem::beforeWorldStep() {
-  if (m_impulse) {
-    // Formulation B: the solve happens inside World::step (ImpulseJoints).
-    m_broken.clear();
-    collectImpulseResults();
-    if (dropJointsOfDeadBodies()) wakeJointedSleepers();
-    refreshLinks();
-    measureError();
-    return;
+  // Both formulations solve inside World::step (ImpulseJoints,
+  // LagrangeSubsteps); here: the results of the last step, dead bodies,
+  // sleepers, the joint order.
+  m_broken.clear();
+  if (m_impulse) collectImpulseResults();
+  else collectLagrangeResults();
+  if (dropJointsOfDeadBodies()) wakeJointedSleepers();
+  const bool fresh = m_orderDirty || !allJointedBodiesKnown();
+  refreshLinks();
+  if (!m_impulse && m_settings.postStabilize && fresh) postStabilize();
+  measureError();
+}
+
+bool JointSystem::allJointedBodiesKnown() const {
+  // Known: solved in the last World step (a valid memo, see substepSolve).
+  const Impl& im = *m_impl;
+  auto known = [&](BodyId id) {
+    if (id.isNull() || !m_world.isValid(id)) return true;
+    const Body& b = m_world.body(id);
+    if (!b.isDynamic() || !b.awake) return true;
+    if (id.index >= im.memo.size()) return false;
+    const Impl::Memo& memo = im.memo[id.index];
+    return memo.generation == id.generation && memo.serial >= im.serial;
+  };
+  for (const Slot& s : m_slots)
+    if (s.alive && (!known(s.def.bodyA) || !known(s.def.bodyB))) return false;
+  return true;
+}
+
+void JointSystem::collectLagrangeResults() {
+  Impl& im = *m_impl;
+  if (!im.resultsPending) return;
+  im.resultsPending = false;
+  recordForces();
+  finishBreaks(im.pendingBreaks);
+  im.pendingBreaks.clear();
+}
+
+// ---- formulation A inside World::step -------------------------------------------------
+
+void JointSystem::substepPrepare(double h) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Impl& im = *m_impl;
+  im.inStep = false;
+  m_stats = JointSolveStats{};
+  if (m_jointCount == 0 || !dropJointsOfDeadBodies()) return;
+  prepare();  // joints (in elimination order) and their bodies, as of now
+  if (im.ev.defs.empty() || !(h > 0)) return;
+  im.h = h;
+  ++im.serial;
+  im.inStep = true;
+  im.resultsPending = true;
+  im.pendingBreaks.clear();
+  // Joints whose own two bodies still collide (JointDef has no filter; Lua's
+  // world.joint{collide = true}, C++ callers that do not call
+  // World::disableCollision): see substepProject.
+  im.coupleContacts = false;
+  for (std::size_t k = 0; k < im.ev.defs.size() && !im.coupleContacts; ++k) {
+    const JointDef& d = *im.ev.defs[k];
+    im.coupleContacts = !d.bodyB.isNull() && !m_world.collisionDisabled(d.bodyA, d.bodyB);
   }
-  if (m_settings.postStabilize) postStabilize();
-  applyConstraintForces();
+  im.vk.resize(im.states.size());
+  im.wk.resize(im.states.size());
+  if (im.memo.size() < im.slotOf.size()) im.memo.resize(im.slotOf.size());
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// J q' of one row for the velocities v, w (per state; -1 = the world, at rest).
+static double rowVelocity(const Row& r, const std::vector<V3>& v, const std::vector<V3>& w) {
+  double c = 0;
+  if (r.a >= 0) c += r.ja.head<3>().dot(v[r.a]) + r.ja.tail<3>().dot(w[r.a]);
+  if (r.b >= 0) c += r.jb.head<3>().dot(v[r.b]) + r.jb.tail<3>().dot(w[r.b]);
+  return c;
+}
+
+void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
+  Impl& im = *m_impl;
+  if (!im.inStep) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double h = im.h;
+  const V3 g = wide3(m_world.settings().gravity_mps2);
+  std::vector<BodyState>& st = im.states;
+  // The state of the substep: poses as integrated so far; q' = the velocity
+  // the joints left at their last update (the memo), so that everything that
+  // changed the velocities since (the free step's gravity, forces and
+  // gyroscopic term, the contacts' impulses, scripts) is the known force Q,
+  // not a velocity the joints have to live with. See "Time stepping".
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    BodyState& s = st[i];
+    const Body& b = bodies[s.id.index];
+    s.x = wide3(b.position_m);
+    s.q = b.orientation.cast<double>().normalized();
+    const bool moves = b.moves();
+    im.vk[i] = moves ? V3(narrow(vel[s.id.index].linear).cast<double>()) : V3::Zero();
+    im.wk[i] = moves ? V3(narrow(vel[s.id.index].angular).cast<double>()) : V3::Zero();
+    s.v = im.vk[i];
+    s.w = im.wk[i];
+    if (!s.dynamic) continue;
+    const Impl::Memo& memo = im.memo[s.id.index];
+    if (memo.generation == s.id.generation && memo.serial + 1 >= im.serial) {
+      s.v = memo.v;
+      s.w = memo.w;
+    } else {
+      // Not seen last step (new, just woken): the velocity before this
+      // substep's free step, gravity and the applied force and torque taken out.
+      s.v = im.vk[i] - h * (g + s.invMass * wide3(b.force_N));
+      s.w = im.wk[i] - h * (b.invInertiaWorld.cast<double>() * wide3(b.torque_Nm));
+    }
+  }
+  deriveStates(st, m_settings, V3::Zero(), false);  // R, W at the substep's poses
+  buildRows(im.ev.defs, im.ev.slots, im.ev.bodies, st, im.rows);  // C, J, J'q', C' = J q'
+  addMotorTorques(im.ev, st, m_settings);
+  // The parts of Q the World does not apply: springs (soft rows, lambda =
+  // -k C - c C') and hinge motors, as impulses over the substep.
+  auto kick = [&](int b, const V6& p) {
+    if (!st[b].dynamic) return;
+    im.vk[b] += st[b].invMass * p.head<3>();
+    im.wk[b] += st[b].invI * p.tail<3>();
+  };
+  for (Row& r : im.rows)
+    if (r.soft) {
+      r.lambda = -(r.k * r.c + r.d * r.cdot);
+      scatterRow(r, h * r.lambda, kick);
+    }
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st[i].dynamic) im.wk[i] += h * (st[i].invI * st[i].Tm);
+  // Hard rows. Baumgarte's C'' = -k_s C - k_d C' over the substep, with C
+  // and C' at its end (implicit), asks for the row's target
+  //   J v_end = (C' - h (J'q' + k_s C)) / (1 + h k_d + h^2 k_s),
+  // and J W J^T (h lambda) = target - J v_k is the paper's equation times h
+  // (J v_k - C' = h J W Q). A limit row stops the approach inelastically
+  // (C' < 0 is not carried on) and pushes out with k_s.
+  const double ks = m_settings.stiffness_per_s2, kd = m_settings.damping_per_s;
+  for (Row& r : im.rows) {
+    const double carried = r.limit ? std::max(r.cdot, 0.0) : r.cdot;
+    r.target = (carried - h * (r.jdq + ks * r.c)) / (1 + h * kd + h * h * ks);
+    if (!r.soft) r.lambda = 0;
+  }
+  const int maxIter = std::max(0, m_settings.maxActiveSetIterations);
+  for (int iter = 0;; ++iter) {
+    const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
+    m_stats.rows = m;
+    if (m == 0) break;
+    assembleAndFactorize(im, m, m_stats);
+    im.rhs.resize(m);
+    for (const Row& r : im.rows)
+      if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+    im.lambda = im.factor.ldlt.solve(im.rhs);  // impulses h lambda (N s, N m s)
+    // Active set: a limit row that would pull leaves and the rest is solved again.
+    bool changed = false;
+    if (iter < maxIter)
+      for (Row& r : im.rows)
+        if (r.limit && r.index >= 0 && im.lambda[r.index] < 0) r.active = false, changed = true;
+    if (!changed) break;
+  }
+  for (Row& r : im.rows)
+    if (r.index >= 0) {
+      r.lambda = im.lambda[r.index] / h;
+      scatterRow(r, im.lambda[r.index], kick);
+    }
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const BodyState& s = st[i];
+    if (!s.dynamic) continue;
+    vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
+    vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
+    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
+  }
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double JointSystem::substepProject(SolverVelocity* vel) {
+  Impl& im = *m_impl;
+  if (!im.inStep || !im.coupleContacts || m_stats.rows == 0) return 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const double h = im.h;
+  std::vector<BodyState>& st = im.states;
+  // Only when some joint's own two bodies collide (coupleContacts): the
+  // contact between them pushes apart where the joint holds them together.
+  // Left to the next substep's solve, the two fight from substep to substep
+  // and blow up (a chain whose neighbours collide, 10 links released
+  // horizontally: NaN within 10 s); taking turns within the substep settles
+  // it (3.4 mm). Not in general: with it, 10 rag-dolls piled (adjacent
+  // parts filtered) blew up at 0.9 s; without it they stay finite (16.6 cm).
+  // The contacts changed the velocities since the joints' solve: with their
+  // impulses in Q, the multipliers change by J W J^T dmu = target - J v
+  // (the same factorization), and contacts and joints take turns (block
+  // Gauss-Seidel) between the contact sweeps.
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st[i].dynamic) {
+      im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
+      im.wk[i] = narrow(vel[st[i].id.index].angular).cast<double>();
+    }
+  const int m = m_stats.rows;
+  im.rhs.resize(m);
+  for (const Row& r : im.rows)
+    if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+  const Eigen::VectorXd& dmu = im.lambda = im.factor.ldlt.solve(im.rhs);
+  double changed2 = 0, total2 = 0;
+  std::vector<V3>& dv = im.dv;
+  std::vector<V3>& dw = im.dw;
+  std::vector<double>& d = im.rowImpulse;
+  dv.assign(st.size(), V3::Zero());
+  dw.assign(st.size(), V3::Zero());
+  d.assign(im.rows.size(), 0);
+  auto kick = [&](int b, const V6& p) {
+    if (!st[b].dynamic) return;
+    dv[b] += st[b].invMass * p.head<3>();
+    dw[b] += st[b].invI * p.tail<3>();
+  };
+  for (std::size_t k = 0; k < im.rows.size(); ++k) {
+    const Row& r = im.rows[k];
+    if (r.index < 0) continue;
+    // A limit row may only push: its total impulse stays >= 0.
+    d[k] = r.limit ? std::max(dmu[r.index], -h * r.lambda) : dmu[r.index];
+    scatterRow(r, d[k], kick);
+  }
+  double size2 = 0;
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st[i].dynamic) size2 += dv[i].squaredNorm() + dw[i].squaredNorm();
+  if (!std::isfinite(size2)) {  // a degenerate system: leave this turn to the contacts
+    m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return 0;
+  }
+  for (std::size_t k = 0; k < im.rows.size(); ++k) {
+    Row& r = im.rows[k];
+    if (r.index < 0) continue;
+    r.lambda += d[k] / h;
+    changed2 += d[k] * d[k];
+    total2 += h * h * r.lambda * r.lambda;
+  }
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const BodyState& s = st[i];
+    if (!s.dynamic) continue;
+    im.vk[i] += dv[i];
+    im.wk[i] += dw[i];
+    vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
+    vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
+    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
+  }
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return total2 > 0 ? changed2 / total2 : 0;
+}
+
+void JointSystem::substepFinish() {
+  Impl& im = *m_impl;
+  if (!im.inStep) return;
+  im.inStep = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Evaluation& ev = im.ev;
+  // The constraint force of the last substep, per joint (on body A).
+  im.jointForce.assign(ev.defs.size(), V3::Zero());
+  im.jointTorque.assign(ev.defs.size(), V3::Zero());
+  std::size_t k = 0;
+  for (const Row& r : im.rows) {
+    while (k < ev.slots.size() && ev.slots[k] != r.joint) ++k;  // rows are grouped by joint in evaluation order
+    if (k == ev.slots.size()) break;
+    if (!r.active || (r.index < 0 && !r.soft)) continue;
+    if (r.angular) im.jointTorque[k] += r.lambda * r.ja.tail<3>();
+    else im.jointForce[k] += r.lambda * r.ja.head<3>();
+  }
+  for (std::size_t j = 0; j < ev.defs.size(); ++j) {
+    const JointDef& d = *ev.defs[j];
+    const double f = im.jointForce[j].norm(), t = im.jointTorque[j].norm();
+    if ((d.breakForce_N > 0 && f > d.breakForce_N) || (d.breakTorque_Nm > 0 && t > d.breakTorque_Nm))
+      im.pendingBreaks.push_back(
+          JointBreakEvent{JointId{ev.slots[j], ev.generations[j]}, d.bodyA, d.bodyB, f, t, d.userData});
+  }
+  m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void JointSystem::collectImpulseResults() {
@@ -1027,8 +1356,8 @@ void JointSystem::postStabilize() {
     Eigen::VectorXd cdot(m), c(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) cdot[r.index] = r.limit ? -std::min(r.cdot, 0.0) : -r.cdot, c[r.index] = -r.c;
-    mu = im.ldlt.solve(cdot);
-    nu = im.ldlt.solve(c);
+    mu = im.factor.ldlt.solve(cdot);
+    nu = im.factor.ldlt.solve(c);
     if (pass == 2) break;
     bool changed = false;
     for (Row& r : im.rows)
@@ -1058,6 +1387,11 @@ void JointSystem::postStabilize() {
     }
     m_world.setLinearVelocity(s.id, v.cast<Real>(), false);
     m_world.setAngularVelocity(s.id, w.cast<Real>(), false);
+    // The projection is the joints' own update: the next substep solve
+    // starts from it (the memo) rather than resisting it as a force.
+    if (s.id.index >= im.memo.size()) im.memo.resize(s.id.index + 1);
+    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, V3(v.cast<Real>().cast<double>()),
+                                     V3(w.cast<Real>().cast<double>())};
   }
 }
 

@@ -1,17 +1,20 @@
 #pragma once
-// JointSystem: joint constraint forces by Lagrange multipliers (formulation A
-// of issue 4, after Baraff 1996), computed on the public World API and
-// applied as forces and torques before each World::step. The derivation and
+// JointSystem: joints, solved by Lagrange multipliers (formulation A of
+// issue 4, after Baraff 1996) or by impulses (formulation B). Both run inside
+// the World's substeps through its ConstraintSolver hook. The derivation and
 // the design choices are at the top of joint_system.cpp.
 //
 // Use:
 //   JointSystem joints(world);
 //   joints.createJoint(makeJointDef(world, JointType::Hinge, a, b, anchor, axis));
-//   each frame: joints.step(dt)   // = applyConstraintForces(); world.step(dt); track errors
+//   each frame: joints.step(dt)   // = beforeWorldStep(); world.step(dt); collect forces, breaks, errors
 //
-// Contacts still come from the World's contact solver: the constraint forces
-// are computed from the state at the start of the step and held constant
-// through the World's substeps, like any applied force.
+// Formulation A solves J W J^T lambda = -J' q' - J W Q - k_s C - k_d C' once
+// per World substep, at the substep's state, with everything else that
+// changed the velocities since the joints' last solve (gravity, applied
+// forces, the integrator's free motion, the contacts) as the known Q; it
+// then re-projects the joint velocities between the contact solver's sweeps,
+// so joints and contacts settle together (joint_system.cpp, "Time stepping").
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -25,8 +28,8 @@ namespace tumble::physics {
 
 /// Which formulation solves the joints (issue 4).
 enum class JointSolverKind {
-  /// A: Lagrange multipliers (Baraff), one sparse solve per step before the
-  /// World's step, applied as forces; contacts are solved afterwards.
+  /// A: Lagrange multipliers (Baraff), one sparse LDL^T factorization per
+  /// World substep, re-used between the contact solver's sweeps.
   Lagrange,
   /// B: velocity-level impulses solved with the contacts in the World's
   /// substep loop (sequential impulses, soft constraints, warm starting;
@@ -49,34 +52,32 @@ struct JointSettings {
   /// k_s (1/s^2) and velocity gain k_d (1/s). Critically damped at
   /// k_d = 2 sqrt(k_s). Defaults measured for a 60 Hz step: see the
   /// stability table at the top of joint_system.cpp (larger gains correct
-  /// drift faster but need a smaller dt).
+  /// drift faster but need a smaller dt). In the World's substeps the
+  /// feedback is discretized implicitly (joint_system.cpp, "Time stepping").
   double stiffness_per_s2 = 400;
   double damping_per_s = 40;
-  /// Gyroscopic term -w x (I w) in Q (the applied generalized force).
+  /// Gyroscopic term -w x (I w) in Q (the applied generalized force) of
+  /// integrateFree; in the World's substeps the World's own gyroscopic step
+  /// is part of the known Q.
   bool gyroscopic = true;
   /// Solves per call when limit rows enter or leave the active set, and when
   /// joints break (each re-solve is one sparse factorization).
   int maxActiveSetIterations = 4;
-  /// At the start of each JointSystem::step (not applyConstraintForces),
-  /// project the velocities and positions back onto the joints: v += W J^T mu with J W J^T mu = -J v,
-  /// x += W J^T nu with J W J^T nu = -C (post-stabilization, Cline and Pai
-  /// 2003; the same sparse matrix, one more factorization). The velocity
-  /// projection is orthogonal in the mass metric, so it never adds kinetic
-  /// energy. Without it, Baumgarte's velocity feedback pumps energy into fast
-  /// rotating chains at 60 Hz (measured: a 10-link chain released horizontally
-  /// blows up within 3 s for every (k_s, k_d) we tried); see joint_system.cpp.
-  /// Limit rows that are violated take part as inelastic stops.
+  /// Lagrange: when a joint was created or removed, or a jointed body is new
+  /// to the solver (created, woken), beforeWorldStep projects the velocities
+  /// and positions back onto the joints first: v += W J^T mu with
+  /// J W J^T mu = -J v, x += W J^T nu with J W J^T nu = -C (post-
+  /// stabilization, Cline and Pai 2003; the same sparse matrix). A link
+  /// added at rest below a swinging chain, or velocities set before the
+  /// first step, start consistent (measured: the added link's joint opened
+  /// 13.7 cm without, 8 mm with). Not at every step: with the contacts
+  /// pushing back into the projected parts a rag-doll's head jittered on the
+  /// stairs. Limit rows that are violated take part as inelastic stops.
   /// integrateFree never projects (it is the paper's scheme as published).
   bool postStabilize = true;
-  /// Whether the projection also moves positions (else velocities only).
-  /// Measured trade-off (tests/physics_joints, 60 Hz): a 10-link chain
-  /// swinging freely needs the position projection (velocities only: blows
-  /// up); a rag-doll lying on the ground fights it (the World's contacts
-  /// push the parts out, the projection pulls them back: parts keep moving at
-  /// ~0.3 m/s, joints open 2-3 cm), while with velocities only it comes to
-  /// rest with its joints stretched by about g / k_s (3.7 cm at the
-  /// defaults). Both come from the contact forces not being in Q; the cure
-  /// is formulation B (joints inside the contact solver).
+  /// Whether that projection also moves positions (else velocities only;
+  /// the scenario host uses velocities only, so a new joint between bodies
+  /// lying on the ground does not push them into it).
   bool projectPositions = true;
 };
 
@@ -95,8 +96,9 @@ struct JointSolveStats {
   long nonZerosA = 0;      ///< stored non-zeros of the lower triangle of J W J^T
   long nonZerosL = 0;      ///< non-zeros of the factor L (strictly lower part)
   long fillIn = 0;         ///< entries of L where A's lower triangle had none (0 for trees)
-  int factorizations = 0;  ///< sparse factorizations in the last call (active set, breaks)
-  double solveMs = 0;      ///< wall time: gather, assemble, factorize and solve (ms)
+  int factorizations = 0;  ///< sparse factorizations in the last World step (or integrateFree call)
+  int patternAnalyses = 0; ///< symbolic analyses among them (only when the sparsity pattern changed)
+  double solveMs = 0;      ///< wall time of formulation A in the last step: gather, assemble, factorize, solve, project (ms)
 };
 
 /// Integration of the joint-only mode (integrateFree): the rigid-body state
@@ -111,6 +113,9 @@ enum class JointIntegrator {
 const char* jointIntegratorName(JointIntegrator m);
 
 class ImpulseJoints;
+class ConstraintSolver;
+struct SolverVelocity;
+struct Body;
 
 class JointSystem {
  public:
@@ -154,21 +159,16 @@ class JointSystem {
   /// ConeTwist swing angle (rad) now: angle between the frames' +X axes.
   double swingAngle_rad(JointId id) const;
 
-  /// Computes the constraint forces for the current state and applies them
-  /// with World::applyForce / applyTorque. Call after every other force of
-  /// the step has been applied (they are part of Q) and just before
-  /// World::step. Bodies that have been removed from the World drop their
-  /// joints (reported as broken with zero force).
-  void applyConstraintForces();
-  /// What step() does before World::step. Lagrange: the post-stabilization
-  /// projection (JointSettings::postStabilize), then applyConstraintForces().
-  /// Impulse: the joints broken in the last World::step are removed and
-  /// reported, jointed sleepers next to fast bodies woken; the solve itself
-  /// happens inside World::step. For
-  /// callers that step the World themselves (the scenario host): call it
-  /// right before World::step.
+  /// What step() does before World::step: the joints broken in the last
+  /// World::step are removed and reported, joints of bodies removed from the
+  /// World dropped (reported as broken with zero force), jointed sleepers
+  /// next to fast bodies woken; Lagrange: the post-stabilization projection
+  /// (JointSettings::postStabilize). The solve itself happens inside
+  /// World::step (both formulations). For callers that step the World
+  /// themselves (the scenario host): call it right before World::step.
   void beforeWorldStep();
-  /// beforeWorldStep(); world.step(dt); then records the anchor error.
+  /// beforeWorldStep(); world.step(dt); then collects forces and breaks and
+  /// records the anchor error.
   void step(Real dt_s);
 
   /// Joint-only stepping for the paper's integrator comparison: integrates
@@ -182,12 +182,12 @@ class JointSystem {
   double anchorError_m(bool includeSprings = true) const;
   /// Largest anchor separation (m) of the hard joints (not springs) seen
   /// since creation or resetErrorStats()
-  /// (measured at every applyConstraintForces, step and integrateFree). This
+  /// (measured at every beforeWorldStep, step and integrateFree). This
   /// is the run report's joint_error_max_m.
   double maxAnchorError_m() const { return m_maxAnchorError_m; }
   void resetErrorStats() { m_maxAnchorError_m = 0; }
 
-  /// Joints that broke during the last applyConstraintForces / step.
+  /// Joints that broke during the last step (or beforeWorldStep + World::step).
   const std::vector<JointBreakEvent>& brokenJoints() const { return m_broken; }
   const JointSolveStats& lastSolve() const { return m_stats; }
 
@@ -213,6 +213,7 @@ class JointSystem {
   struct Impl;  ///< solver scratch (joint_system.cpp)
 
  private:
+  friend class LagrangeSubsteps;  ///< formulation A's ConstraintSolver (joint_system.cpp)
   struct Slot {
     JointDef def;
     std::uint32_t generation = 0;  ///< odd while alive
@@ -224,6 +225,13 @@ class JointSystem {
   void refreshLinks();       ///< joint order and island links when the joint set changed
   void wakeJointedSleepers();
   void collectImpulseResults();  ///< impulse solver: forces of the last step, breaks
+  void collectLagrangeResults(); ///< Lagrange solver: forces of the last step, breaks
+  bool allJointedBodiesKnown() const;  ///< Lagrange: every moving jointed body was solved in the last step
+  // Formulation A inside World::step (LagrangeSubsteps calls these).
+  void substepPrepare(double h_s);
+  void substepSolve(SolverVelocity* vel, const Body* bodies);
+  double substepProject(SolverVelocity* vel);
+  void substepFinish();
   void postStabilize();
   void prepare();  ///< joint order (when dirty), body states, evaluation lists
   void recordForces();
@@ -241,6 +249,7 @@ class JointSystem {
   double m_maxAnchorError_m = 0;
   std::unique_ptr<Impl> m_impl;
   std::unique_ptr<ImpulseJoints> m_impulse;  ///< formulation B, registered with the World while set
+  std::unique_ptr<ConstraintSolver> m_lagrange;  ///< formulation A, registered with the World while set
 };
 
 }  // namespace tumble::physics
