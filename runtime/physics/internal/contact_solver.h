@@ -30,6 +30,14 @@ struct SolverSettings {
 /// is one packed multiply-add and one horizontal sum (SSE for float),
 /// instead of three scalar dot products.
 using Vec4r = Eigen::Matrix<Real, 4, 1>;
+/// A 3x3 matrix padded to 4x4 (zero last row and column), so that it times
+/// a Vec4r is four packed multiply-adds.
+using Mat4r = Eigen::Matrix<Real, 4, 4>;
+inline Mat4r wide(const Mat3& m) {
+  Mat4r r = Mat4r::Zero();
+  r.topLeftCorner<3, 3>() = m;
+  return r;
+}
 inline Vec4r wide(const Vec3& v) { return Vec4r(v.x(), v.y(), v.z(), 0); }
 inline Vec3 narrow(const Vec4r& v) { return v.head<3>(); }
 
