@@ -72,6 +72,12 @@ class ImpulseJoints final : public ConstraintSolver {
     Real cosHalfSwing = 1;       ///< cos(swingLimit / 2): the swing row is solved beyond half the cone
     Real motorSpeed_radps = 0, maxMotorImpulse = 0;  ///< hinge motor; impulse bound per substep, N m s
     // ---- per solve phase -------------------------------------------------
+    /// Poses the geometry below was computed from (refreshGeometry skips a
+    /// joint whose bodies have not moved since by more than
+    /// kGeometryTolerance; invalid until the first refresh of the step).
+    bool geometryValid = false;
+    Vec3 refPositionA_m = Vec3::Zero(), refPositionB_m = Vec3::Zero();
+    Quat refOrientationA = Quat::Identity(), refOrientationB = Quat::Identity();
     /// [rA]x, [rB]x of the anchor offsets from the centres (world, m): the
     /// point rows' Cdot = vB - vA + [rA]x wA - [rB]x wB (a packed product
     /// each; Eigen's cross3 went through the stack and stalled).

@@ -171,11 +171,39 @@ void ImpulseJoints::prepare(const World& world, Real dt_s, int substeps) {
   }
 }
 
+namespace {
+
+/// A joint's rows are recomputed only when one of its bodies moved by more
+/// than this since they were last computed: kGeometryTolerance m, or a
+/// quaternion change of kGeometryTolerance (a rotation of about twice that
+/// in rad, which moves a 0.5 m anchor arm by 1e-5 m). The rows are rebuilt
+/// every step (prepare), so a skipped joint's rows are at most one step old
+/// and off by at most that much; the contact rows are computed once per step
+/// regardless. What it saves: bodies at rest (a settled pile with sleeping
+/// off, a resting rag-doll before it sleeps) cost one refresh per step
+/// instead of two per substep.
+constexpr Real kGeometryTolerance = Real(1e-5);
+
+bool movedSince(const Body& b, const Vec3& position, const Quat& orientation) {
+  constexpr Real tol2 = kGeometryTolerance * kGeometryTolerance;
+  return (b.position_m - position).squaredNorm() > tol2 ||
+         (b.orientation.coeffs() - orientation.coeffs()).squaredNorm() > tol2;
+}
+
+}  // namespace
+
 void ImpulseJoints::refreshGeometry(const Body* bodies) {
   for (Joint& j : m_joints) {
     const JointDef& d = *j.def;
-    // The two sides: anchor offsets, anchor points, joint frames (world).
     const Body& A = bodies[j.a];
+    if (j.geometryValid && !movedSince(A, j.refPositionA_m, j.refOrientationA) &&
+        (j.world || !movedSince(bodies[j.b], j.refPositionB_m, j.refOrientationB)))
+      continue;
+    j.geometryValid = true;
+    j.refPositionA_m = A.position_m;
+    j.refOrientationA = A.orientation;
+    if (!j.world) j.refPositionB_m = bodies[j.b].position_m, j.refOrientationB = bodies[j.b].orientation;
+    // The two sides: anchor offsets, anchor points, joint frames (world).
     const Vec3 rA = A.orientation * d.localAnchorA_m;
     const Vec3 pA = A.position_m + rA;
     const Quat qa = A.orientation * d.localFrameA;
