@@ -1,5 +1,5 @@
 // Tumble side of the comparison: the scene in a physics::World with its
-// default settings (8 substeps x (4 solve + 1 relax) iterations), gravity
+// default settings (8 substeps x (4 solve + 2 relax) sweeps), gravity
 // from the scene; joints in a JointSystem (formulation B by default).
 #include <algorithm>
 #include <chrono>
