@@ -49,6 +49,7 @@ struct StepScratch {
   HeightFieldScratch heightField;
   std::vector<Manifold> pairManifolds;  ///< manifolds of one body pair (compounds have several)
   std::vector<std::uint32_t> usedOld;   ///< old height-field manifolds already inherited from
+  std::vector<std::uint32_t> filterStart;  ///< per body a: its pairs in m_noCollide start here (sorted by a)
   std::vector<Vec3> linear;  ///< per body slot: linear velocities for BodyIntegration::advance
   bool integrationEngaged = false;  ///< this substep's translation came from integrate.cpp
 };
@@ -495,15 +496,32 @@ void World::collide(Real dt) {
     active[i] = 1;
     if (b.type == BodyType::Static) st.statics.push_back(i);
   }
+  // The collision filter by body: m_noCollide is sorted by its lower body,
+  // so each body's filtered partners are one contiguous run; a pair test
+  // scans the run of its lower body (a rag-doll part has 1-3) instead of a
+  // binary search over every filtered pair (1000 in ragdolls_100: 1.3% of
+  // the step). Same answers as pairFiltered.
+  std::vector<std::uint32_t>& filterStart = st.filterStart;
+  filterStart.assign(n + 1, 0);
+  for (const BodyPair& p : m_noCollide) ++filterStart[p.a + 1];
+  for (std::size_t i = 0; i < n; ++i) filterStart[i + 1] += filterStart[i];
+  auto filtered = [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
+    for (std::uint32_t k = filterStart[lo]; k < filterStart[lo + 1]; ++k) {
+      const BodyPair& p = m_noCollide[k];
+      if (p.b == hi) return m_bodies[lo].generation == p.genA && m_bodies[hi].generation == p.genB;
+    }
+    return false;
+  };
   auto canCollide = [&](std::uint32_t a, std::uint32_t b) {
     const Body& A = m_bodies[a];
     const Body& B = m_bodies[b];
-    return (A.moves() || B.moves()) && !pairFiltered(a, b);
+    return (A.moves() || B.moves()) && !filtered(a, b);
   };
   m_broad->findPairs(boxes, active, canCollide, pairs);
   for (std::uint32_t p : planes)
     for (std::uint32_t i = 0; i < n; ++i)
-      if (active[i] && m_bodies[i].moves() && !pairFiltered(p, i)) pairs.emplace_back(std::min(p, i), std::max(p, i));
+      if (active[i] && m_bodies[i].moves() && !filtered(p, i)) pairs.emplace_back(std::min(p, i), std::max(p, i));
 
   m_events.clear();
   int points = 0;
@@ -668,7 +686,7 @@ static Vec3 gyroscopicMidpoint(const Vec3& I, const Vec3& w1, Real h) {
     Vec3 f = I.cwiseProduct(w2 - w1) + h * wm.cross(Iwm);
     if (f.squaredNorm() <= Real(1e-14) * Iw1.squaredNorm()) break;
     Mat3 J = Mat3(I.asDiagonal()) + (h / 2) * (skew(wm) * I.asDiagonal() - skew(Iwm));
-    w2 -= J.partialPivLu().solve(f);
+    w2 -= J.inverse() * f;  // closed-form 3x3 (J is near I: well conditioned); LU cost 2.4% of ragdolls_100
   }
   return w2;
 }

@@ -15,7 +15,8 @@
 // island). One iteration is one World step; 300 steps = 5 s simulated, the
 // same motion in every repetition. Counters: joint_error_m (largest anchor
 // separation after any step), contacts (contact points in the last step),
-// asleep (bodies asleep at the end).
+// asleep (bodies asleep at the end), fastest_mps (the fastest part at the
+// end: how still a settled pile is).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -73,7 +74,13 @@ void BM_Ragdolls100(benchmark::State& state) {
     jointError = std::max(jointError, double(p.joints->anchorError_m()));
   }
   int asleep = 0;
-  for (BodyId id : p.parts) asleep += p.world->body(id).awake ? 0 : 1;
+  double fastest = 0;
+  for (BodyId id : p.parts) {
+    const Body& b = p.world->body(id);
+    asleep += b.awake ? 0 : 1;
+    fastest = std::max(fastest, double(b.linearVelocity_mps.norm()));
+  }
+  state.counters["fastest_mps"] = fastest;
   state.counters["joint_error_m"] = jointError;
   state.counters["contacts"] = double(p.world->contactPointCount());
   state.counters["asleep"] = asleep;
