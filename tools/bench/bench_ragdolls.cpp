@@ -12,7 +12,9 @@
 // substeps x (4 solve + 2 relax) sweeps). Arg sleep=0 keeps every body awake
 // (the compare tool's setting: it times the solver, not an idle world);
 // sleep=1 is what a player gets (settled dolls fall asleep island by
-// island). One iteration is one World step; 300 steps = 5 s simulated, the
+// island). rolling=0 gives the parts no rolling resistance, as the compare
+// tool builds them (sleep:0/rolling:0 is its Tumble half); rolling=1 keeps
+// spawn_ragdoll's 0.2. One iteration is one World step; 300 steps = 5 s simulated, the
 // same motion in every repetition. Counters: joint_error_m (largest anchor
 // separation after any step), contacts (contact points in the last step),
 // asleep (bodies asleep at the end), fastest_mps (the fastest part at the
@@ -40,7 +42,7 @@ struct Pile {
   std::vector<BodyId> parts;
 };
 
-Pile makePile(bool sleep) {
+Pile makePile(bool sleep, bool rolling) {
   Pile p;
   WorldSettings ws;
   ws.enableSleep = sleep;
@@ -56,6 +58,7 @@ Pile makePile(bool sleep) {
   ground.friction = Real(0.6);
   (void)p.world->createBody(ground).value();
   RagdollDesc desc = defaultHuman(Real(1.75), Real(75));
+  if (!rolling) desc.rollingResistance = 0;  // as tumble_compare builds its parts
   const Quat lying(Eigen::AngleAxis<Real>(kPi / 2, Vec3::UnitX()));
   for (int k = 0; k < 100; ++k) {
     const Vec3 origin(Real((k % 10 - 4.5) * 2.5), Real(0.5 + 0.3 * (k % 4)), Real((k / 10 - 4.5) * 2.5 - 0.9));
@@ -66,7 +69,7 @@ Pile makePile(bool sleep) {
 }
 
 void BM_Ragdolls100(benchmark::State& state) {
-  Pile p = makePile(state.range(0) != 0);
+  Pile p = makePile(state.range(0) != 0, state.range(1) != 0);
   double jointError = 0;
   for (auto _ : state) {
     p.joints->beforeWorldStep();  // as the scenario host and the compare tool do
@@ -85,7 +88,13 @@ void BM_Ragdolls100(benchmark::State& state) {
   state.counters["contacts"] = double(p.world->contactPointCount());
   state.counters["asleep"] = asleep;
 }
-BENCHMARK(BM_Ragdolls100)->Arg(0)->Arg(1)->ArgName("sleep")->Iterations(300)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Ragdolls100)
+    ->Args({0, 0})  // tumble_compare's ragdolls_100
+    ->Args({0, 1})  // spawn_ragdoll's parts (rolling resistance 0.2), kept awake
+    ->Args({1, 1})  // what a player gets
+    ->ArgNames({"sleep", "rolling"})
+    ->Iterations(300)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -337,6 +337,9 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
              hardBias = useBias ? m_biasRate : 0;
   const Real h = m_h, invH = m_invH, biasRate = m_biasRate, massScale = m_massScale, impulseScale = m_impulseScale;
   Real change = 0, total = 0;
+  // The vector rows' squares are summed lane by lane and reduced once at
+  // the end (two horizontal sums less per joint and sweep).
+  Vec4r changeV = Vec4r::Zero(), totalV = Vec4r::Zero();
   for (const Joint& j : m_joints) {
     Accum& acc = m_accum[j.slot];
     Vec4r vA = Vec4r::Zero(), wA = Vec4r::Zero(), vB = Vec4r::Zero(), wB = Vec4r::Zero();
@@ -412,8 +415,8 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
         wA -= j.axA[k] * dl[k];
         wB += j.axB[k] * dl[k];
       }
-      change += dl.squaredNorm();
-      total += acc.angular.squaredNorm();
+      changeV += dl.cwiseAbs2();
+      totalV += acc.angular.cwiseAbs2();
     }
 
     // Point rows (every type).
@@ -428,12 +431,14 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
       wA -= j.MA * P;
       vB += j.mB * P;
       wB += j.MB * P;
-      change += P.squaredNorm();
-      total += acc.linear.squaredNorm();
+      changeV += P.cwiseAbs2();
+      totalV += acc.linear.cwiseAbs2();
     }
     if (j.movesA) vel[j.a].linear = vA, vel[j.a].angular = wA;
     if (j.movesB) vel[j.b].linear = vB, vel[j.b].angular = wB;
   }
+  change += changeV.sum();
+  total += totalV.sum();
   if (change == 0) return 0;
   return change / std::max(total, std::numeric_limits<Real>::min());
 }
