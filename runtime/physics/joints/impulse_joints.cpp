@@ -400,6 +400,20 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
       change += d * d;
       total += accRow * accRow;
     };
+    // The two stops about the limit axis (hinge angle or twist). Mostly both
+    // are idle: inside the range, nothing accumulated, and not closing
+    // either gap within this substep. That case is tested with one dot
+    // product and one well-predicted branch; it is exactly the case in which
+    // each limit() call would return at once, so the result is the same.
+    auto stops = [&](Real k) {
+      const Real cLower = j.angle - j.lower_rad, cUpper = j.upper_rad - j.angle;
+      if (acc.lower == 0 && acc.upper == 0 && cLower > 0 && cUpper > 0) {
+        const Real travel = (wB - wA).dot(j.limitAxis) * h;  // this substep's angle change, rad
+        if (travel + cLower >= 0 && cUpper - travel >= 0) return;
+      }
+      limit(j.limitAxis, j.limitA, j.limitB, 1, k, cLower, acc.lower);
+      limit(j.limitAxis, j.limitA, j.limitB, -1, k, cUpper, acc.upper);
+    };
 
     // Motor and limits first, the equality rows last (they matter most).
     if (j.type == JointType::Hinge) {
@@ -416,18 +430,14 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
         change += dl * dl;
         total += acc.motor * acc.motor;
       }
-      if (j.hingeLimit) {
-        limit(j.limitAxis, j.limitA, j.limitB, 1, k, j.angle - j.lower_rad, acc.lower);
-        limit(j.limitAxis, j.limitA, j.limitB, -1, k, j.upper_rad - j.angle, acc.upper);
-      }
+      if (j.hingeLimit) stops(k);
     } else if (j.type == JointType::ConeTwist) {
       // Rotating a1 towards b1 is positive about the swing axis: the row pushes back.
       if (j.swingActive)
         limit(j.swingAxis, j.swingA, j.swingB, -1, j.swingK, j.swingLimit_rad - j.swingAngle, acc.swing);
       else
         acc.swing = 0;
-      limit(j.limitAxis, j.limitA, j.limitB, 1, j.limitK, j.angle - j.lower_rad, acc.lower);
-      limit(j.limitAxis, j.limitA, j.limitB, -1, j.limitK, j.upper_rad - j.angle, acc.upper);
+      stops(j.limitK);
     }
 
     const bool hardRows = !j.soft;
