@@ -156,6 +156,10 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
     c.movesA = takesImpulses(a);
     c.movesB = takesImpulses(b);
     if (!c.movesA && !c.movesB) continue;  // nothing to solve (asleep against static)
+    // Static bodies and the height field have zero velocity for the whole
+    // step (kinematic and sleeping ones may not: a script can set one).
+    if (!c.movesA && a.type == BodyType::Static) c.fixedSide = 1;
+    if (!c.movesB && (field || b.type == BodyType::Static)) c.fixedSide = 2;
     c.a = m.a;
     c.b = field ? std::uint32_t(bodies.size()) : m.b;
     c.manifold = mi;
@@ -292,6 +296,146 @@ void ContactSolver::resetSubstepImpulses() {
   for (ConstraintPoint& p : m_points) p.pseudoImpulse = 0;
 }
 
+/// What every constraint of one sweep shares.
+struct ContactSolver::SweepConstants {
+  Real invH = 0, biasRate = 0, softMassScale = 1, softImpulseScale = 0;
+  Real linearSlop_m = 0, maxPushout_mps = 0, baumgarte = 0;
+  bool soft = false, split = false;
+};
+
+namespace {
+
+/// Row times velocity with one side fixed (kFixedSide 1: A, 2: B; its
+/// velocity is zero, so its terms are left out, not multiplied by zero).
+template <int kFixedSide>
+inline Real rowDotFixed(const Vec4r& n, const Vec4r& vA, const Vec4r& vB, const Vec4r& jB, const Vec4r& wB,
+                        const Vec4r& jA, const Vec4r& wA) {
+  if constexpr (kFixedSide == 1) return (n.cwiseProduct(vB) + jB.cwiseProduct(wB)).sum();
+  else if constexpr (kFixedSide == 2) return -(n.cwiseProduct(vA) + jA.cwiseProduct(wA)).sum();
+  else return rowDot(n, vB - vA, jB, wB, jA, wA);
+}
+
+}  // namespace
+
+template <int kFixedSide>
+void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVelocity>& vel,
+                                    std::vector<SolverVelocity>& pseudo, const SweepConstants& k, Real& residual,
+                                    Real& magnitude) {
+  constexpr bool moveA = kFixedSide != 1, moveB = kFixedSide != 2;
+  SolverVelocity& A = vel[c.a];
+  SolverVelocity& B = vel[c.b];
+  Vec4r vA = Vec4r::Zero(), wA = Vec4r::Zero(), vB = Vec4r::Zero(), wB = Vec4r::Zero();
+  if constexpr (moveA) vA = A.linear, wA = A.angular;
+  if constexpr (moveB) vB = B.linear, wB = B.angular;
+  const Real mA = c.invMassA, mB = c.invMassB;
+  const Vec4r n = c.normal;
+  ConstraintPoint* pts = &m_points[c.firstPoint];
+  const int count = c.count;
+  Real totalNormal = 0;
+  for (int i = 0; i < count; ++i) {
+    ConstraintPoint& p = pts[i];
+    const Real sep = p.separation_m;
+    Real bias = 0, massScale = 1, impulseScale = 0;
+    if (sep > 0) {
+      bias = sep * k.invH;  // speculative
+    } else if (k.soft) {
+      bias = std::max(k.biasRate * std::min<Real>(sep + k.linearSlop_m, 0), -k.maxPushout_mps);
+      massScale = k.softMassScale;
+      impulseScale = k.softImpulseScale;
+    }
+    const Real vn = rowDotFixed<kFixedSide>(n, vA, vB, p.rnB, wB, p.rnA, wA);
+    Real impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+    const Real newImpulse = std::max<Real>(p.normalImpulse + impulse, 0);
+    impulse = newImpulse - p.normalImpulse;
+    p.normalImpulse = newImpulse;
+    p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
+    totalNormal += newImpulse;
+    residual += impulse * impulse;
+    magnitude += newImpulse * newImpulse;
+    const Vec4r P = impulse * n;
+    if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
+    if constexpr (moveB) vB += mB * P, wB += impulse * p.inB;
+  }
+  // Friction, clamped to the cone.
+  const Vec4r t0 = c.tangent[0], t1 = c.tangent[1];
+  for (int i = 0; i < count; ++i) {
+    ConstraintPoint& p = pts[i];
+    const Real vt0 = rowDotFixed<kFixedSide>(t0, vA, vB, p.rtB[0], wB, p.rtA[0], wA);
+    const Real vt1 = rowDotFixed<kFixedSide>(t1, vA, vB, p.rtB[1], wB, p.rtA[1], wA);
+    const Real old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
+    Real l0 = old0 - p.tangentMass[0] * vt0;
+    Real l1 = old1 - p.tangentMass[1] * vt1;
+    const Real maxF = c.friction * p.normalImpulse;
+    const Real len2 = l0 * l0 + l1 * l1;
+    if (len2 > maxF * maxF) {
+      const Real scale = maxF / std::sqrt(len2);
+      l0 *= scale;
+      l1 *= scale;
+    }
+    p.tangentImpulse[0] = l0;
+    p.tangentImpulse[1] = l1;
+    const Real d0 = l0 - old0, d1 = l1 - old1;
+    residual += d0 * d0 + d1 * d1;
+    const Vec4r P = d0 * t0 + d1 * t1;
+    if constexpr (moveA) vA -= mA * P, wA -= d0 * p.itA[0] + d1 * p.itA[1];
+    if constexpr (moveB) vB += mB * P, wB += d0 * p.itB[0] + d1 * p.itB[1];
+  }
+  if (c.rolling >= 0) {
+    RollingRows& r = m_rolling[std::size_t(c.rolling)];
+    const Vec4r dw = wB - wA;
+    const Real old0 = r.impulse[0], old1 = r.impulse[1], old2 = r.impulse[2];
+    Real r0 = old0 - r.mass[0] * dw.dot(t0);
+    Real r1 = old1 - r.mass[1] * dw.dot(t1);
+    const Real maxR = c.rollingArm_m * totalNormal, len2 = r0 * r0 + r1 * r1;
+    if (len2 > maxR * maxR) {
+      const Real scale = maxR / std::sqrt(len2);
+      r0 *= scale;
+      r1 *= scale;
+    }
+    const Real r2 = std::clamp(old2 - r.mass[2] * dw.dot(n), -maxR, maxR);
+    r.impulse[0] = r0;
+    r.impulse[1] = r1;
+    r.impulse[2] = r2;
+    const Real d0 = r0 - old0, d1 = r1 - old1, d2 = r2 - old2;
+    residual += d0 * d0 + d1 * d1 + d2 * d2;
+    if constexpr (moveA) wA -= d0 * r.iA[0] + d1 * r.iA[1] + d2 * r.iA[2];
+    if constexpr (moveB) wB += d0 * r.iB[0] + d1 * r.iB[1] + d2 * r.iB[2];
+  }
+  if (moveA && c.movesA) {
+    A.linear = vA;
+    A.angular = wA;
+  }
+  if (moveB && c.movesB) {
+    B.linear = vB;
+    B.angular = wB;
+  }
+  if (!k.split) return;
+  // Split-impulse position correction: pseudo-velocities that remove
+  // beta * (depth - slop) / h of the overlap, accumulated per substep.
+  // Pseudo-velocities are zero for bodies that take no impulses.
+  SolverVelocity& PA = pseudo[c.a];
+  SolverVelocity& PB = pseudo[c.b];
+  for (int i = 0; i < count; ++i) {
+    ConstraintPoint& p = pts[i];
+    const Real depth = -(p.separation_m + k.linearSlop_m);
+    if (depth <= 0 && p.pseudoImpulse == 0) continue;
+    const Real target = std::min(k.baumgarte * k.invH * std::max<Real>(depth, 0), k.maxPushout_mps);
+    const Real pvn = rowDotFixed<kFixedSide>(n, PA.linear, PB.linear, p.rnB, PB.angular, p.rnA, PA.angular);
+    const Real newImpulse = std::max<Real>(p.pseudoImpulse + p.normalMass * (target - pvn), 0);
+    const Real dl = newImpulse - p.pseudoImpulse;
+    p.pseudoImpulse = newImpulse;
+    residual += dl * dl;
+    if (moveA && c.movesA) {
+      PA.linear -= (mA * dl) * n;
+      PA.angular -= dl * p.inA;
+    }
+    if (moveB && c.movesB) {
+      PB.linear += (mB * dl) * n;
+      PB.angular += dl * p.inB;
+    }
+  }
+}
+
 Real ContactSolver::solve(std::vector<SolverVelocity>& vel, std::vector<SolverVelocity>& pseudo,
                           const SolverSettings& s, bool useBias) {
   Real residual = 0, magnitude = 0;
@@ -299,126 +443,20 @@ Real ContactSolver::solve(std::vector<SolverVelocity>& vel, std::vector<SolverVe
   const Real hertz = std::min(s.contactHertz, Real(0.25) / s.h);
   const Real omega = 2 * kPi * hertz, zeta = s.contactDampingRatio;
   const Real a1 = 2 * zeta + s.h * omega, a2 = s.h * omega * a1, a3 = 1 / (1 + a2);
-  const Real biasRate = omega / a1, softMassScale = a2 * a3, softImpulseScale = a3;
-  const Real invH = 1 / s.h;
-  const bool soft = useBias && s.softContacts;
-  const bool split = useBias && !s.softContacts;
-
+  SweepConstants k;
+  k.biasRate = omega / a1;
+  k.softMassScale = a2 * a3;
+  k.softImpulseScale = a3;
+  k.invH = 1 / s.h;
+  k.linearSlop_m = s.linearSlop_m;
+  k.maxPushout_mps = s.maxPushout_mps;
+  k.baumgarte = s.baumgarte;
+  k.soft = useBias && s.softContacts;
+  k.split = useBias && !s.softContacts;
   for (const Constraint& c : m_constraints) {
-    SolverVelocity& A = vel[c.a];
-    SolverVelocity& B = vel[c.b];
-    Vec4r vA = A.linear, wA = A.angular, vB = B.linear, wB = B.angular;
-    const Real mA = c.invMassA, mB = c.invMassB;
-    const Vec4r n = c.normal;
-    ConstraintPoint* pts = &m_points[c.firstPoint];
-    const int count = c.count;
-    Real totalNormal = 0;
-    for (int i = 0; i < count; ++i) {
-      ConstraintPoint& p = pts[i];
-      const Real sep = p.separation_m;
-      Real bias = 0, massScale = 1, impulseScale = 0;
-      if (sep > 0) {
-        bias = sep * invH;  // speculative
-      } else if (soft) {
-        bias = std::max(biasRate * std::min<Real>(sep + s.linearSlop_m, 0), -s.maxPushout_mps);
-        massScale = softMassScale;
-        impulseScale = softImpulseScale;
-      }
-      const Real vn = rowDot(n, vB - vA, p.rnB, wB, p.rnA, wA);
-      Real impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
-      const Real newImpulse = std::max<Real>(p.normalImpulse + impulse, 0);
-      impulse = newImpulse - p.normalImpulse;
-      p.normalImpulse = newImpulse;
-      p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
-      totalNormal += newImpulse;
-      residual += impulse * impulse;
-      magnitude += newImpulse * newImpulse;
-      const Vec4r P = impulse * n;
-      vA -= mA * P;
-      wA -= impulse * p.inA;
-      vB += mB * P;
-      wB += impulse * p.inB;
-    }
-    // Friction, clamped to the cone.
-    const Vec4r t0 = c.tangent[0], t1 = c.tangent[1];
-    for (int i = 0; i < count; ++i) {
-      ConstraintPoint& p = pts[i];
-      const Vec4r dv = vB - vA;
-      const Real vt0 = rowDot(t0, dv, p.rtB[0], wB, p.rtA[0], wA);
-      const Real vt1 = rowDot(t1, dv, p.rtB[1], wB, p.rtA[1], wA);
-      const Real old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
-      Real l0 = old0 - p.tangentMass[0] * vt0;
-      Real l1 = old1 - p.tangentMass[1] * vt1;
-      const Real maxF = c.friction * p.normalImpulse;
-      const Real len2 = l0 * l0 + l1 * l1;
-      if (len2 > maxF * maxF) {
-        const Real scale = maxF / std::sqrt(len2);
-        l0 *= scale;
-        l1 *= scale;
-      }
-      p.tangentImpulse[0] = l0;
-      p.tangentImpulse[1] = l1;
-      const Real d0 = l0 - old0, d1 = l1 - old1;
-      residual += d0 * d0 + d1 * d1;
-      const Vec4r P = d0 * t0 + d1 * t1;
-      vA -= mA * P;
-      wA -= d0 * p.itA[0] + d1 * p.itA[1];
-      vB += mB * P;
-      wB += d0 * p.itB[0] + d1 * p.itB[1];
-    }
-    if (c.rolling >= 0) {
-      RollingRows& r = m_rolling[std::size_t(c.rolling)];
-      const Vec4r dw = wB - wA;
-      const Real old0 = r.impulse[0], old1 = r.impulse[1], old2 = r.impulse[2];
-      Real r0 = old0 - r.mass[0] * dw.dot(t0);
-      Real r1 = old1 - r.mass[1] * dw.dot(t1);
-      const Real maxR = c.rollingArm_m * totalNormal, len2 = r0 * r0 + r1 * r1;
-      if (len2 > maxR * maxR) {
-        const Real scale = maxR / std::sqrt(len2);
-        r0 *= scale;
-        r1 *= scale;
-      }
-      const Real r2 = std::clamp(old2 - r.mass[2] * dw.dot(n), -maxR, maxR);
-      r.impulse[0] = r0;
-      r.impulse[1] = r1;
-      r.impulse[2] = r2;
-      const Real d0 = r0 - old0, d1 = r1 - old1, d2 = r2 - old2;
-      residual += d0 * d0 + d1 * d1 + d2 * d2;
-      wA -= d0 * r.iA[0] + d1 * r.iA[1] + d2 * r.iA[2];
-      wB += d0 * r.iB[0] + d1 * r.iB[1] + d2 * r.iB[2];
-    }
-    if (c.movesA) {
-      A.linear = vA;
-      A.angular = wA;
-    }
-    if (c.movesB) {
-      B.linear = vB;
-      B.angular = wB;
-    }
-    if (!split) continue;
-    // Split-impulse position correction: pseudo-velocities that remove
-    // beta * (depth - slop) / h of the overlap, accumulated per substep.
-    SolverVelocity& PA = pseudo[c.a];
-    SolverVelocity& PB = pseudo[c.b];
-    for (int i = 0; i < count; ++i) {
-      ConstraintPoint& p = pts[i];
-      const Real depth = -(p.separation_m + s.linearSlop_m);
-      if (depth <= 0 && p.pseudoImpulse == 0) continue;
-      const Real target = std::min(s.baumgarte * invH * std::max<Real>(depth, 0), s.maxPushout_mps);
-      const Real pvn = rowDot(n, PB.linear - PA.linear, p.rnB, PB.angular, p.rnA, PA.angular);
-      const Real newImpulse = std::max<Real>(p.pseudoImpulse + p.normalMass * (target - pvn), 0);
-      const Real dl = newImpulse - p.pseudoImpulse;
-      p.pseudoImpulse = newImpulse;
-      residual += dl * dl;
-      if (c.movesA) {
-        PA.linear -= (mA * dl) * n;
-        PA.angular -= dl * p.inA;
-      }
-      if (c.movesB) {
-        PB.linear += (mB * dl) * n;
-        PB.angular += dl * p.inB;
-      }
-    }
+    if (c.fixedSide == 1) solveConstraint<1>(c, vel, pseudo, k, residual, magnitude);
+    else if (c.fixedSide == 2) solveConstraint<2>(c, vel, pseudo, k, residual, magnitude);
+    else solveConstraint<0>(c, vel, pseudo, k, residual, magnitude);
   }
   m_lastMagnitude = magnitude;
   return residual;

@@ -1,8 +1,9 @@
 # cmake -DEXE=tumble_compare -DREPORT=out.json -P check_report.cmake
 #
 # Runs `tumble_compare pyramid_20 --quick --report REPORT` and checks that
-# the report names the scene, that both engines stepped every step, that
-# every figure the issue asks for is present on both sides, and that the
+# the report names the scene, that both engines stepped every step (wall and
+# CPU time), that the default Bullet peer sweeps as often per step as Tumble,
+# that every figure the issue asks for is present on both sides, and that the
 # pyramid did not fall apart in 20 steps (physics, not printed text).
 file(REMOVE ${REPORT})
 execute_process(COMMAND ${EXE} pyramid_20 --quick --no-bullet-default --report ${REPORT}
@@ -29,8 +30,20 @@ if(ratio LESS_EQUAL 0)
   message(FATAL_ERROR "ratio_step_ms is ${ratio}, expected > 0")
 endif()
 
+# Matched budget: the peer sweeps as often per step as Tumble does.
+string(JSON tumbleSweeps GET "${json}" tumble sweeps_per_step)
+string(JSON bulletSweeps GET "${json}" bullet sweeps_per_step)
+if(NOT tumbleSweeps EQUAL bulletSweeps)
+  message(FATAL_ERROR "Bullet sweeps ${bulletSweeps} times per step, Tumble ${tumbleSweeps}: the default peer must match")
+endif()
+string(JSON cpuRatio GET "${json}" ratio_step_cpu_ms)
+if(NOT cpuRatio GREATER 0)
+  message(FATAL_ERROR "ratio_step_cpu_ms is ${cpuRatio}, expected > 0")
+endif()
+
 foreach(side tumble bullet)
-  foreach(field step_ms_median step_ms_p99 penetration_max_m escaped stack_drift_m substeps iterations)
+  foreach(field step_ms_median step_ms_p99 step_cpu_ms_median penetration_max_m escaped stack_drift_m substeps iterations
+                sweeps_per_step)
     string(JSON value ERROR_VARIABLE missing GET "${json}" ${side} ${field})
     if(missing)
       message(FATAL_ERROR "report lacks ${side}.${field}: ${missing}")
@@ -43,6 +56,10 @@ foreach(side tumble bullet)
   string(JSON median GET "${json}" ${side} step_ms_median)
   if(NOT median GREATER 0)
     message(FATAL_ERROR "${side}.step_ms_median is ${median}: the world did not step")
+  endif()
+  string(JSON cpu GET "${json}" ${side} step_cpu_ms_median)
+  if(NOT cpu GREATER 0)
+    message(FATAL_ERROR "${side}.step_cpu_ms_median is ${cpu}: a step took no CPU time")
   endif()
   # A resting pyramid of 0.5 m boxes: after 1/3 s nothing may have moved a
   # box sideways by 5 cm or sunk one 5 cm into another.

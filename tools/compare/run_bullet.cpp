@@ -196,10 +196,13 @@ RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletCo
   RunResult r;
   r.kineticEnergyStart_J = kineticEnergy(bw);
   r.stepMs.reserve(steps);
+  r.stepCpuMs.reserve(steps);
   for (int i = 0; i < steps; ++i) {
+    const double c0 = threadCpuMs();
     auto t0 = std::chrono::steady_clock::now();
     world.stepSimulation(btScalar(dt), 0);  // maxSubSteps 0: exactly one step of dt
     auto t1 = std::chrono::steady_clock::now();
+    r.stepCpuMs.push_back(threadCpuMs() - c0);
     r.stepMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     r.penetrationMax_m = std::max(r.penetrationMax_m, deepestOverlap(*bw.dispatcher));
     r.jointErrorMax_m = std::max(r.jointErrorMax_m, jointError(bw));

@@ -1,5 +1,5 @@
 // Tumble side of the comparison: the scene in a physics::World with its
-// default settings (8 substeps x (4 solve + 1 relax) iterations), gravity
+// default settings (8 substeps x (4 solve + 2 relax) sweeps), gravity
 // from the scene; joints in a JointSystem (formulation B by default).
 #include <algorithm>
 #include <chrono>
@@ -84,12 +84,15 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep, co
   RunResult r;
   r.kineticEnergyStart_J = kineticEnergy(world, ids);
   r.stepMs.reserve(steps);
+  r.stepCpuMs.reserve(steps);
   const Real h = Real(dt);
   for (int i = 0; i < steps; ++i) {
+    const double c0 = threadCpuMs();
     auto t0 = std::chrono::steady_clock::now();
     if (joints) joints->beforeWorldStep();  // as the scenario host does (A's solve; B's bookkeeping)
     world.step(h);
     auto t1 = std::chrono::steady_clock::now();
+    r.stepCpuMs.push_back(threadCpuMs() - c0);
     r.stepMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     if (joints) r.jointErrorMax_m = std::max(r.jointErrorMax_m, joints->anchorError_m());
   }

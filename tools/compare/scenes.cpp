@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <time.h>
 
 #include "physics/joints/ragdoll.h"
 #include "scenes.h"
@@ -239,6 +240,12 @@ bool buildScene(const std::string& name, SceneSpec* out) {
 std::string sceneDescription(const std::string& name) {
   SceneSpec s;
   return buildScene(name, &s) ? s.description : std::string();
+}
+
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
 void measureEnd(const SceneSpec& scene, const std::vector<V3>& end, RunResult* r) {

@@ -75,6 +75,7 @@ bool buildScene(const std::string& name, SceneSpec* out);
 /// What one engine measured on one scene.
 struct RunResult {
   std::vector<double> stepMs;     ///< wall time of each step() call
+  std::vector<double> stepCpuMs;  ///< CPU time of this thread in each step() call (robust to a shared machine)
   double penetrationMax_m = 0;    ///< deepest overlap reported by the engine's narrow phase
   int escaped = 0;                ///< dynamic bodies outside the container at the end
   double stackDrift_m = 0;        ///< largest horizontal (x, z) displacement from the start, at the end
@@ -102,6 +103,9 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep,
 RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletConfig& config);
 /// "float" or "double": how the linked Bullet stores btScalar.
 const char* bulletPrecision();
+
+/// CPU time consumed by the calling thread so far, ms (CLOCK_THREAD_CPUTIME_ID).
+double threadCpuMs();
 
 /// Shared end-of-run measurements (start and end positions of dynamic bodies).
 void measureEnd(const SceneSpec& scene, const std::vector<V3>& endPositions, RunResult* r);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "physics/constraint_solver.h"
+#include "physics/internal/contact_solver.h"
 #include "physics/joints/joint.h"
 
 namespace tumble::physics {
@@ -37,46 +38,69 @@ class ImpulseJoints final : public ConstraintSolver {
   /// Clears the broken flags (after the JointSystem removed those joints).
   void clearBroken();
 
-  /// Current pose of one joint side.
-  struct Side {
-    Vec3 r = Vec3::Zero();      ///< anchor offset from the centre (world)
-    Vec3 p = Vec3::Zero();      ///< anchor point
-    Mat3 F = Mat3::Identity();  ///< joint frame axes (columns), world
-    Quat q = Quat::Identity();  ///< joint frame, world
-  };
-
-  /// Accumulated impulses, kept between steps for warm starting; and the
-  /// per-step data of one joint.
+  /// Accumulated impulses, kept between steps for warm starting (per joint
+  /// slot). 4-wide like the solver's velocities (w = 0).
   struct Accum {
     std::uint32_t generation = 0;
-    Vec3 linear = Vec3::Zero();   ///< point rows, on B (N s per substep)
-    Vec3 angular = Vec3::Zero();  ///< alignment / orientation rows, on B (world)
-    Real lower = 0, upper = 0;    ///< hinge angle or twist limits
-    Real swing = 0, motor = 0;
+    Vec4r linear = Vec4r::Zero();   ///< point rows, on B (N s per substep), world
+    Vec4r angular = Vec4r::Zero();  ///< alignment / orientation rows, on B (N m s per substep), world
+    Real lower = 0, upper = 0;      ///< hinge angle or twist limits (N m s per substep)
+    Real swing = 0, motor = 0;      ///< swing cone, hinge motor (N m s per substep)
   };
 
+  /// One joint's rows. The first block is set once per step (prepare); the
+  /// rest is the geometry of the current solve phase (refreshGeometry: once
+  /// before the solve sweeps of a substep, once before its relax sweeps),
+  /// precomputed so that a sweep is a few packed multiply-adds per row and
+  /// never touches the JointDef or a quaternion.
   struct Joint {
+    // ---- per step --------------------------------------------------------
     const JointDef* def = nullptr;
     std::uint32_t slot = 0;
     std::uint32_t a = 0, b = 0;  ///< body / velocity indices (b unused when world)
+    JointType type = JointType::Ball;
     bool world = false;          ///< B is the world (anchor and frame in world coordinates)
     bool movesA = false, movesB = false;
-    Real mA = 0, mB = 0;
-    Mat3 iA = Mat3::Zero(), iB = Mat3::Zero();
-    // Spring gains (soft joints), per substep.
-    bool soft = false;
-    Real gammaLin = 0, betaLin = 0, gammaAng = 0, betaAng = 0;
-    bool angularFree = false;  ///< soft joint without angular spring: no angular rows
-    // Geometry of the current solve phase (refreshGeometry).
-    Side sa, sb;
-    Mat3 pointKinv = Mat3::Zero();  ///< (K + gamma)^-1 of the point rows
+    bool soft = false;           ///< spring joint (JointDef stiffness > 0)
+    bool angularFree = false;    ///< soft joint without angular spring: no angular rows
+    bool motor = false, hingeLimit = false;
+    Real mA = 0, mB = 0;         ///< inverse masses, 1/kg
+    Mat3 iA = Mat3::Zero(), iB = Mat3::Zero();  ///< inverse world inertia at the start of the step
+    Real gammaLin = 0, betaLin = 0, gammaAng = 0, betaAng = 0;  ///< spring gains, per substep
+    Real lower_rad = 0, upper_rad = 0;  ///< hinge angle or twist limits
+    Real swingLimit_rad = 0;
+    Real cosHalfSwing = 1;       ///< cos(swingLimit / 2): the swing row is solved beyond half the cone
+    Real motorSpeed_radps = 0, maxMotorImpulse = 0;  ///< hinge motor; impulse bound per substep, N m s
+    // ---- per solve phase -------------------------------------------------
+    /// Poses the geometry below was computed from (refreshGeometry skips a
+    /// joint whose bodies have not moved since by more than
+    /// kGeometryTolerance; invalid until the first refresh of the step).
+    bool geometryValid = false;
+    Vec3 refPositionA_m = Vec3::Zero(), refPositionB_m = Vec3::Zero();
+    Quat refOrientationA = Quat::Identity(), refOrientationB = Quat::Identity();
+    /// [rA]x, [rB]x of the anchor offsets from the centres (world, m): the
+    /// point rows' Cdot = vB - vA + [rA]x wA - [rB]x wB (a packed product
+    /// each; Eigen's cross3 went through the stack and stalled).
+    Mat4r SA = Mat4r::Zero(), SB = Mat4r::Zero();
+    Vec4r C = Vec4r::Zero();          ///< pB - pA, m
+    Mat4r pointKinv = Mat4r::Zero();  ///< (K + gamma)^-1 of the point rows (3x3, padded)
+    Mat4r MA = Mat4r::Zero(), MB = Mat4r::Zero();  ///< IA^-1 [rA]x, IB^-1 [rB]x: angular change per point impulse
     bool pointOk = false;
-    Real angle = 0;         ///< hinge angle or twist angle, rad
-    Real limitK = 0;        ///< limitAxis.(IA^-1 + IB^-1) limitAxis
-    Real swingAngle = 0, swingK = 0;
+    // Angular equality rows (hinge 2, fixed 3): axes, IA^-1 axis, IB^-1 axis,
+    // (K + gamma)^-1 of the block, position error per row.
+    int angularRows = 0;
+    Vec4r ax[3], axA[3], axB[3];
+    Mat4r angKinv = Mat4r::Zero();
+    Vec4r angC = Vec4r::Zero();
+    // Limit rows (hinge angle and motor, or twist): one axis.
+    Vec4r limitAxis = Vec4r::Zero(), limitA = Vec4r::Zero(), limitB = Vec4r::Zero();
+    Real limitK = 0;  ///< limitAxis.(IA^-1 + IB^-1) limitAxis
+    Real angle = 0;   ///< hinge angle or twist angle, rad
+    // Swing row (cone-twist).
+    Vec4r swingAxis = Vec4r::Zero(), swingA = Vec4r::Zero(), swingB = Vec4r::Zero();
+    Real swingK = 0, swingAngle = 0;
     bool swingActive = false;  ///< near enough to the cone for its row
-    // Axes of the last sweep (for the torque report).
-    Vec3 limitAxis = Vec3::Zero(), swingAxis = Vec3::Zero();
+    bool swingAxisOk = false;  ///< the two twist axes are not parallel (swingAxis defined)
   };
 
  private:
