@@ -1211,8 +1211,8 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   for (std::size_t i = 0; i < st.size(); ++i) {
     const BodyState& s = st[i];
     if (!s.dynamic) continue;
-    vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
-    vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
+    vel[s.id.index].linear = wide(Vec3(im.vk[i].cast<Real>()));
+    vel[s.id.index].angular = wide(Vec3(im.wk[i].cast<Real>()));
     im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
   }
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -1283,8 +1283,8 @@ double JointSystem::substepProject(SolverVelocity* vel) {
     if (!s.dynamic) continue;
     im.vk[i] += dv[i];
     im.wk[i] += dw[i];
-    vel[s.id.index].linear = wide(im.vk[i].cast<Real>());
-    vel[s.id.index].angular = wide(im.wk[i].cast<Real>());
+    vel[s.id.index].linear = wide(Vec3(im.vk[i].cast<Real>()));
+    vel[s.id.index].angular = wide(Vec3(im.wk[i].cast<Real>()));
     im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
   }
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
