@@ -93,6 +93,18 @@ TEST(ModelsCli, CarDrivesOverAMeshRamp) {
   EXPECT_GE(mesh["triangles_tested"].get<double>(), mesh["exact_tests"].get<double>()) << mesh;
 }
 
+// A car at full throttle (13 m/s at the tree) stops at the tree model's
+// trunk, not at the box around its crown, and stays upright.
+TEST(ModelsCli, CarStopsAtATreeTrunkNotAtItsCrown) {
+  const std::string dir = outDir("models_tree_crash");
+  auto r = runTumble(testMods() + " run models:tree_crash --report " + dir + "/r.json");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["error"]["nan_events"].get<int>(), 0);
+  EXPECT_LT(report["error"]["penetration_max_m"].get<double>(), 0.05);
+}
+
 TEST(ModelsCli, StaticModelsCollideThroughTheirMeshesOrBoxes) {
   const std::string dir = outDir("models_static");
   auto r = runTumble(testMods() + " run models:static_scenery --report " + dir + "/r.json");
