@@ -25,9 +25,14 @@
 //   angular "dot" row, u fixed in A, w fixed in B (1): C = u.w - c0,
 //     J_a = [ 0  (u x w)^T ],  J_b = [ 0  -(u x w)^T ],
 //     J' q' = (w_a x (w_a x u)).w + 2 (w_a x u).(w_b x w) + u.(w_b x (w_b x w)).
-//     Hinge: a2.b1 = 0 and a3.b1 = 0 (a_i, b_i the joint frames' axes in A
-//     and B: the +X axes stay aligned). Fixed: a1.b2, a2.b3, a3.b1 = 0.
-//     Cone: a1.b1 - cos(swingLimit) >= 0.
+//     Cone: a1.b1 - cos(swingLimit) >= 0 (a_i, b_i the joint frames' axes
+//     in A and B). Only for that limit: the row's J = u x w vanishes where
+//     u.w is extreme (see "Angular rows" below).
+//   angular "axis" row, n a unit axis fixed in A (1): C = an angle error
+//     about n, J_a = [ 0  n^T ],  J_b = [ 0  -n^T ],  J' q' = (w_a x n).(w_a - w_b).
+//     Hinge (the +X axes stay aligned): n = -a3, C = a2.b1 and n = a2,
+//     C = a3.b1. Fixed: n = a_i, C = -phi.a_i, phi the rotation vector of
+//     B's frame relative to A's (from their relative quaternion).
 //   angle limit row (1): hinge angle theta = atan2(b2.a3, b2.a2) about a1
 //     (twist: the twist part of the relative rotation, about n = the bisector
 //     of a1 and b1); C = theta - lower >= 0 or upper - theta >= 0,
@@ -608,6 +613,20 @@ struct RowBuilder {
     r.angular = true;
     return r;
   }
+  /// Angular equality row with a fixed direction n (a unit axis of A's joint
+  /// frame, turning with A) and error c: C' = n.(w_a - w_b),
+  /// J' q' = (w_a x n).(w_a - w_b). Unlike dot(), its Jacobian never
+  /// vanishes, however far the joint is twisted out of line (see "Angular
+  /// rows" at the top of the file).
+  void axis(const V3& n, double c) {
+    Row& r = add();
+    r.ja.tail<3>() = n;
+    r.jb.tail<3>() = -n;
+    r.c = c;
+    const V3 wA = wa();
+    r.jdq = wA.cross(n).dot(wA - wb());
+    r.angular = true;
+  }
   /// Limit on an angle theta about n with theta' = n.(w_b - w_a):
   /// sign +1: C = theta - lower >= 0; sign -1: C = upper - theta >= 0.
   void angleLimit(const V3& n, double c, double sign, const V3& wm) {
@@ -645,11 +664,19 @@ static void buildRows(const std::vector<JointDef*>& defs, const std::vector<std:
     const std::size_t first = rows.size();
     rb.ball(pa, pb);
     const V3 a1 = pa.F.col(0), a2 = pa.F.col(1), a3 = pa.F.col(2);
-    const V3 b1 = pb.F.col(0), b2 = pb.F.col(1), b3 = pb.F.col(2);
+    const V3 b1 = pb.F.col(0);
     switch (d.type) {
       case JointType::Ball: break;
-      case JointType::Hinge: rb.dot(a2, b1, 0), rb.dot(a3, b1, 0); break;
-      case JointType::Fixed: rb.dot(a1, b2, 0), rb.dot(a2, b3, 0), rb.dot(a3, b1, 0); break;
+      case JointType::Hinge: rb.axis(-a3, a2.dot(b1)), rb.axis(a2, a3.dot(b1)); break;
+      case JointType::Fixed: {
+        // phi: the rotation vector of B's frame relative to A's (in A's
+        // frame, the shorter way round); C = -phi along each axis.
+        Qd rel(pa.F.transpose() * pb.F);
+        if (rel.w() < 0) rel.coeffs() = -rel.coeffs();
+        const V3 phi = 2 * rel.vec();
+        rb.axis(a1, -phi.x()), rb.axis(a2, -phi.y()), rb.axis(a3, -phi.z());
+        break;
+      }
       case JointType::ConeTwist: break;
     }
     const bool soft = d.linearStiffness_Npm > 0;
