@@ -258,7 +258,6 @@ struct JointSystem::Impl {
   // ---- formulation A inside World::step (see "Time stepping") ----
   double h = 0;             ///< substep length, s
   bool inStep = false;      ///< prepared for the World step in progress
-  bool coupleContacts = false;  ///< some joint's two bodies collide: re-project between contact sweeps
   std::uint64_t serial = 0; ///< World steps prepared so far
   std::vector<V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
   std::vector<V3> dv, dw;   ///< per state: velocity change of a projection (substepProject)
@@ -292,7 +291,10 @@ class LagrangeSubsteps final : public ConstraintSolver {
     m_joints.substepPrepare(double(dt_s) / std::max(1, substeps));
   }
   void warmStart(SolverVelocity* vel, const Body* bodies) override { m_joints.substepSolve(vel, bodies); }
-  Real solve(SolverVelocity* vel, const Body*, bool) override { return Real(m_joints.substepProject(vel)); }
+  Real solve(SolverVelocity* vel, const Body*, bool useBias) override {
+    return Real(m_joints.substepProject(vel, useBias));
+  }
+  void beforeIntegrate(SolverVelocity* vel, const Body*) override { m_joints.substepProject(vel, true); }
   void finish(const World&) override { m_joints.substepFinish(); }
 
  private:
@@ -740,7 +742,7 @@ static int numberRows(JointSystem::Impl& im, Pred&& pred) {
 
 /// A = J W J^T over the numbered rows (lower triangle: for every body, every
 /// pair of its rows), then its LDL^T factorization.
-static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats) {
+static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance = 0) {
   JointSystem::Impl::Factor& f = im.factor;
   const std::vector<BodyState>& st = im.states;
   const std::vector<Row>& rows = im.rows;
@@ -762,6 +764,8 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
   }
   f.A.resize(m, m);
   f.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
+  if (compliance > 0)  // the diagonal is stored: the pattern does not change
+    for (int i = 0; i < m; ++i) f.A.coeffRef(i, i) *= 1 + compliance;
   // The symbolic analysis (elimination tree, column counts) depends only on
   // the pattern: redone only when the rows changed (joints, active limits).
   const int* outer = f.A.outerIndexPtr();
@@ -1128,14 +1132,6 @@ void JointSystem::substepPrepare(double h) {
   im.inStep = true;
   im.resultsPending = true;
   im.pendingBreaks.clear();
-  // Joints whose own two bodies still collide (JointDef has no filter; Lua's
-  // world.joint{collide = true}, C++ callers that do not call
-  // World::disableCollision): see substepProject.
-  im.coupleContacts = false;
-  for (std::size_t k = 0; k < im.ev.defs.size() && !im.coupleContacts; ++k) {
-    const JointDef& d = *im.ev.defs[k];
-    im.coupleContacts = !d.bodyB.isNull() && !m_world.collisionDisabled(d.bodyA, d.bodyB);
-  }
   im.vk.resize(im.states.size());
   im.wk.resize(im.states.size());
   if (im.memo.size() < im.slotOf.size()) im.memo.resize(im.slotOf.size());
@@ -1218,7 +1214,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
     m_stats.rows = m;
     if (m == 0) break;
-    assembleAndFactorize(im, m, m_stats);
+    assembleAndFactorize(im, m, m_stats, std::max(0.0, m_settings.compliance));
     im.rhs.resize(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
@@ -1245,23 +1241,18 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double JointSystem::substepProject(SolverVelocity* vel) {
+double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
   Impl& im = *m_impl;
-  if (!im.inStep || !im.coupleContacts || m_stats.rows == 0) return 0;
+  if (!im.inStep || m_stats.rows == 0) return 0;
   const auto t0 = std::chrono::steady_clock::now();
   const double h = im.h;
   std::vector<BodyState>& st = im.states;
-  // Only when some joint's own two bodies collide (coupleContacts): the
-  // contact between them pushes apart where the joint holds them together.
-  // Left to the next substep's solve, the two fight from substep to substep
-  // and blow up (a chain whose neighbours collide, 10 links released
-  // horizontally: NaN within 10 s); taking turns within the substep settles
-  // it (3.4 mm). Not in general: with it, 10 rag-dolls piled (adjacent
-  // parts filtered) blew up at 0.9 s; without it they stay finite (16.6 cm).
-  // The contacts changed the velocities since the joints' solve: with their
-  // impulses in Q, the multipliers change by J W J^T dmu = target - J v
-  // (the same factorization), and contacts and joints take turns (block
-  // Gauss-Seidel) between the contact sweeps.
+  // Before every contact sweep and after the last one (beforeIntegrate):
+  // the contacts changed the velocities since the joints' solve; with their
+  // impulses in Q, the multipliers change by J W J^T dmu = target - J v (the
+  // same factorization), and contacts and joints take turns (block
+  // Gauss-Seidel), the joints last before the positions move. See
+  // "Robustness" at the top of the file.
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st[i].dynamic) {
       im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
@@ -1270,7 +1261,13 @@ double JointSystem::substepProject(SolverVelocity* vel) {
   const int m = m_stats.rows;
   im.rhs.resize(m);
   for (const Row& r : im.rows)
-    if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+    if (r.index >= 0) {
+      // Relax phase: no position feedback, as for the contacts (the rows'
+      // Baumgarte velocity moved the positions already and must not stay in
+      // the velocity); a limit row still stops an approach.
+      const double target = useBias ? r.target : r.limit ? std::max(r.target, 0.0) : 0.0;
+      im.rhs[r.index] = target - rowVelocity(r, im.vk, im.wk);
+    }
   const Eigen::VectorXd& dmu = im.lambda = im.factor.ldlt.solve(im.rhs);
   double changed2 = 0, total2 = 0;
   std::vector<V3>& dv = im.dv;
