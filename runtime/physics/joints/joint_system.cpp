@@ -92,7 +92,9 @@
 // its m g L in 10 s and blew up with 4 substeps; implicit, it never gains
 // and holds with 1 substep. Limit rows carry max(C', 0): they stop the
 // approach inelastically. One factorization per substep (8 per step); the
-// pattern is analysed once and reused while the rows stay the same.
+// pattern is analysed once and reused while the rows stay the same. The
+// projections between and after the contact sweeps (see "Robustness")
+// reuse that factorization: one back-substitution each.
 // What changed, and why. Before, lambda was solved once per step and held
 // as a force through the 8 substeps: a free chain whose links do not touch
 // blew up (base:chain, WILL_FAIL), and the contacts were not in Q (10.3 cm
@@ -100,13 +102,10 @@
 // warm start, in v_k) are known forces, W comes from the substep's poses,
 // and: chain 3.7 mm, 100 links 2.2 cm, ragdoll_pile 2.6 cm, asleep.
 // Measured and rejected (ragdoll_pile, stairs, hit, 10 piled dolls):
-//   - re-projecting the joints between the contact sweeps (J W J^T dmu =
-//     target - J v after each sweep, block Gauss-Seidel with the contacts):
-//     1.6-1.9 cm on the pile, but 10 piled dolls blew up at 0.9 s, a head
-//     jittered at 9 cm/s on the stairs. It is kept only when a joint's own
-//     two bodies collide (substepProject), where without it the contact
-//     between them and the joint fight from substep to substep and blow up;
-//   - the same with W taken as the contact rows take it (step start): a
+//   - the joints solved once per substep only, before the contact sweeps
+//     (the version before "Robustness" below): see there;
+//   - the joints re-projected between the contact sweeps with W taken as
+//     the contact rows take it (step start): a
 //     chain link spun to 130 rad/s by a grab got joint impulses that do work;
 //   - q' after the contacts instead of q'_J (so that the contacts' impulse
 //     is a velocity, not a force): the pile and the hit blew up;
@@ -120,8 +119,63 @@
 //     ragdoll_hit, (3600, 120) that hit too, and (14400, 240) opened the
 //     stairs doll by 7.3 cm. The defaults (400, 40), those of the stability
 //     table, blew up none of these scenes.
-// Known limit: piles of many dolls (10) stay finite but their joints open by
-// 17 cm and some parts keep moving (B: 5 cm, at rest).
+//
+// ---- Robustness (piles of rag-dolls) ------------------------------------------------
+// Symptom: 10 dolls piled (ragdoll_pile --set count=10) blew up (NaN, anchor
+// error 1e8 m) or ended at 16.6 cm depending only on the rounding of the
+// World's gyroscopic step (LU or closed-form 3x3 inverse); 12 dolls, dt 1/30
+// or 4 substeps blew up as well. Traced body by body, two causes:
+//  1. The hinge and fixed joints' angular rows were "dot" rows, C = u.w
+//     with J = u x w. |J| = sin of the angle between u and w: where the
+//     joint is twisted so that u.w nears +-1 the row loses rank. In the pile
+//     elbows were bent 60-90 degrees off their axis (|J| down to 0.045); a
+//     row that cannot pull the joint back asks, through Baumgarte, for
+//     velocities ~ 1/|J|: a forearm spun to 46 rad/s at rest, then 275 rad/s,
+//     then NaN (t = 6.05 s). Fix: "axis" rows, J = an axis fixed in A (never
+//     zero), C = the same angle error (sin, or the relative rotation vector
+//     for the fixed joint). The cone limit keeps its dot row (u.w there is
+//     cos(swingLimit), far from +-1).
+//  2. The contacts, solved after the joints in each substep, had the last
+//     word on the velocities the positions move with, and the joints saw
+//     their impulses one substep late. A contact treats a part as free: a
+//     forearm's axial inertia is 0.95 g m^2, so friction at its surface spun
+//     it by 200-1000 rad/s in one substep (up to 1 rad of twist before the
+//     joints could answer). The joints then cancelled that as a known force,
+//     the contacts pushed harder: hard rows against hard contacts raise each
+//     other without limit, and the J'q' term, quadratic in w, turned the
+//     growth super-exponential (157, 561, 1.9e3, 4e4, 6e6 rad/s). Hinges
+//     ended 50-120 degrees off axis even where nothing blew up. Fix, three
+//     parts, each measured:
+//     - joints and contacts take turns between the contact sweeps (block
+//       Gauss-Seidel, substepProject; before, only when a joint's own two
+//       bodies collided), and the joints have the last word before the
+//       positions are integrated (ConstraintSolver::beforeIntegrate): 10
+//       dolls' hinges stay within 0.5 degree at rest (were 50-120);
+//     - the relax sweeps target J v = 0 (limits: no approach), like the
+//       contacts' relax: the Baumgarte velocity that moved the positions
+//       does not stay in the velocity (coupled with the Baumgarte target
+//       in the relax sweeps too: the stairs doll stuck on a step, its
+//       'tumbled down' expectation failed);
+//     - a compliance of 1 % of each row's J W J^T diagonal
+//       (JointSettings::compliance): where contacts and joints cannot both
+//       hold, the impulses stay bounded (without it: 12 dolls 10 cm, with
+//       6.8 cm; a sag of ~0.25 mm under gravity).
+//     The gyroscopic step was not the cause (it only picked which run blew
+//     up): the closed-form inverse stays. Clamping the J'q' term (its exact
+//     change over a substep, bounded in w) removed NaN but doubled the errors
+//     (13-26 cm); rejected. Coupling without the last word made the pile
+//     finite but left the hinges twisted and the stairs doll stuck.
+//   Measured (tumble run base:ragdoll_pile --set physics.joint_solver=
+//   lagrange --seconds 8, joint_error_max_m, closed-form / LU gyroscopic
+//   step): count 3..12: 1.2/1.2, 2.5/2.5, 3.2/3.2, 4.5/3.7, 5.7/5.3,
+//   7.3/5.3, 5.0/3.4, 6.4/4.9, 7.1/4.4, 6.8/5.4 cm; 10 dolls at dt 1/30
+//   15.6/10.8 cm, dt 1/120 6.2/5.3, 4 substeps 5.0/6.2, 16 substeps
+//   6.8/9.0; no NaN anywhere (before: 10, 12, dt 1/30 blew up).
+// Known limit: in piles of 7 or more dolls a part can still move at 0.1-0.5
+// m/s after 8 s (16 s too): a head hanging over the pile's edge swings on its
+// frictionless neck as a conical pendulum along the swing limit (no contact;
+// the limit row stops approach but nothing damps the motion along it; B's
+// soft rows damp it). Joint friction would be the fix.
 //
 // Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
 // semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
