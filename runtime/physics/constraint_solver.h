@@ -8,6 +8,7 @@
 //   per substep:
 //     warmStart(vel, bodies)               after gravity/forces, with the contacts' warm start
 //     solve(vel, bodies, true)  x N        before each contact solve sweep (position error fed back)
+//     beforeIntegrate(vel, bodies)         after the last sweep (optional; formulation A)
 //     -- positions integrated --
 //     solve(vel, bodies, false) x M        before each contact relax sweep (no bias)
 //   finish(world)                          after the substeps, before sleep
@@ -38,6 +39,14 @@ class ConstraintSolver {
   /// sweep changed nothing); the World stops a phase early only when both
   /// this and the contacts' residual are below WorldSettings::solverTolerance^2.
   virtual Real solve(SolverVelocity* vel, const Body* bodies, bool useBias) = 0;
+  /// After the solve phase's last contact sweep, just before the positions
+  /// are integrated with vel: a solver that must have the last word on the
+  /// velocities the positions move with does its final pass here. Default:
+  /// nothing (the impulse joints are solved with the contacts in solve()).
+  virtual void beforeIntegrate(SolverVelocity* vel, const Body* bodies) {
+    (void)vel;
+    (void)bodies;
+  }
   /// After the substeps (before sleep): read back forces, breaks.
   virtual void finish(const World& world) = 0;
 };

@@ -929,6 +929,7 @@ void World::step(Real dt) {
       const Real r = contacts.solve(st.vel, st.pseudo, ss, true);
       if (r <= tol2 * contacts.lastMagnitude() && jr <= tol2) break;  // converged: see WorldSettings::solverTolerance
     }
+    if (joints) joints->beforeIntegrate(st.vel.data(), m_bodies.data());
     integratePositions(ss.h);
     if (m_settings.relaxIterations > 0) contacts.updateSeparations(st.pose);
     for (int it = 0; it < m_settings.relaxIterations; ++it) {

@@ -43,7 +43,8 @@ function scenario.on_finish(ctx)
   expect("every body finite", finite, {min = 1})
   -- Joints hold (m): the largest anchor separation of the run. Formulation
   -- A (joint_solver = "lagrange") solves in every substep with the contacts'
-  -- impulses as known forces: 2.6 cm with 3 dolls piled (17 cm with 10).
+  -- impulses as known forces, taking turns with the contact sweeps: 1.2 cm
+  -- with 3 dolls piled (6.4 cm with 10).
   -- Formulation B (--set physics.joint_solver=impulse) solves joints with
   -- the contacts: 1.7 cm; tests/scenarios hold both to the issue's 5 cm
   -- (--set max_error=0.05).

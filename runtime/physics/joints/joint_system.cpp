@@ -25,9 +25,14 @@
 //   angular "dot" row, u fixed in A, w fixed in B (1): C = u.w - c0,
 //     J_a = [ 0  (u x w)^T ],  J_b = [ 0  -(u x w)^T ],
 //     J' q' = (w_a x (w_a x u)).w + 2 (w_a x u).(w_b x w) + u.(w_b x (w_b x w)).
-//     Hinge: a2.b1 = 0 and a3.b1 = 0 (a_i, b_i the joint frames' axes in A
-//     and B: the +X axes stay aligned). Fixed: a1.b2, a2.b3, a3.b1 = 0.
-//     Cone: a1.b1 - cos(swingLimit) >= 0.
+//     Cone: a1.b1 - cos(swingLimit) >= 0 (a_i, b_i the joint frames' axes
+//     in A and B). Only for that limit: the row's J = u x w vanishes where
+//     u.w is extreme (see "Angular rows" below).
+//   angular "axis" row, n a unit axis fixed in A (1): C = an angle error
+//     about n, J_a = [ 0  n^T ],  J_b = [ 0  -n^T ],  J' q' = (w_a x n).(w_a - w_b).
+//     Hinge (the +X axes stay aligned): n = -a3, C = a2.b1 and n = a2,
+//     C = a3.b1. Fixed: n = a_i, C = -phi.a_i, phi the rotation vector of
+//     B's frame relative to A's (from their relative quaternion).
 //   angle limit row (1): hinge angle theta = atan2(b2.a3, b2.a2) about a1
 //     (twist: the twist part of the relative rotation, about n = the bisector
 //     of a1 and b1); C = theta - lower >= 0 or upper - theta >= 0,
@@ -87,7 +92,9 @@
 // its m g L in 10 s and blew up with 4 substeps; implicit, it never gains
 // and holds with 1 substep. Limit rows carry max(C', 0): they stop the
 // approach inelastically. One factorization per substep (8 per step); the
-// pattern is analysed once and reused while the rows stay the same.
+// pattern is analysed once and reused while the rows stay the same. The
+// projections between and after the contact sweeps (see "Robustness")
+// reuse that factorization: one back-substitution each.
 // What changed, and why. Before, lambda was solved once per step and held
 // as a force through the 8 substeps: a free chain whose links do not touch
 // blew up (base:chain, WILL_FAIL), and the contacts were not in Q (10.3 cm
@@ -95,13 +102,10 @@
 // warm start, in v_k) are known forces, W comes from the substep's poses,
 // and: chain 3.7 mm, 100 links 2.2 cm, ragdoll_pile 2.6 cm, asleep.
 // Measured and rejected (ragdoll_pile, stairs, hit, 10 piled dolls):
-//   - re-projecting the joints between the contact sweeps (J W J^T dmu =
-//     target - J v after each sweep, block Gauss-Seidel with the contacts):
-//     1.6-1.9 cm on the pile, but 10 piled dolls blew up at 0.9 s, a head
-//     jittered at 9 cm/s on the stairs. It is kept only when a joint's own
-//     two bodies collide (substepProject), where without it the contact
-//     between them and the joint fight from substep to substep and blow up;
-//   - the same with W taken as the contact rows take it (step start): a
+//   - the joints solved once per substep only, before the contact sweeps
+//     (the version before "Robustness" below): see there;
+//   - the joints re-projected between the contact sweeps with W taken as
+//     the contact rows take it (step start): a
 //     chain link spun to 130 rad/s by a grab got joint impulses that do work;
 //   - q' after the contacts instead of q'_J (so that the contacts' impulse
 //     is a velocity, not a force): the pile and the hit blew up;
@@ -115,8 +119,70 @@
 //     ragdoll_hit, (3600, 120) that hit too, and (14400, 240) opened the
 //     stairs doll by 7.3 cm. The defaults (400, 40), those of the stability
 //     table, blew up none of these scenes.
-// Known limit: piles of many dolls (10) stay finite but their joints open by
-// 17 cm and some parts keep moving (B: 5 cm, at rest).
+//
+// ---- Robustness (piles of rag-dolls) ------------------------------------------------
+// Symptom: 10 dolls piled (ragdoll_pile --set count=10) blew up (NaN, anchor
+// error 1e8 m) or ended at 16.6 cm depending only on the rounding of the
+// World's gyroscopic step (LU or closed-form 3x3 inverse); 12 dolls, dt 1/30
+// or 4 substeps blew up as well. Traced body by body, two causes:
+//  1. The hinge and fixed joints' angular rows were "dot" rows, C = u.w
+//     with J = u x w. |J| = sin of the angle between u and w: where the
+//     joint is twisted so that u.w nears +-1 the row loses rank. In the pile
+//     elbows were bent 60-90 degrees off their axis (|J| down to 0.045); a
+//     row that cannot pull the joint back asks, through Baumgarte, for
+//     velocities ~ 1/|J|: a forearm spun to 46 rad/s at rest, then 275 rad/s,
+//     then NaN (t = 6.05 s). Fix: "axis" rows, J = an axis fixed in A (never
+//     zero), C = the same angle error (sin, or the relative rotation vector
+//     for the fixed joint). The cone limit keeps its dot row (u.w there is
+//     cos(swingLimit), far from +-1).
+//  2. The contacts, solved after the joints in each substep, had the last
+//     word on the velocities the positions move with, and the joints saw
+//     their impulses one substep late. A contact treats a part as free: a
+//     forearm's axial inertia is 0.95 g m^2, so friction at its surface spun
+//     it by 200-1000 rad/s in one substep (up to 1 rad of twist before the
+//     joints could answer). The joints then cancelled that as a known force,
+//     the contacts pushed harder: hard rows against hard contacts raise each
+//     other without limit, and the J'q' term, quadratic in w, turned the
+//     growth super-exponential (157, 561, 1.9e3, 4e4, 6e6 rad/s). Hinges
+//     ended 50-120 degrees off axis even where nothing blew up. Fix, three
+//     parts, each measured:
+//     - joints and contacts take turns between the contact sweeps (block
+//       Gauss-Seidel, substepProject; before, only when a joint's own two
+//       bodies collided), and the joints have the last word before the
+//       positions are integrated (ConstraintSolver::beforeIntegrate): 10
+//       dolls' hinges stay within 0.5 degree at rest (were 50-120);
+//     - the relax sweeps target J v = 0 (limits: no approach), like the
+//       contacts' relax: the Baumgarte velocity that moved the positions
+//       does not stay in the velocity (coupled with the Baumgarte target
+//       in the relax sweeps too: the stairs doll stuck on a step, its
+//       'tumbled down' expectation failed);
+//     - a compliance of 1 % of each row's J W J^T diagonal
+//       (JointSettings::compliance): where contacts and joints cannot both
+//       hold, the impulses stay bounded (without it: 12 dolls 10 cm, with
+//       6.8 cm; base:chain 5.7 mm, with 3.7 mm; ragdoll_stairs not at rest,
+//       0.19 m/s). Its cost: relative to a row's own mass, not to the load,
+//       it lets long hanging chains sag (tumble_bench_joints, 100 / 1000
+//       links: 55 um / 21 um -> 7.7 mm / 13 cm). Applied only in substeps
+//       where contacts touched a jointed body, the chains were back to 21 um
+//       but the stairs doll did not come to rest at dt 1/60 (it did at
+//       0.0166 and 0.0167 s: its final pose decides, see Known limit).
+//       Open: a compliance scaled by the row's load.
+//     The gyroscopic step was not the cause (it only picked which run blew
+//     up): the closed-form inverse stays. Clamping the J'q' term (its exact
+//     change over a substep, bounded in w) removed NaN but doubled the errors
+//     (13-26 cm); rejected. Coupling without the last word made the pile
+//     finite but left the hinges twisted and the stairs doll stuck.
+//   Measured (tumble run base:ragdoll_pile --set physics.joint_solver=
+//   lagrange --seconds 8, joint_error_max_m, closed-form / LU gyroscopic
+//   step): count 3..12: 1.2/1.2, 2.5/2.5, 3.2/3.2, 4.5/3.7, 5.7/5.3,
+//   7.3/5.3, 5.0/3.4, 6.4/4.9, 7.1/4.4, 6.8/5.4 cm; 10 dolls at dt 1/30
+//   15.6/10.8 cm, dt 1/120 6.2/5.3, 4 substeps 5.0/6.2, 16 substeps
+//   6.8/9.0; no NaN anywhere (before: 10, 12, dt 1/30 blew up).
+// Known limit: in piles of 7 or more dolls a part can still move at 0.1-0.5
+// m/s after 8 s (16 s too): a head hanging over the pile's edge swings on its
+// frictionless neck as a conical pendulum along the swing limit (no contact;
+// the limit row stops approach but nothing damps the motion along it; B's
+// soft rows damp it). Joint friction would be the fix.
 //
 // Alone (integrateFree): explicit Euler, the explicit trapezoid rule (Heun),
 // semi-implicit Euler or RK4 on the full state (x, q, v, w) with the
@@ -253,7 +319,6 @@ struct JointSystem::Impl {
   // ---- formulation A inside World::step (see "Time stepping") ----
   double h = 0;             ///< substep length, s
   bool inStep = false;      ///< prepared for the World step in progress
-  bool coupleContacts = false;  ///< some joint's two bodies collide: re-project between contact sweeps
   std::uint64_t serial = 0; ///< World steps prepared so far
   std::vector<V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
   std::vector<V3> dv, dw;   ///< per state: velocity change of a projection (substepProject)
@@ -287,7 +352,10 @@ class LagrangeSubsteps final : public ConstraintSolver {
     m_joints.substepPrepare(double(dt_s) / std::max(1, substeps));
   }
   void warmStart(SolverVelocity* vel, const Body* bodies) override { m_joints.substepSolve(vel, bodies); }
-  Real solve(SolverVelocity* vel, const Body*, bool) override { return Real(m_joints.substepProject(vel)); }
+  Real solve(SolverVelocity* vel, const Body*, bool useBias) override {
+    return Real(m_joints.substepProject(vel, useBias));
+  }
+  void beforeIntegrate(SolverVelocity* vel, const Body*) override { m_joints.substepProject(vel, true); }
   void finish(const World&) override { m_joints.substepFinish(); }
 
  private:
@@ -608,6 +676,20 @@ struct RowBuilder {
     r.angular = true;
     return r;
   }
+  /// Angular equality row with a fixed direction n (a unit axis of A's joint
+  /// frame, turning with A) and error c: C' = n.(w_a - w_b),
+  /// J' q' = (w_a x n).(w_a - w_b). Unlike dot(), its Jacobian never
+  /// vanishes, however far the joint is twisted out of line (see "Angular
+  /// rows" at the top of the file).
+  void axis(const V3& n, double c) {
+    Row& r = add();
+    r.ja.tail<3>() = n;
+    r.jb.tail<3>() = -n;
+    r.c = c;
+    const V3 wA = wa();
+    r.jdq = wA.cross(n).dot(wA - wb());
+    r.angular = true;
+  }
   /// Limit on an angle theta about n with theta' = n.(w_b - w_a):
   /// sign +1: C = theta - lower >= 0; sign -1: C = upper - theta >= 0.
   void angleLimit(const V3& n, double c, double sign, const V3& wm) {
@@ -645,11 +727,19 @@ static void buildRows(const std::vector<JointDef*>& defs, const std::vector<std:
     const std::size_t first = rows.size();
     rb.ball(pa, pb);
     const V3 a1 = pa.F.col(0), a2 = pa.F.col(1), a3 = pa.F.col(2);
-    const V3 b1 = pb.F.col(0), b2 = pb.F.col(1), b3 = pb.F.col(2);
+    const V3 b1 = pb.F.col(0);
     switch (d.type) {
       case JointType::Ball: break;
-      case JointType::Hinge: rb.dot(a2, b1, 0), rb.dot(a3, b1, 0); break;
-      case JointType::Fixed: rb.dot(a1, b2, 0), rb.dot(a2, b3, 0), rb.dot(a3, b1, 0); break;
+      case JointType::Hinge: rb.axis(-a3, a2.dot(b1)), rb.axis(a2, a3.dot(b1)); break;
+      case JointType::Fixed: {
+        // phi: the rotation vector of B's frame relative to A's (in A's
+        // frame, the shorter way round); C = -phi along each axis.
+        Qd rel(pa.F.transpose() * pb.F);
+        if (rel.w() < 0) rel.coeffs() = -rel.coeffs();
+        const V3 phi = 2 * rel.vec();
+        rb.axis(a1, -phi.x()), rb.axis(a2, -phi.y()), rb.axis(a3, -phi.z());
+        break;
+      }
       case JointType::ConeTwist: break;
     }
     const bool soft = d.linearStiffness_Npm > 0;
@@ -713,7 +803,7 @@ static int numberRows(JointSystem::Impl& im, Pred&& pred) {
 
 /// A = J W J^T over the numbered rows (lower triangle: for every body, every
 /// pair of its rows), then its LDL^T factorization.
-static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats) {
+static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance = 0) {
   JointSystem::Impl::Factor& f = im.factor;
   const std::vector<BodyState>& st = im.states;
   const std::vector<Row>& rows = im.rows;
@@ -735,6 +825,8 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
   }
   f.A.resize(m, m);
   f.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
+  if (compliance > 0)  // the diagonal is stored: the pattern does not change
+    for (int i = 0; i < m; ++i) f.A.coeffRef(i, i) *= 1 + compliance;
   // The symbolic analysis (elimination tree, column counts) depends only on
   // the pattern: redone only when the rows changed (joints, active limits).
   const int* outer = f.A.outerIndexPtr();
@@ -1101,14 +1193,6 @@ void JointSystem::substepPrepare(double h) {
   im.inStep = true;
   im.resultsPending = true;
   im.pendingBreaks.clear();
-  // Joints whose own two bodies still collide (JointDef has no filter; Lua's
-  // world.joint{collide = true}, C++ callers that do not call
-  // World::disableCollision): see substepProject.
-  im.coupleContacts = false;
-  for (std::size_t k = 0; k < im.ev.defs.size() && !im.coupleContacts; ++k) {
-    const JointDef& d = *im.ev.defs[k];
-    im.coupleContacts = !d.bodyB.isNull() && !m_world.collisionDisabled(d.bodyA, d.bodyB);
-  }
   im.vk.resize(im.states.size());
   im.wk.resize(im.states.size());
   if (im.memo.size() < im.slotOf.size()) im.memo.resize(im.slotOf.size());
@@ -1191,7 +1275,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
     m_stats.rows = m;
     if (m == 0) break;
-    assembleAndFactorize(im, m, m_stats);
+    assembleAndFactorize(im, m, m_stats, std::max(0.0, m_settings.compliance));
     im.rhs.resize(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
@@ -1218,23 +1302,18 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double JointSystem::substepProject(SolverVelocity* vel) {
+double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
   Impl& im = *m_impl;
-  if (!im.inStep || !im.coupleContacts || m_stats.rows == 0) return 0;
+  if (!im.inStep || m_stats.rows == 0) return 0;
   const auto t0 = std::chrono::steady_clock::now();
   const double h = im.h;
   std::vector<BodyState>& st = im.states;
-  // Only when some joint's own two bodies collide (coupleContacts): the
-  // contact between them pushes apart where the joint holds them together.
-  // Left to the next substep's solve, the two fight from substep to substep
-  // and blow up (a chain whose neighbours collide, 10 links released
-  // horizontally: NaN within 10 s); taking turns within the substep settles
-  // it (3.4 mm). Not in general: with it, 10 rag-dolls piled (adjacent
-  // parts filtered) blew up at 0.9 s; without it they stay finite (16.6 cm).
-  // The contacts changed the velocities since the joints' solve: with their
-  // impulses in Q, the multipliers change by J W J^T dmu = target - J v
-  // (the same factorization), and contacts and joints take turns (block
-  // Gauss-Seidel) between the contact sweeps.
+  // Before every contact sweep and after the last one (beforeIntegrate):
+  // the contacts changed the velocities since the joints' solve; with their
+  // impulses in Q, the multipliers change by J W J^T dmu = target - J v (the
+  // same factorization), and contacts and joints take turns (block
+  // Gauss-Seidel), the joints last before the positions move. See
+  // "Robustness" at the top of the file.
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st[i].dynamic) {
       im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
@@ -1243,7 +1322,13 @@ double JointSystem::substepProject(SolverVelocity* vel) {
   const int m = m_stats.rows;
   im.rhs.resize(m);
   for (const Row& r : im.rows)
-    if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
+    if (r.index >= 0) {
+      // Relax phase: no position feedback, as for the contacts (the rows'
+      // Baumgarte velocity moved the positions already and must not stay in
+      // the velocity); a limit row still stops an approach.
+      const double target = useBias ? r.target : r.limit ? std::max(r.target, 0.0) : 0.0;
+      im.rhs[r.index] = target - rowVelocity(r, im.vk, im.wk);
+    }
   const Eigen::VectorXd& dmu = im.lambda = im.factor.ldlt.solve(im.rhs);
   double changed2 = 0, total2 = 0;
   std::vector<V3>& dv = im.dv;
