@@ -272,6 +272,7 @@ struct Row {
   bool soft = false;     ///< explicit spring, not solved
   bool angular = false;  ///< counts as torque for breaking
   bool active = true;
+  bool touched = false;  ///< substeps: its jointed assembly touches a contact (JointSettings::compliance)
   int index = -1;  ///< position in the solved system
   double lambda = 0;  ///< multiplier: constraint force (N) or torque (N m) of the row
   double target = 0;  ///< substeps: J v the row's velocity must end the substep with
@@ -315,6 +316,7 @@ struct JointSystem::Impl {
     std::vector<int> patternOuter, patternInner;
   };
   Factor factor;
+  std::vector<double> inverseDiagonal, inverseValues;  ///< (A^-1)_ii and A^-1 on L's pattern (compliance)
 
   // ---- formulation A inside World::step (see "Time stepping") ----
   double h = 0;             ///< substep length, s
@@ -329,8 +331,13 @@ struct JointSystem::Impl {
     std::uint32_t generation = 0;
     std::uint64_t serial = 0;
     V3 v = V3::Zero(), w = V3::Zero();
+    /// The World step in which a contact sweep last changed the body's
+    /// velocity (0: never).
+    std::uint64_t contactSerial = 0;
   };
   std::vector<Memo> memo;
+  std::vector<int> assembly;          ///< per state: union-find parent over the joints (compliance)
+  std::vector<char> assemblyTouched;  ///< per assembly root: a contact moved one of its bodies
   std::vector<JointBreakEvent> pendingBreaks;  ///< found in the last World step, removed before the next
   bool resultsPending = false;                 ///< forces of the last World step not yet recorded
 };
@@ -801,6 +808,40 @@ static int numberRows(JointSystem::Impl& im, Pred&& pred) {
   return m;
 }
 
+/// The diagonal of A^-1 from A's factor L D L^T (Takahashi's recurrence,
+/// Z = A^-1 = D^-1 L^-1 + (I - L^T) Z, evaluated only on the pattern of L:
+/// for a chordal pattern, as ours are, every Z_jk it needs is on it). From
+/// the last column back: Z_ji = -sum_k L_ki Z_jk, Z_ii = 1 / D_i - sum_k
+/// L_ki Z_ki, k over column i of L. Cost O(sum of squared column counts):
+/// linear in the links for chains and trees, like the factorization.
+static void inverseDiagonal(const JointSystem::Impl::Factor& f, int m, std::vector<double>& zdiag,
+                            std::vector<double>& zval) {
+  const auto& L = f.ldlt.matrixL().nestedExpression();  // strictly lower, column-major, rows sorted
+  const auto& D = f.ldlt.vectorD();
+  const int* Lp = L.outerIndexPtr();
+  const int* Li = L.innerIndexPtr();
+  const double* Lx = L.valuePtr();
+  zdiag.assign(std::size_t(m), 0);
+  zval.assign(std::size_t(Lp[m]), 0);
+  auto z = [&](int j, int k) {
+    if (j == k) return zdiag[std::size_t(j)];
+    const int col = std::min(j, k), row = std::max(j, k);
+    const int* end = Li + Lp[col + 1];
+    const int* it = std::lower_bound(Li + Lp[col], end, row);
+    return it != end && *it == row ? zval[std::size_t(it - Li)] : 0.0;
+  };
+  for (int i = m - 1; i >= 0; --i) {
+    double diag = 1 / D[i];
+    for (int p = Lp[i]; p < Lp[i + 1]; ++p) {
+      double sum = 0;
+      for (int q = Lp[i]; q < Lp[i + 1]; ++q) sum += Lx[q] * z(Li[p], Li[q]);
+      zval[std::size_t(p)] = -sum;
+    }
+    for (int p = Lp[i]; p < Lp[i + 1]; ++p) diag -= Lx[p] * zval[std::size_t(p)];
+    zdiag[std::size_t(i)] = diag;
+  }
+}
+
 /// A = J W J^T over the numbered rows (lower triangle: for every body, every
 /// pair of its rows), then its LDL^T factorization.
 static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance = 0) {
@@ -825,8 +866,6 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
   }
   f.A.resize(m, m);
   f.A.setFromTriplets(im.triplets.begin(), im.triplets.end());
-  if (compliance > 0)  // the diagonal is stored: the pattern does not change
-    for (int i = 0; i < m; ++i) f.A.coeffRef(i, i) *= 1 + compliance;
   // The symbolic analysis (elimination tree, column counts) depends only on
   // the pattern: redone only when the rows changed (joints, active limits).
   const int* outer = f.A.outerIndexPtr();
@@ -850,6 +889,25 @@ static void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& 
     double trace = 0;
     for (int i = 0; i < m; ++i) trace += f.A.coeff(i, i);
     for (int i = 0; i < m; ++i) f.A.coeffRef(i, i) += 1e-9 * trace / m;
+    f.ldlt.factorize(f.A);
+    ++stats.factorizations;
+  }
+  if (compliance > 0) {
+    // Compliance relative to the whole system along each row: row i's
+    // diagonal grows by compliance / (A^-1)_ii, where 1 / (A^-1)_ii is the
+    // inverse effective mass the row sees with every other row holding (the
+    // Schur complement). For the top link of a hanging chain that is the
+    // whole chain's mass, not the link's: see "Robustness" at the top.
+    std::vector<double>& zdiag = im.inverseDiagonal;
+    inverseDiagonal(f, m, zdiag, im.inverseValues);
+    for (const Row& r : im.rows) {
+      if (r.index < 0) continue;
+      const int i = r.index;
+      const double aii = f.A.coeff(i, i);
+      const double own = compliance * aii;
+      const double system = zdiag[i] > 0 && std::isfinite(zdiag[i]) ? std::min(compliance / zdiag[i], own) : own;
+      f.A.coeffRef(i, i) = aii + (r.touched ? own : system);  // the diagonal is stored: same pattern
+    }
     f.ldlt.factorize(f.A);
     ++stats.factorizations;
   }
@@ -1199,6 +1257,39 @@ void JointSystem::substepPrepare(double h) {
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// Marks the rows of every jointed assembly (bodies connected by joints)
+/// one of whose bodies a contact moved in this World step or the last (see
+/// JointSettings::compliance). Returns whether a solved row became touched.
+static bool markTouchedRows(JointSystem::Impl& im) {
+  const std::vector<BodyState>& st = im.states;
+  std::vector<int>& root = im.assembly;
+  root.resize(st.size());
+  for (std::size_t i = 0; i < st.size(); ++i) root[i] = int(i);
+  auto find = [&](int i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  for (const std::pair<int, int>& ab : im.ev.bodies)
+    if (ab.first >= 0 && ab.second >= 0 && st[ab.first].dynamic && st[ab.second].dynamic)
+      root[find(ab.first)] = find(ab.second);
+  std::vector<char>& touched = im.assemblyTouched;
+  touched.assign(st.size(), 0);
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    if (!st[i].dynamic) continue;
+    const JointSystem::Impl::Memo& memo = im.memo[st[i].id.index];
+    if (memo.generation == st[i].id.generation && memo.contactSerial > 0 && memo.contactSerial + 1 >= im.serial)
+      touched[find(int(i))] = 1;
+  }
+  bool newly = false;
+  for (Row& r : im.rows) {
+    const bool t = (r.a >= 0 && st[r.a].dynamic && touched[find(r.a)]) ||
+                   (r.b >= 0 && st[r.b].dynamic && touched[find(r.b)]);
+    if (t && !r.touched && r.index >= 0) newly = true;
+    r.touched = t;
+  }
+  return newly;
+}
+
 /// J q' of one row for the velocities v, w (per state; -1 = the world, at rest).
 static double rowVelocity(const Row& r, const std::vector<V3>& v, const std::vector<V3>& w) {
   double c = 0;
@@ -1270,6 +1361,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     r.target = (carried - h * (r.jdq + ks * r.c)) / (1 + h * kd + h * h * ks);
     if (!r.soft) r.lambda = 0;
   }
+  markTouchedRows(im);
   const int maxIter = std::max(0, m_settings.maxActiveSetIterations);
   for (int iter = 0;; ++iter) {
     const int m = numberRows(im, [](const Row& r) { return !r.soft && r.active; });
@@ -1297,7 +1389,9 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     if (!s.dynamic) continue;
     vel[s.id.index].linear = wide(Vec3(im.vk[i].cast<Real>()));
     vel[s.id.index].angular = wide(Vec3(im.wk[i].cast<Real>()));
-    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
+    Impl::Memo& mem = im.memo[s.id.index];
+    mem = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i],
+                     mem.generation == s.id.generation ? mem.contactSerial : 0};
   }
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -1314,12 +1408,27 @@ double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
   // same factorization), and contacts and joints take turns (block
   // Gauss-Seidel), the joints last before the positions move. See
   // "Robustness" at the top of the file.
+  // A body whose velocity is not what the joints wrote last was moved by a
+  // contact sweep since.
+  bool touchedNow = false;
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st[i].dynamic) {
-      im.vk[i] = narrow(vel[st[i].id.index].linear).cast<double>();
-      im.wk[i] = narrow(vel[st[i].id.index].angular).cast<double>();
+      const V3 v = narrow(vel[st[i].id.index].linear).cast<double>();
+      const V3 w = narrow(vel[st[i].id.index].angular).cast<double>();
+      if (v != V3(im.vk[i].cast<Real>().cast<double>()) || w != V3(im.wk[i].cast<Real>().cast<double>())) {
+        Impl::Memo& memo = im.memo[st[i].id.index];
+        if (memo.contactSerial != im.serial) touchedNow = true;
+        memo.contactSerial = im.serial;
+      }
+      im.vk[i] = v;
+      im.wk[i] = w;
     }
   const int m = m_stats.rows;
+  // An assembly a contact touched for the first time (a doll landing) gets
+  // its compliance at once, not in the next substep: the impact is where
+  // joints and contacts fight hardest.
+  if (touchedNow && m_settings.compliance > 0 && markTouchedRows(im))
+    assembleAndFactorize(im, m, m_stats, m_settings.compliance);
   im.rhs.resize(m);
   for (const Row& r : im.rows)
     if (r.index >= 0) {
@@ -1370,7 +1479,9 @@ double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
     im.wk[i] += dw[i];
     vel[s.id.index].linear = wide(Vec3(im.vk[i].cast<Real>()));
     vel[s.id.index].angular = wide(Vec3(im.wk[i].cast<Real>()));
-    im.memo[s.id.index] = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i]};
+    Impl::Memo& mem = im.memo[s.id.index];
+    mem = Impl::Memo{s.id.generation, im.serial, im.vk[i], im.wk[i],
+                     mem.generation == s.id.generation ? mem.contactSerial : 0};
   }
   m_stats.solveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return total2 > 0 ? changed2 / total2 : 0;
