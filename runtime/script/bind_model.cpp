@@ -21,20 +21,6 @@ namespace tumble::script {
 
 namespace {
 
-void checkOptionFields(lua_State* L, int t, const char* fn, const std::set<std::string>& allowed) {
-  lua_pushnil(L);
-  while (lua_next(L, t) != 0) {
-    lua_pop(L, 1);
-    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    if (allowed.count(key) == 0) {
-      lua_pop(L, 1);
-      std::string valid;
-      for (const auto& f : allowed) valid += (valid.empty() ? "" : ", ") + f;
-      throw LuaArgError(std::string(fn) + ": unknown option '" + key + "' (valid: " + valid + ")");
-    }
-  }
-}
-
 Quat readRotation(lua_State* L, int t) {
   Vec3 rv;
   if (!optVec3Field(L, t, "rotation", &rv)) return Quat::Identity();

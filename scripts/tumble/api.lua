@@ -415,6 +415,40 @@ function OdeSystem:energy() end
 ---@return table # {steps, derivative_calls, jacobian_calls, newton_failures, lua_seconds, method}
 function OdeSystem:stats() end
 
+---@class RagdollPartDef
+---@field name string unique; the key of the part in the returned table
+---@field shape? string "box" (default) or "capsule"
+---@field size? Vec3Arg box: full size along the part's axes, m
+---@field radius? number capsule: radius, m
+---@field length? number capsule: core length between the caps' centres, along the part's Y, m (default 0)
+---@field mass number kg, > 0
+---@field position Vec3Arg centre of mass in the doll's frame (Y up, facing +Z, feet at y = 0), m
+---@field rotation? Vec3Arg the part's axes in the doll's frame: rotation vector, rad
+
+---@class RagdollJointDef
+---@field name? string for messages
+---@field type? string "ball", "hinge", "cone_twist" (default) or "fixed"
+---@field child string the part that hangs from the joint (a part's name)
+---@field parent string the part it hangs from
+---@field anchor Vec3Arg the joint point in the doll's frame, m
+---@field axis? Vec3Arg hinge axis, or twist axis pointing from the parent into the child, doll's frame (default {1, 0, 0})
+---@field lower_angle? number hinge: lower limit, rad (default -pi/2)
+---@field upper_angle? number hinge: upper limit, rad (default pi/2)
+---@field swing_limit? number cone_twist: largest swing from the axis, rad in (0, pi) (default pi/4)
+---@field twist_lower? number cone_twist: rad in (-pi, 0] (default -pi/8)
+---@field twist_upper? number cone_twist: rad in [0, pi) (default pi/8)
+---@field break_force? number the joint breaks above this force, N (0, the default: never)
+
+---@class RagdollDef
+---@field position? Vec3Arg where the doll's frame goes, m (default {0, 0, 0}; standing, the feet are there)
+---@field rotation? Vec3Arg turns the doll's frame: rotation vector, rad
+---@field scale? number every length times this, every mass times its cube (default 1)
+---@field height? number the default human only: standing height before scale, m (default 1.75)
+---@field mass? number the default human only: total mass before scale, kg (default 75)
+---@field parts? RagdollPartDef[] a doll of your own: its parts (then joints is required)
+---@field joints? RagdollJointDef[] its joints (parts joined by one do not collide with each other)
+---@field friction? number every part's friction (default 0.6)
+
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
 local Random = {}
@@ -1584,19 +1618,22 @@ function world.remove(body) end
 ---@param color? Vec3Arg linear RGB 0..1 (default yellow)
 function draw_line(a, b, color) end
 
----Creates the default human (11 parts, 10 joints; Winter's anthropometric
----table, see ragdoll.cpp) with its feet at `position` when standing.
----Adjacent parts do not collide; the parts sleep and wake together.
---- (m, default 1.75), mass? number (kg, default 75), rotation? Vec3Arg
---- rotation vector (axis times angle, rad)
---- upper_arm_l, lower_arm_l, upper_arm_r, lower_arm_r, upper_leg_l,
---- lower_leg_l, upper_leg_r, lower_leg_r)
+---Creates a rag-doll: the default human (11 parts, 10 joints; Winter's
+---anthropometric table, see ragdoll.cpp), or the parts and joints you
+---describe. Adjacent parts (joined by a joint) do not collide; the others
+---do; the parts sleep and wake together.
 ---
 ---```lua
 ---local doll = spawn_ragdoll{position = {0, 2, 0}, rotation = {1.5, 0, 0}}
+---local child = spawn_ragdoll{position = {2, 0, 0}, scale = 0.6}
+---local pendulum = spawn_ragdoll{position = {0, 3, 0}, parts = {
+---    {name = "top", shape = "box", size = {0.2, 0.2, 0.2}, mass = 2, position = {0, 0, 0}},
+---    {name = "arm", shape = "capsule", radius = 0.05, length = 0.8, mass = 1, position = {0, -0.5, 0}}},
+---  joints = {{type = "hinge", child = "arm", parent = "top", anchor = {0, 0, 0}, axis = {0, 0, 1},
+---            lower_angle = -1, upper_angle = 1}}}
 ---```
----@param def table position? Vec3Arg (m, default {0,0,0}), height? number
----@return table # the part Bodies keyed by part name (pelvis, torso, head,
+---@param def RagdollDef placement, scale, and either height/mass or parts/joints
+---@return table # the part Bodies keyed by part name (default human: pelvis, torso, head, upper_arm_l, lower_arm_l, upper_arm_r, lower_arm_r, upper_leg_l, lower_leg_l, upper_leg_r, lower_leg_r)
 function spawn_ragdoll(def) end
 
 ---@return number # the largest joint anchor separation now (m), 0 without joints; springs (grabs) do not count

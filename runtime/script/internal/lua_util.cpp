@@ -131,4 +131,18 @@ void pushVec3(lua_State* L, const Vec3& v) {
   lua_setfield(L, -2, "z");
 }
 
+void checkOptionFields(lua_State* L, int t, const std::string& fn, const std::set<std::string>& allowed) {
+  lua_pushnil(L);
+  while (lua_next(L, t) != 0) {
+    lua_pop(L, 1);
+    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
+    if (allowed.count(key) == 0) {
+      lua_pop(L, 1);
+      std::string valid;
+      for (const auto& f : allowed) valid += (valid.empty() ? "" : ", ") + f;
+      throw LuaArgError(fn + ": unknown option '" + key + "' (valid: " + valid + ")");
+    }
+  }
+}
+
 }  // namespace tumble::script

@@ -4,6 +4,7 @@
 // they throw LuaArgError (or any std::exception escapes), and guarded<F>
 // catches it, lets the C++ frame unwind, and only then raises the Lua error.
 // Argument checks below throw instead of using luaL_check*.
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -46,5 +47,8 @@ bool optBoolField(lua_State* L, int tableIdx, const char* key, bool fallback);
 std::string optStringField(lua_State* L, int tableIdx, const char* key, const std::string& fallback);
 bool optVec3Field(lua_State* L, int tableIdx, const char* key, Vec3* out);
 void pushVec3(lua_State* L, const Vec3& v);  ///< as a table {x=, y=, z=}
+/// Throws "<fn>: unknown option 'k' (valid: ...)" for a string key of the
+/// table at t that is not in `allowed` (a misspelt field is never ignored).
+void checkOptionFields(lua_State* L, int t, const std::string& fn, const std::set<std::string>& allowed);
 
 }  // namespace tumble::script
