@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "app/scene.h"
+#include "app/scene_models.h"
 #include "core/file_util.h"
 #include "core/hash.h"
 #include "core/process_stats.h"
@@ -98,7 +99,11 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
                               {"nodes_skipped_tight", mesh.nodesSkippedTight},
                               {"triangles_tested", mesh.trianglesTested},
                               {"exact_tests", mesh.exactTests},
-                              {"rays", mesh.rays}};
+                              {"rays", mesh.rays},
+                              // Static models' mesh shapes: placements given
+                              // one, shapes built (one per file and scale).
+                              {"shapes_placed", scene.models().meshShapesPlaced()},
+                              {"shapes_built", scene.models().meshShapesBuilt()}};
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneStateHash(scene)));
   return json{

@@ -186,7 +186,9 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   scene->m_models = std::make_unique<ModelCache>();
   so.modelBounds = [models = scene->m_models.get()](const std::string& file) { return models->bounds(file); };
   so.modelTriangles = [models = scene->m_models.get()](const std::string& file) { return models->triangles(file); };
-  so.modelMeshTree = [models = scene->m_models.get()](const std::string& file) { return models->meshTree(file); };
+  so.modelMeshShape = [models = scene->m_models.get()](const std::string& file, const Vec3& scale) {
+    return models->meshShape(file, scale);
+  };
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());

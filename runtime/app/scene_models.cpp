@@ -55,6 +55,25 @@ Result<physics::MeshTreeInput> ModelCache::meshTree(const std::string& file) {
   return tree;
 }
 
+Result<physics::Shape> ModelCache::meshShape(const std::string& file, const Vec3& scale) {
+  const MeshKey key{file, {scale.x(), scale.y(), scale.z()}};
+  auto it = m_meshShapes.find(key);
+  if (it == m_meshShapes.end()) {
+    Result<physics::Shape> built = [&]() -> Result<physics::Shape> {
+      auto tree = meshTree(file);
+      if (!tree) return makeError(tree.error());
+      auto shape = physics::makeMeshShape(*tree, scale);
+      if (!shape) return makeError(file + ": " + shape.error());
+      ++m_meshShapesBuilt;
+      return shape;
+    }();
+    it = m_meshShapes.emplace(key, std::move(built)).first;
+  }
+  if (!it->second.ok()) return makeError(it->second.error());
+  ++m_meshShapesPlaced;
+  return it->second.value();
+}
+
 namespace {
 
 render::ModelInstance instanceAt(const std::shared_ptr<const render::Model>& model, const Vec3& position,

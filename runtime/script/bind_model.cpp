@@ -14,7 +14,6 @@
 #include <tuple>
 
 #include "physics/mass_properties.h"
-#include "physics/mesh_shape.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -176,12 +175,12 @@ int worldAddStaticModel(lua_State* L) {
     box = *b;
   }
   if (collision == "mesh") {
-    const ModelMeshTreeFn& meshTree = host->options().modelMeshTree;
-    if (!meshTree) throw LuaArgError(std::string(fn) + ": this run cannot read model meshes; use collision = \"none\"");
-    auto tree = meshTree(s.file);
-    if (!tree) throw LuaArgError(std::string(fn) + ": " + tree.error());
-    auto shape = physics::makeMeshShape(*tree, s.scale);
-    if (!shape) throw LuaArgError(std::string(fn) + ": " + s.file + ": " + shape.error());
+    const ModelMeshShapeFn& meshShape = host->options().modelMeshShape;
+    if (!meshShape) throw LuaArgError(std::string(fn) + ": this run cannot read model meshes; use collision = \"none\"");
+    // One shape per (file, scale), shared by every placement of it: the
+    // shape is immutable and in the model's frame, the body places it.
+    auto shape = meshShape(s.file, s.scale);
+    if (!shape) throw LuaArgError(std::string(fn) + ": " + shape.error());
     physics::BodyDef d;
     d.type = physics::BodyType::Static;
     d.shape = std::move(*shape);

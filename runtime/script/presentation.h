@@ -15,7 +15,7 @@
 #include "core/math.h"
 #include "core/result.h"
 #include "physics/body.h"
-#include "physics/mesh_shape.h"
+#include "physics/shape.h"
 
 namespace tumble::script {
 
@@ -37,10 +37,12 @@ struct ModelTriangles {
 };
 using ModelTrianglesFn = std::function<Result<ModelTriangles>(const std::string& file)>;
 
-/// A model file's object tree as collision data (world.add_static_model
-/// with collision = "mesh"): per node its own triangles in the model's frame
-/// (node transforms applied, before the placement's scale) and its parent.
-using ModelMeshTreeFn = std::function<Result<physics::MeshTreeInput>(const std::string& file)>;
+/// The collision shape of a model file at a placement's scale (world.add_static_model
+/// with collision = "mesh"): a ShapeType::Mesh built from the model's object
+/// tree (physics::makeMeshShape). The app builds one per (file, scale) and
+/// hands the same immutable shape to every placement that asks again; an
+/// error names the file and what is wrong with it.
+using ModelMeshShapeFn = std::function<Result<physics::Shape>(const std::string& file, const Vec3& scale)>;
 
 /// body:set_model: drawn at body transform * translate(offset) * rotate(rotation) * scale.
 struct ModelAttachment {

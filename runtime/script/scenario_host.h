@@ -99,9 +99,10 @@ struct ScenarioOptions {
   std::string jointSolver;
   /// Triangles of a model file (world.model_mass_properties); from the app.
   ModelTrianglesFn modelTriangles;
-  /// The object tree of a model file (world.add_static_model's collision =
-  /// "mesh"); from the app. Unset: static models cannot have mesh collision.
-  ModelMeshTreeFn modelMeshTree;
+  /// The mesh shape of a model file at a scale (world.add_static_model's
+  /// collision = "mesh"), shared between placements; from the app. Unset:
+  /// static models cannot have mesh collision.
+  ModelMeshShapeFn modelMeshShape;
 };
 
 /// Emitters attached to bodies carry the body as an opaque anchor number

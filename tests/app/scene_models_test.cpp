@@ -13,10 +13,11 @@
 namespace tumble::app {
 namespace {
 
-std::unique_ptr<Scene> makeScene(const std::string& ref) {
+std::unique_ptr<Scene> makeScene(const std::string& ref, std::map<std::string, std::string> sets = {}) {
   const char* source = std::getenv("TUMBLE_SOURCE_DIR");
   SceneOptions options;
   options.scenarioRef = ref;
+  options.sets = std::move(sets);
   options.modDirs = {std::string(source ? source : ".") + "/tests/app/mods"};
   auto scene = Scene::create(options);
   EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error());
@@ -69,6 +70,49 @@ TEST(SceneModels, BodiesWithModelsAreDrawnAsModels) {
   EXPECT_EQ(frame.shapes[0].kind, render::ShapeKind::Plane);
   // The same model file is loaded once and shared.
   EXPECT_EQ(frame.models[1].model.get(), frame.models[2].model.get());
+}
+
+// Placements of one model file at one scale share one immutable mesh shape
+// (node tree, triangles, edge flags); another scale gets its own, as its
+// triangles are elsewhere in the body frame.
+TEST(SceneModels, PlacementsOfOneFileAndScaleShareOneMeshShape) {
+  // Trees at scales 1, 1.25, 1, 1.25, 1; rocks at 1, 1.25.
+  auto scene = makeScene("models:forest", {{"trees", "5"}, {"rocks", "2"}, {"sizes", "2"}});
+  ASSERT_TRUE(scene);
+  scene->host().start();
+  const auto& statics = scene->host().presentation().statics;
+  ASSERT_EQ(statics.size(), 7u);
+  std::vector<const physics::MeshShape*> mesh;
+  for (const script::StaticModel& s : statics) {
+    const physics::Shape& shape = scene->world().body(s.body).shape;
+    ASSERT_EQ(shape.type, physics::ShapeType::Mesh);
+    mesh.push_back(shape.mesh.get());
+  }
+  EXPECT_EQ(mesh[0], mesh[2]);
+  EXPECT_EQ(mesh[0], mesh[4]);
+  EXPECT_EQ(mesh[1], mesh[3]);
+  EXPECT_NE(mesh[0], mesh[1]) << "another scale, another shape";
+  EXPECT_NE(mesh[5], mesh[6]);
+  EXPECT_NE(mesh[0], mesh[5]) << "another file, another shape";
+  // The larger tree's triangles are the smaller one's scaled by 1.25.
+  ASSERT_EQ(mesh[0]->triangles.size(), mesh[1]->triangles.size());
+  for (std::size_t t = 0; t < mesh[0]->triangles.size(); ++t)
+    EXPECT_TRUE(mesh[1]->triangles[t].v[0].isApprox(mesh[0]->triangles[t].v[0] * Real(1.25)));
+  EXPECT_EQ(scene->models().meshShapesBuilt(), 4u);
+  EXPECT_EQ(scene->models().meshShapesPlaced(), 7u);
+}
+
+// Sharing changes nothing a body meets: a ball dropped on the first rock (a
+// shared shape) lands on it, not on the ground under it.
+TEST(SceneModels, ASharedMeshShapeStillCollides) {
+  auto scene = makeScene("models:forest", {{"trees", "3"}, {"rocks", "3"}, {"sizes", "1"}});
+  ASSERT_TRUE(scene);
+  scene->host().start();
+  EXPECT_EQ(scene->models().meshShapesBuilt(), 2u);
+  for (int i = 0; i < 60; ++i) scene->world().step(Real(1.0 / 60));
+  scene->host().finish(1.0, 60);
+  ASSERT_EQ(scene->host().expectations().size(), 1u);
+  EXPECT_TRUE(scene->host().expectations()[0].ok) << scene->host().expectations()[0].value;
 }
 
 }  // namespace
