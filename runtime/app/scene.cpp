@@ -15,6 +15,7 @@
 #include "script/mod_bindings.h"
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
+#include "physics/mesh_shape.h"
 #include "script/mods.h"
 #include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
@@ -332,11 +333,34 @@ std::shared_ptr<const render::ConvexMeshData> Scene::meshOf(
   return mesh;
 }
 
+const std::vector<Scene::WireEdge>& Scene::wireOf(const std::shared_ptr<const physics::MeshShape>& mesh) const {
+  auto it = m_meshWires.find(mesh.get());
+  if (it != m_meshWires.end()) return it->second.edges;
+  // Each edge once: neighbours share an edge's two end points (the mesh
+  // shape matched them bit for bit when it set the flags).
+  std::map<std::array<float, 6>, bool> unique;
+  for (const physics::MeshTriangle& t : mesh->triangles)
+    for (int e = 0; e < 3; ++e) {
+      Eigen::Vector3f a = t.v[e].cast<float>(), b = t.v[(e + 1) % 3].cast<float>();
+      if (std::lexicographical_compare(b.data(), b.data() + 3, a.data(), a.data() + 3)) std::swap(a, b);
+      const bool crease = (t.activeEdges >> e) & 1u;
+      auto [slot, added] = unique.emplace(std::array<float, 6>{a.x(), a.y(), a.z(), b.x(), b.y(), b.z()}, crease);
+      if (!added) slot->second = slot->second || crease;
+    }
+  MeshWire wire{mesh, {}};
+  wire.edges.reserve(unique.size());
+  for (const auto& [k, crease] : unique)
+    wire.edges.push_back({Eigen::Vector3f(k[0], k[1], k[2]), Eigen::Vector3f(k[3], k[4], k[5]), crease});
+  return m_meshWires.emplace(mesh.get(), std::move(wire)).first->second.edges;
+}
+
 void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
   out.shapes.clear();
   out.models.clear();
+  out.lines.clear();  // ropes, cloth and script lines follow in snapshotVehiclesAndLines
   // Bodies drawn with a model (body:set_model, static models' collision
-  // boxes) are not also drawn as their plain shape.
+  // boxes) are not also drawn as their plain shape; in the collision view
+  // the shapes are drawn and the models are not.
   std::vector<bool> hasModel;
   const script::Presentation& presentation = m_host->presentation();
   auto mark = [&](physics::BodyId id) {
@@ -344,9 +368,11 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     if (hasModel.size() <= id.index) hasModel.resize(id.index + 1, false);
     hasModel[id.index] = true;
   };
-  for (const auto& a : presentation.attachments) mark(a.body);
-  for (const auto& s : presentation.statics) mark(s.body);
-  appendModelInstances(*this, alpha, out.models);
+  if (!m_collisionView) {
+    for (const auto& a : presentation.attachments) mark(a.body);
+    for (const auto& s : presentation.statics) mark(s.body);
+    appendModelInstances(*this, alpha, out.models);
+  }
 #if TUMBLE_HAVE_TERRAIN
   out.terrain = m_terrain ? &m_terrain->surface() : nullptr;
 #endif
@@ -372,7 +398,13 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
         break;
       case physics::ShapeType::Plane: s.kind = render::ShapeKind::Plane; break;
       case physics::ShapeType::Compound: return;  // children are emitted instead
-      case physics::ShapeType::Mesh: return;      // static models' meshes: their model is the picture
+      case physics::ShapeType::Mesh: {  // wireframe: creases and borders bright, flat seams dim
+        static const Eigen::Vector3f kCrease(1.0f, 0.55f, 0.05f), kSeam(0.45f, 0.3f, 0.12f);
+        for (const WireEdge& e : wireOf(shape.mesh))
+          out.lines.push_back(render::DebugLine{s.position + s.orientation * e.a_m,
+                                                s.position + s.orientation * e.b_m, e.crease ? kCrease : kSeam});
+        return;
+      }
     }
     out.shapes.push_back(std::move(s));
   };
@@ -483,8 +515,8 @@ void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) c
         out.shapes.push_back(s);
       }
     });
-  // Ropes, cloth and the lines scripts drew (no interpolation: lines).
-  out.lines.clear();
+  // Ropes, cloth and the lines scripts drew (no interpolation: lines),
+  // after the collision view's mesh wireframes (snapshot cleared the list).
   if (const physics::DeformableSystem* d = m_host->deformablesIfAny()) {
     d->forEach([&](int id, const physics::Deformable& def) {
       const Eigen::Vector3f color = m_host->deformableColor(id);

@@ -71,7 +71,18 @@ class Scene {
 
   /// Builds what the renderer reads: every body as a shape with its colour.
   /// alpha in [0, 1] interpolates between the previous and current step.
+  /// Bodies a model draws are left to the model, unless the collision view
+  /// is on.
   void snapshot(render::FrameSnapshot& out, double alpha) const;
+  /// Collision view (render::Controls::collisionView, F3 when playing):
+  /// snapshot draws what collides instead of what models show. Every body
+  /// is drawn as its collision shape, bodies with models too (a car as its
+  /// chassis box, a static model as its box or mesh); static triangle
+  /// meshes as wireframe lines, creases and open borders (the edges that
+  /// make contacts) bright, flat seams dim. Models are left out; vehicle
+  /// wheels (ray casts) stay.
+  void setCollisionView(bool on) { m_collisionView = on; }
+  bool collisionView() const { return m_collisionView; }
   /// The particles part of snapshot(): billboards of every live particle.
   void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
   /// Vehicle wheels (ray casts, not bodies), ropes, cloth and script lines.
@@ -113,8 +124,22 @@ class Scene {
   };
   mutable std::map<const physics::ConvexHull*, HullMesh> m_hullMeshes;
   std::shared_ptr<const render::ConvexMeshData> meshOf(const std::shared_ptr<const physics::ConvexHull>& hull) const;
+  /// Wireframes of the mesh shapes seen so far in the collision view: each
+  /// distinct triangle edge once, in the body frame (keyed and kept alive
+  /// like m_hullMeshes).
+  struct WireEdge {
+    Eigen::Vector3f a_m, b_m;
+    bool crease = true;  ///< an active edge (convex crease or open border): it makes contacts
+  };
+  struct MeshWire {
+    std::shared_ptr<const physics::MeshShape> mesh;
+    std::vector<WireEdge> edges;
+  };
+  mutable std::map<const physics::MeshShape*, MeshWire> m_meshWires;
+  const std::vector<WireEdge>& wireOf(const std::shared_ptr<const physics::MeshShape>& mesh) const;
   std::vector<std::string> m_extraSubsystems;
   std::optional<physics::BodyId> m_hiddenModelBody;
+  bool m_collisionView = false;
 };
 
 }  // namespace tumble::app

@@ -372,6 +372,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     if (!director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
       renderer.camera().target = dynamicCentroid(scene);
     }
+    scene.setCollisionView(controls.collisionView);  // F3
     scene.snapshot(snap, accumulator / scene.dt_s());
     director.decorate(scene, accumulator / scene.dt_s(), renderer.camera(), snap);
     snap.simTime_s = time_s;

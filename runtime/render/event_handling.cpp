@@ -35,6 +35,7 @@ void applyKey(SDL_Keycode key, Controls& controls, Camera& camera) {
     case SDLK_KP_PLUS: controls.timeScale = fasterTimeScale(controls.timeScale); break;
     case SDLK_F12: controls.screenshotRequested = true; break;
     case SDLK_F2: controls.tuningPanelVisible = !controls.tuningPanelVisible; break;
+    case SDLK_F3: controls.collisionView = !controls.collisionView; break;
     case SDLK_c: camera.mode = nextCameraMode(camera.mode, camera.vehicleModes); break;
     default: break;
   }

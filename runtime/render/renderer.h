@@ -207,6 +207,9 @@ struct Controls {
   bool screenshotRequested = false;   // screenshot key (F12); app clears it after saving
   bool quitRequested = false;         // window closed or Escape
   bool tuningPanelVisible = false;    // F2 or the HUD's "Tune" button toggles the tuning panel
+  // F3 or the HUD's "Collision" button: the app draws what collides instead
+  // of what models show (static meshes as wireframe triangles).
+  bool collisionView = false;
 };
 
 /// One tunable as the tuning panel shows it (plain data; the app copies it
@@ -294,7 +297,7 @@ class Renderer {
   std::pair<Eigen::Vector3f, Eigen::Vector3f> viewRay(float x, float y) const;
 
   // Handles SDL events: close/Escape quit; P or Space pause; N single step;
-  // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; C steps through the
+  // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; F3 collision view; C steps through the
   // camera modes (orbit, follow, and with Camera::vehicleModes chase, hood, cockpit);
   // mouse drag orbits, wheel zooms. Also feeds ImGui; keys and mouse that the
   // HUD is using (typing in a field, dragging a slider) do not reach the game.

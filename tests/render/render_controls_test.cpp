@@ -63,6 +63,15 @@ TEST_F(RenderControls, StepSlowMotionScreenshotAndCameraKeys) {
   EXPECT_EQ(m_renderer->camera().mode, CameraMode::Orbit);
 }
 
+TEST_F(RenderControls, F3TogglesTheCollisionView) {
+  pushKey(SDLK_F3);
+  m_renderer->processEvents(m_controls);
+  EXPECT_TRUE(m_controls.collisionView);
+  pushKey(SDLK_F3);
+  m_renderer->processEvents(m_controls);
+  EXPECT_FALSE(m_controls.collisionView);
+}
+
 TEST_F(RenderControls, HeldKeyRepeatsDoNotToggleAgain) {
   SDL_Event event{};
   event.type = SDL_KEYDOWN;

@@ -152,6 +152,8 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     }
     ImGui::TextColored(kDimColor, "camera: %s (C)", cameraModeName(cameraMode));
     ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot  F1 keys");
+    if (ImGui::Button(controls.collisionView ? "Models (F3)" : "Collision (F3)", ImVec2(132, 0)))
+      controls.collisionView = !controls.collisionView;
     if (tuning) {
       if (ImGui::Button(controls.tuningPanelVisible ? "Hide tuning (F2)" : "Tune (F2)", ImVec2(132, 0)))
         controls.tuningPanelVisible = !controls.tuningPanelVisible;
