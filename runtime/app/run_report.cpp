@@ -9,6 +9,7 @@
 #include "core/process_stats.h"
 #include "particles/particle_system.h"
 #include "physics/deformable.h"
+#include "physics/joints/joint_system.h"
 
 namespace tumble::app {
 namespace {
@@ -19,7 +20,7 @@ namespace {
 std::uint64_t sceneStateHash(Scene& scene) {
   Hasher h;
   h.value(scene.world().stateHash());
-  if (const physics::DeformableSystem* ds = scene.host().deformablesIfAny()) {
+  if (const physics::DeformableSystem* ds = scene.deformablesIfAny()) {
     ds->forEach([&](int id, const physics::Deformable& d) {
       h.value(id);
       for (int i = 0; i < d.particleCount(); ++i) {
@@ -29,7 +30,7 @@ std::uint64_t sceneStateHash(Scene& scene) {
       }
     });
   }
-  if (const particles::ParticleSystem* ps = scene.host().particlesIfAny()) {
+  if (const particles::ParticleSystem* ps = scene.particlesIfAny()) {
     ps->forEach([&](particles::EmitterId id, const particles::Emitter& e) {
       h.value(id.index);
       const particles::ParticlePool& p = e.pool;
@@ -112,7 +113,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"dt", scene.options().dt_s},
       {"substeps", world.settings().substeps},
       {"integrator", scene.integratorName()},
-      {"joint_solver", scene.host().jointSolverName()},
+      {"joint_solver", physics::jointSolverName(scene.jointSolver())},
       {"steps", steps},
       {"simulated_seconds", simulatedSeconds},
       {"wall_seconds",
@@ -133,7 +134,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"error",
        {{"energy_rel_drift_max", err.energyRelDriftMax},
         {"penetration_max_m", err.penetrationMax_m},
-        {"joint_error_max_m", scene.host().jointErrorMax_m()},
+        {"joint_error_max_m", scene.jointErrorMax_m()},
         {"momentum_rel_drift_max", err.momentumRelDriftMax},
         {"nan_events", err.nanEvents}}},
       {"expectations", expectations},

@@ -11,6 +11,7 @@
 #include "app/scene_models.h"
 #include "core/log.h"
 #include "physics/deformable.h"
+#include "particles/particle_system.h"
 #include "physics/joints/joint_system.h"
 #include "script/mod_bindings.h"
 #include "physics/compound_shape.h"
@@ -155,10 +156,12 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   if (options.substeps > 0) ws.substeps = options.substeps;
   script::ScenarioOptions so;
   so.seed = options.seed;
+  so.limits = options.limits;
   so.scriptsDir = scriptsDir();
   so.mods = registry.mods();  // emitters may come from other mods ("base:dust")
   if (options.tuneOverrides) so.tuneOverridesFile = script::tuneOverridesPath(mod->name);
   std::map<std::string, std::string> terrainSettings = options.terrainDefaults;
+  std::optional<physics::JointSolverKind> forcedJointSolver;
   for (const auto& [key, value] : options.sets) {
     if (key.rfind("terrain.", 0) == 0) {
       terrainSettings[key] = value;
@@ -172,7 +175,7 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
       physics::JointSolverKind kind;
       if (!physics::parseJointSolver(value, &kind))
         return makeError("--set " + key + "=" + value + ": expected lagrange or impulse");
-      so.jointSolver = value;
+      forcedJointSolver = kind;
     } else if (key.rfind("physics.", 0) == 0) {
       if (auto st = applyPhysicsSetting(ws, key, value); !st) return makeError(st.error());
     } else {
@@ -180,19 +183,18 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
     }
   }
   scene->m_world = std::make_unique<physics::World>(ws);
-  scene->m_input = loadInput(registry, *mod);
-  so.input = scene->m_input.get();
+  scene->m_input = options.bindings ? std::make_unique<input::InputSystem>(*options.bindings)
+                                    : loadInput(registry, *mod);
+  if (forcedJointSolver) scene->m_jointSolver = *forcedJointSolver;
   // Models: "MOD:path" references and collision boxes from model bounds.
   for (const script::ModInfo& m : registry.mods()) so.modDirs[m.name] = m.dir;
   scene->m_models = std::make_unique<ModelCache>();
-  so.modelBounds = [models = scene->m_models.get()](const std::string& file) { return models->bounds(file); };
-  so.modelTriangles = [models = scene->m_models.get()](const std::string& file) { return models->triangles(file); };
-  so.modelMeshShape = [models = scene->m_models.get()](const std::string& file, const Vec3& scale) {
-    return models->meshShape(file, scale);
-  };
-  auto host = script::ScenarioHost::load(*mod, ref->second, *scene->m_world, so);
+  auto host = script::ScenarioHost::load(*mod, ref->second, *scene, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
+  // The scenario's joint_solver field, unless the command line chose.
+  if (!forcedJointSolver && scene->m_host->jointSolverRequest())
+    scene->setJointSolver(*scene->m_host->jointSolverRequest());
   physics::BodyIntegrator integrator = physics::BodyIntegrator::SymplecticEuler;
   if (forcedIntegrator) {
     integrator = *forcedIntegrator;
@@ -256,15 +258,58 @@ Status Scene::reloadBindings() {
   return Ok{};
 }
 
-void Scene::stepDeformables(Real dt_s) {
-  physics::DeformableSystem* d = m_host->deformablesIfAny();
-  if (!d) return;
-  physics::DeformableEnvironment env;
-  env.gravity_mps2 = m_world->settings().gravity_mps2;
-  env.world = m_world.get();
-  env.heightField = m_world->heightField();
-  d->step(dt_s, env);
+physics::JointSystem& Scene::joints() {
+  if (!m_joints) {
+    // Velocity-only projection when joints or jointed bodies are new (see
+    // JointSettings::postStabilize): moving positions would push bodies
+    // lying on the ground into it.
+    physics::JointSettings js;
+    js.projectPositions = false;
+    js.solver = m_jointSolver;
+    m_joints = std::make_unique<physics::JointSystem>(*m_world, js);
+  }
+  return *m_joints;
 }
+
+void Scene::setJointSolver(physics::JointSolverKind kind) {
+  m_jointSolver = kind;
+  if (m_joints) m_joints->setSolver(kind);
+}
+
+double Scene::jointErrorMax_m() const { return m_joints ? m_joints->maxAnchorError_m() : 0.0; }
+
+vehicle::VehicleSystem& Scene::vehicles() {
+  if (!m_vehicles) m_vehicles = std::make_unique<vehicle::VehicleSystem>(*m_world);
+  return *m_vehicles;
+}
+
+particles::ParticleSystem& Scene::particles() {
+  if (!m_particles) {
+    m_particles = std::make_unique<particles::ParticleSystem>(m_options.seed);
+    m_particles->setGravity(m_world->settings().gravity_mps2.cast<float>());
+  }
+  return *m_particles;
+}
+
+physics::DeformableSystem& Scene::deformables() {
+  if (!m_deformables) m_deformables = std::make_unique<physics::DeformableSystem>();
+  return *m_deformables;
+}
+
+Result<script::ModelBox> Scene::modelBounds(const std::string& file) { return m_models->bounds(file); }
+
+Result<script::ModelTriangles> Scene::modelTriangles(const std::string& file) { return m_models->triangles(file); }
+
+Result<physics::Shape> Scene::modelMeshShape(const std::string& file, const Vec3& scale) {
+  return m_models->meshShape(file, scale);
+}
+
+void Scene::start() {
+  m_host->start();
+  registerStaticObjects();
+}
+
+void Scene::finish(double time_s, long long step) { m_host->finish(time_s, step); }
 
 void Scene::registerStaticObjects() {
 #if TUMBLE_HAVE_TERRAIN
@@ -289,10 +334,11 @@ void Scene::registerStaticObjects() {
 std::vector<std::string> Scene::subsystems() const {
   std::vector<std::string> names{"physics", "script"};
   if (m_terrain) names.push_back("terrain");
-  if (m_host->particlesIfAny()) names.push_back("particles");  // created by the first particles.spawn
-  if (m_host && m_host->vehiclesIfAny()) names.push_back("vehicle");
+  if (m_particles) names.push_back("particles");  // created by the first particles.spawn
+  if (m_vehicles) names.push_back("vehicle");
   if (m_models && m_models->size() > 0) names.push_back("models");
-  if (m_host && m_host->deformablesIfAny()) names.push_back("deformables");
+  if (m_deformables) names.push_back("deformables");
+  if (m_joints) names.push_back("joints");
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }
@@ -419,7 +465,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     }
     s.position = p.cast<float>();
     s.orientation = q.cast<float>();
-    s.color = m_host->colorOf(id);
+    s.color = presentation.colorOf(id);
     s.sleeping = !b.awake;
     if (b.shape.type != physics::ShapeType::Compound) return emit(b.shape, s);
     for (const physics::CompoundChild& c : b.shape.compound->children) {
@@ -436,7 +482,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
 void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
   out.particles.clear();
   out.additiveParticles.clear();
-  const particles::ParticleSystem* ps = m_host->particlesIfAny();
+  const particles::ParticleSystem* ps = m_particles.get();
   if (!ps) return;
   // Positions are the step's end; back them up along the velocity to the
   // interpolated time (alpha = 1: the step's end).
@@ -469,11 +515,12 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
 }
 
 void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) const {
+  const script::Presentation& presentation = m_host->presentation();
   // Vehicle wheels are ray casts, not bodies: drawn with the shipped wheel
   // model (axle along X, radius 0.35 m, width 0.25 m) at each hub, steered
   // and turned by its accumulated spin; as spheres if the model is missing.
   std::shared_ptr<const render::Model> wheelModel;
-  if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny(); vehicles && vehicles->count() > 0) {
+  if (const vehicle::VehicleSystem* vehicles = m_vehicles.get(); vehicles && vehicles->count() > 0) {
     const auto& dirs = m_host->options().modDirs;
     if (auto base = dirs.find("base"); base != dirs.end()) {
       auto loaded = m_models->get(base->second + "/assets/models/wheel.obj");
@@ -481,7 +528,7 @@ void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) c
     }
   }
   constexpr float kWheelModelRadius_m = 0.35f, kWheelModelWidth_m = 0.25f;
-  if (const vehicle::VehicleSystem* vehicles = m_host->vehiclesIfAny())
+  if (const vehicle::VehicleSystem* vehicles = m_vehicles.get())
     vehicles->forEach([&](vehicle::VehicleId id) {
       // Hubs ride with the chassis' interpolated pose, so they do not lag it.
       const physics::BodyId c = vehicles->chassis(id);
@@ -517,15 +564,15 @@ void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) c
     });
   // Ropes, cloth and the lines scripts drew (no interpolation: lines),
   // after the collision view's mesh wireframes (snapshot cleared the list).
-  if (const physics::DeformableSystem* d = m_host->deformablesIfAny()) {
+  if (const physics::DeformableSystem* d = m_deformables.get()) {
     d->forEach([&](int id, const physics::Deformable& def) {
-      const Eigen::Vector3f color = m_host->deformableColor(id);
+      const Eigen::Vector3f color = presentation.deformableColor(id);
       def.forEachStructuralSegment([&](const Vec3& a, const Vec3& b) {
         out.lines.push_back(render::DebugLine{a.cast<float>(), b.cast<float>(), color});
       });
     });
   }
-  for (const auto& l : m_host->scriptLines())
+  for (const auto& l : presentation.scriptLines())
     out.lines.push_back(render::DebugLine{l.a_m.cast<float>(), l.b_m.cast<float>(), l.color});
 }
 

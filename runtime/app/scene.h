@@ -1,9 +1,12 @@
 #pragma once
-// A scene: what one scenario run creates. Subsystems are created only when
-// used (ARCHITECTURE.md "Leave out what a scene does not need"): the world
-// always, the script host when the scenario has a file, the renderer only
-// for play or --screenshot, the particle system only when the scenario
-// spawns an emitter. `subsystems()` lists what exists, for the report.
+// A scene: what one scenario run creates, and the owner of every system in
+// it. Subsystems are created only when used (ARCHITECTURE.md "Leave out what
+// a scene does not need"): the world and the script host always; terrain
+// when the scenario asks for one; joints, vehicles, particles and ropes or
+// cloth on the first script call that needs them (Scene implements
+// script::SceneSystems, the interface scripts reach the scene through); the
+// renderer only for play or --screenshot. `subsystems()` lists what exists,
+// for the report. app/fixed_step.cpp steps them; nothing else does.
 #include <map>
 #include <memory>
 #include <optional>
@@ -16,6 +19,18 @@
 #include "render/camera_rig.h"
 #include "render/renderer.h"
 #include "script/scenario_host.h"
+#include "script/scene_systems.h"
+
+namespace tumble::physics {
+class JointSystem;
+class DeformableSystem;
+}
+namespace tumble::vehicle {
+class VehicleSystem;
+}
+namespace tumble::particles {
+class ParticleSystem;
+}
 
 namespace tumble::app {
 
@@ -33,6 +48,12 @@ struct SceneOptions {
   /// Read the mod's saved tunable overrides (script/tunables.h). `play` does;
   /// `run` does not, so a headless run depends only on its command line.
   bool tuneOverrides = false;
+  /// The Lua budgets the scenario runs under.
+  script::VmLimits limits;
+  /// The input actions; unset: those of base and the scenario's mod with its
+  /// dependencies (their bindings.lua). Tools and tests that drive a
+  /// scenario with their own actions set it.
+  std::optional<input::BindingSet> bindings;
 };
 
 class TerrainScene;
@@ -41,21 +62,52 @@ class ModelCache;
 /// Integrators the rigid-body world offers (physics/integrate.h), default first.
 const std::vector<std::string>& rigidBodyIntegrators();
 
-class Scene {
+class Scene final : public script::SceneSystems {
  public:
   static Result<std::unique_ptr<Scene>> create(const SceneOptions& options);
   ~Scene();
 
-  physics::World& world() { return *m_world; }
+  physics::World& world() override { return *m_world; }
+  const physics::World& world() const { return *m_world; }
   script::ScenarioHost& host() { return *m_host; }
   /// Input actions of base and the scenario's mod with its dependencies
   /// (their bindings.lua, merged in load order). Scripts read them; play
   /// feeds SDL events in; headless runs only see injected values.
-  input::InputSystem& input() { return *m_input; }
+  input::InputSystem& input() override { return *m_input; }
   const script::ScenarioHost& host() const { return *m_host; }
   const SceneOptions& options() const { return m_options; }
+
+  // The systems scripts create on first use (script::SceneSystems).
+  physics::JointSystem& joints() override;
+  physics::JointSystem* jointsIfAny() override { return m_joints.get(); }
+  const physics::JointSystem* jointsIfAny() const { return m_joints.get(); }
+  vehicle::VehicleSystem& vehicles() override;
+  vehicle::VehicleSystem* vehiclesIfAny() override { return m_vehicles.get(); }
+  const vehicle::VehicleSystem* vehiclesIfAny() const { return m_vehicles.get(); }
+  particles::ParticleSystem& particles() override;
+  particles::ParticleSystem* particlesIfAny() override { return m_particles.get(); }
+  const particles::ParticleSystem* particlesIfAny() const { return m_particles.get(); }
+  physics::DeformableSystem& deformables() override;
+  physics::DeformableSystem* deformablesIfAny() override { return m_deformables.get(); }
+  const physics::DeformableSystem* deformablesIfAny() const { return m_deformables.get(); }
+  /// The joint solver (--set physics.joint_solver, else the scenario's
+  /// joint_solver field, else lagrange; world.set_joint_solver switches it).
+  physics::JointSolverKind jointSolver() const override { return m_jointSolver; }
+  void setJointSolver(physics::JointSolverKind kind) override;
+  /// Largest joint anchor separation seen (m), 0 without joints: the run
+  /// report's joint_error_max_m.
+  double jointErrorMax_m() const;
   /// The fixed step now (s): --dt, or what the script asked for (world.set_dt).
-  double dt_s() const { return m_host->requestedDt_s() > 0 ? m_host->requestedDt_s() : m_options.dt_s; }
+  double dt_s() const override { return m_requestedDt_s > 0 ? m_requestedDt_s : m_options.dt_s; }
+  void requestDt(double dt_s) override { m_requestedDt_s = dt_s; }
+  Result<script::ModelBox> modelBounds(const std::string& file) override;
+  Result<script::ModelTriangles> modelTriangles(const std::string& file) override;
+  Result<physics::Shape> modelMeshShape(const std::string& file, const Vec3& scale) override;
+
+  /// on_start (the scenario makes its bodies), then every static body goes
+  /// into the terrain's tree. on_finish at the end.
+  void start();
+  void finish(double time_s, long long step);
   std::string name() const { return m_modName + ":" + m_scenarioName; }
   /// The integrator the world runs (the run report's `integrator`).
   std::string integratorName() const { return physics::bodyIntegratorName(m_world->settings().integrator); }
@@ -87,8 +139,6 @@ class Scene {
   void snapshotParticles(render::FrameSnapshot& out, double alpha) const;
   /// Vehicle wheels (ray casts, not bodies), ropes, cloth and script lines.
   void snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) const;
-  /// Steps the scenario's ropes and cloth, if it made any (after World::step).
-  void stepDeformables(Real dt_s);
   /// Hot reload of a saved bindings.lua: the mods' bindings are read again
   /// and replace the actions (the player's overrides and the contexts'
   /// on/off state are kept). With a problem nothing changes and the error
@@ -112,8 +162,16 @@ class Scene {
   std::unique_ptr<ModelCache> m_models;     ///< before m_host: the host's modelBounds uses it
   std::unique_ptr<TerrainScene> m_terrain;  ///< before m_world: the world points at its height field
   std::unique_ptr<physics::World> m_world;
-  std::unique_ptr<input::InputSystem> m_input;  ///< before m_host, which reads it
-  std::unique_ptr<script::ScenarioHost> m_host;
+  std::unique_ptr<input::InputSystem> m_input;
+  // Created on first use; declared after the world they hold on to, so they
+  // go first (vehicles before joints).
+  std::unique_ptr<physics::JointSystem> m_joints;
+  std::unique_ptr<vehicle::VehicleSystem> m_vehicles;
+  std::unique_ptr<particles::ParticleSystem> m_particles;
+  std::unique_ptr<physics::DeformableSystem> m_deformables;
+  physics::JointSolverKind m_jointSolver = physics::JointSolverKind::Lagrange;
+  double m_requestedDt_s = 0;  ///< world.set_dt, 0 = none
+  std::unique_ptr<script::ScenarioHost> m_host;  ///< last: scripts reach every system above
   std::vector<Vec3> m_prevPosition;
   std::vector<Quat> m_prevOrientation;
   /// Render meshes of the physics hulls seen so far (keyed by hull; the hull

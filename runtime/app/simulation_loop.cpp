@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "app/bindings_menu.h"
+#include "app/fixed_step.h"
 #include "app/run_report.h"
 #include "app/tuning.h"
 #include "app/scene_models.h"
@@ -18,54 +19,8 @@ namespace tumble::app {
 
 namespace {
 
-// Particles, after physics (and after on_contact, which may spawn sparks):
-// attached emitters take their body's pose and velocity, then every pool
-// steps. Nothing at all when the scenario never spawned an emitter.
-void stepParticles(Scene& scene, RunTimings& t) {
-  particles::ParticleSystem* ps = scene.host().particlesIfAny();
-  if (!ps) return;
-  Stopwatch sw;
-  const physics::World& world = scene.world();
-  ps->forEachAnchored([&](particles::EmitterId id, std::uint64_t anchor) {
-    const physics::BodyId body = script::bodyOfEmitterAnchor(anchor);
-    if (!world.isValid(body)) {
-      ps->anchorLost(id);  // the body was removed: stop, let the particles finish
-      return;
-    }
-    const physics::Body& b = world.body(body);
-    ps->setAnchorState(id, b.position_m.cast<float>(), b.orientation.cast<float>(),
-                       b.linearVelocity_mps.cast<float>(), b.angularVelocity_radps.cast<float>());
-  });
-  ps->setGravity(world.settings().gravity_mps2.cast<float>());
-  ps->step(float(scene.dt_s()));
-  t.particles_s += sw.seconds();
-}
-
-// One fixed step: the scenario's on_update, then physics, then particles.
-// The step length can change while running (world.set_dt): read it per step.
-void fixedStep(Scene& scene, double time_s, long long step, RunTimings& t) {
-  Stopwatch sw;
-  const double dt = scene.dt_s();
-  scene.input().step();  // the actions every script reads in this step
-  const std::size_t statics = scene.host().presentation().statics.size();
-  scene.host().update(time_s, dt, step);
-  // Static models placed during play go into the terrain's tree too.
-  if (scene.host().presentation().statics.size() != statics) scene.registerStaticObjects();
-  double script = sw.seconds();
-  scene.world().step(Real(dt));
-  scene.stepDeformables(Real(dt));
-  double physics = sw.seconds() - script;
-  // Contact events and trigger volumes (no Lua call when nothing listens).
-  scene.host().afterStep(time_s + dt, step);
-  double total = sw.seconds();
-  t.script_s += total - physics;
-  t.physics_s += physics;
-  t.stepMs.push_back(total * 1000.0);
-  stepParticles(scene, t);
-}
-
 int particleCount(Scene& scene) {
-  const particles::ParticleSystem* ps = scene.host().particlesIfAny();
+  const particles::ParticleSystem* ps = scene.particlesIfAny();
   return ps ? ps->particleCount() : 0;
 }
 
@@ -73,7 +28,7 @@ int particleCount(Scene& scene) {
 void frameCamera(Scene& scene, render::Camera& cam) {
   // A scene with vehicles follows the first one from 12 m (until the chase
   // camera of the camera modes lands).
-  if (const vehicle::VehicleSystem* vehicles = scene.host().vehiclesIfAny(); vehicles && vehicles->count() > 0) {
+  if (const vehicle::VehicleSystem* vehicles = scene.vehiclesIfAny(); vehicles && vehicles->count() > 0) {
     bool first = true;
     vehicles->forEach([&](vehicle::VehicleId id) {
       if (!first) return;
@@ -171,9 +126,8 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   }
   {
     Stopwatch sw;
-    scene.host().start();
+    scene.start();
     t.script_s += sw.seconds();
-    scene.registerStaticObjects();
   }
   if (renderer) frameCamera(scene, renderer->camera());  // after on_start made the bodies
   t.startup_s = processClock.seconds();
@@ -183,7 +137,7 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   CameraDirector director;  // camera.set_mode from the scenario
   auto takeShot = [&](double time_s) {
     Stopwatch sw;
-    if (scene.host().vehiclesIfAny()) frameCamera(scene, renderer->camera());  // where the car is now
+    if (scene.vehiclesIfAny()) frameCamera(scene, renderer->camera());  // where the car is now
     render::FrameSnapshot frame;
     director.update(scene, 1.0, 0.0f, renderer->camera());
     scene.snapshot(frame, 1.0);
@@ -205,11 +159,11 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   for (long long i = 0; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
     if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
     if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
-    fixedStep(scene, time_s, i, t);
+    stepScene(scene, StepTime{time_s, i}, t);
     time_s = baseTime_s + double(i + 1 - baseStep) * stepDt;
     done = i + 1;
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
-    if (const physics::JointSystem* joints = scene.host().jointsIfAny())
+    if (const physics::JointSystem* joints = scene.jointsIfAny())
       counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
     counts.particlesMax = std::max(counts.particlesMax, particleCount(scene));
   }
@@ -217,7 +171,7 @@ int runScenario(const RunOptions& o, const Stopwatch& processClock) {
   if (renderer && !shotTaken) takeShot(time_s);
   {
     Stopwatch sw;
-    scene.host().finish(time_s, steps);
+    scene.finish(time_s, steps);
     t.script_s += sw.seconds();
   }
   counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
@@ -265,8 +219,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   RunTimings total, frame;
   render::Controls controls;
   render::FrameSnapshot snap;
-  scene.host().start();
-  scene.registerStaticObjects();
+  scene.start();
   frameCamera(scene, renderer.camera());  // after on_start made the bodies
   scene.savePreviousState();
   double time_s = 0, accumulator = 0;
@@ -284,7 +237,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
       const double h = scene.dt_s();  // world.set_dt may change it
       dtChanged = dtChanged || h != dt;
       scene.savePreviousState();
-      fixedStep(scene, time_s, step, total);
+      stepScene(scene, StepTime{time_s, step}, total);
       time_s = dtChanged ? time_s + h : double(step + 1) * dt;
     }
     double simWall = wall.seconds();
@@ -299,7 +252,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     perStep.script_s /= double(std::max(1LL, steps));
     perStep.particles_s /= double(std::max(1LL, steps));
     Status st = renderer.drawFrame(snap, hudStats(scene, 0, perStep, time_s), controls, o.screenshotPath.c_str());
-    scene.host().finish(time_s, step);
+    scene.finish(time_s, step);
     if (!st) {
       log::error("screenshot: " + st.error());
       return 1;
@@ -330,7 +283,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   // Emitter files change the running emitters made from them; bindings.lua
   // replaces the actions (keeping the player's overrides).
   hotReload.addHook(script::ModFileKind::Emitter, [&scene](const std::string&, const std::string& rel) {
-    return scene.host().reloadEmitterFile(rel);
+    return scene.host().emitters().reloadFile(rel, scene.particlesIfAny());
   });
   hotReload.addHook(script::ModFileKind::Bindings,
                     [&scene](const std::string&, const std::string&) { return scene.reloadBindings(); });
@@ -363,7 +316,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     while (accumulator >= scene.dt_s()) {  // the step may change while playing (world.set_dt)
       const double h = scene.dt_s();
       scene.savePreviousState();
-      fixedStep(scene, time_s, step, frame);
+      stepScene(scene, StepTime{time_s, step}, frame);
       ++step;
       time_s += h;
       accumulator -= h;
@@ -399,7 +352,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
       fpsTime = now;
     }
   }
-  scene.host().finish(time_s, step);
+  scene.finish(time_s, step);
   return 0;
 }
 

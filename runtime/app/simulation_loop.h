@@ -3,9 +3,9 @@
 // an accumulator, Lua at the fixed rate, rendering interpolated between the
 // last two steps.
 //
-//   SDL events -> Lua on_update (fixed dt) -> physics step (K substeps)
-//     -> particles (only once a scenario spawned an emitter)
-//     -> render snapshot (interpolated) -> renderer -> HUD
+//   SDL events -> the fixed steps due (app/fixed_step.cpp: input actions,
+//     Lua, joints, vehicles, physics, ropes and cloth, after-step callbacks,
+//     particles) -> render snapshot (interpolated) -> renderer -> HUD
 #include <string>
 
 #include "app/scene.h"

@@ -200,17 +200,7 @@ int bodySetMaterial(lua_State* L) {
   if (!lua_istable(L, 2))
     throw LuaArgError(std::string("Body:set_material: expected a table {friction = ..., restitution = ...}, got ") +
                       luaL_typename(L, 2));
-  lua_pushnil(L);
-  while (lua_next(L, 2) != 0) {
-    lua_pop(L, 1);
-    bool known = lua_type(L, -1) == LUA_TSTRING && (std::string(lua_tostring(L, -1)) == "friction" ||
-                                                   std::string(lua_tostring(L, -1)) == "restitution");
-    if (!known) {
-      std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : luaL_typename(L, -1);
-      lua_pop(L, 1);
-      throw LuaArgError("Body:set_material: unknown field '" + key + "' (valid: friction, restitution)");
-    }
-  }
+  checkFields(L, 2, "Body:set_material", {"friction", "restitution"});
   const physics::Body& b = worldOf(L).body(id);
   double friction = 0, restitution = 0;
   try {
@@ -302,16 +292,7 @@ void pushBody(lua_State* L, physics::BodyId id) {
 }
 
 void openBodyType(lua_State* L) {
-  luaL_newmetatable(L, kBodyMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, bodyToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushcfunction(L, bodyEq);
-  lua_setfield(L, -2, "__eq");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");  // scripts cannot swap the methods
-  lua_pop(L, 1);
+  registerType(L, {kBodyMeta, kMethods, bodyToString, bodyEq});
 }
 
 }  // namespace tumble::script

@@ -49,18 +49,7 @@ int cameraSetMode(lua_State* L) {
   r.mode = lua_tostring(L, 1);
   if (!lua_isnoneornil(L, 2)) {
     if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": options must be a table {target = body, ...}");
-    lua_pushnil(L);
-    while (lua_next(L, 2) != 0) {
-      lua_pop(L, 1);
-      static const std::set<std::string> kFields = {"target", "offset", "look_at", "stiffness", "eye", "distance",
-                                                    "interior"};
-      const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-      if (kFields.count(key) == 0) {
-        lua_pop(L, 1);
-        throw LuaArgError(std::string(fn) + ": unknown option '" + key +
-                          "' (valid: distance, eye, interior, look_at, offset, stiffness, target)");
-      }
-    }
+    checkFields(L, 2, fn, {"target", "offset", "look_at", "stiffness", "eye", "distance", "interior"});
     try {
       if (lua_getfield(L, 2, "target") != LUA_TNIL) r.target = checkBody(L, -1);
       lua_pop(L, 1);
@@ -84,9 +73,7 @@ int cameraSetMode(lua_State* L) {
         if (lua_type(L, -1) != LUA_TSTRING) throw LuaArgError("option 'interior' must be a model path string");
         auto file = resolveModFile(lua_tostring(L, -1), host->mod(), host->options().modDirs);
         if (!file) throw LuaArgError("option 'interior': " + file.error());
-        if (host->options().modelBounds) {
-          if (auto box = host->options().modelBounds(*file); !box) throw LuaArgError("option 'interior': " + box.error());
-        }
+        if (auto box = host->scene().modelBounds(*file); !box) throw LuaArgError("option 'interior': " + box.error());
         r.interiorFile = *file;
       }
       lua_pop(L, 1);
@@ -118,8 +105,7 @@ const luaL_Reg kCamera[] = {
 }  // namespace
 
 void openCameraBindings(lua_State* L, int envIndex) {
-  luaL_newlib(L, kCamera);
-  lua_setfield(L, envIndex, "camera");
+  registerModule(L, envIndex, "camera", kCamera);
 }
 
 }  // namespace tumble::script

@@ -31,7 +31,7 @@ struct DeformableRef {
 physics::Deformable& checkDeformable(lua_State* L, int idx) {
   auto* ref = static_cast<DeformableRef*>(luaL_testudata(L, idx, kDeformableMeta));
   if (!ref) throw LuaArgError(std::string("expected a Deformable, got ") + luaL_typename(L, idx));
-  physics::DeformableSystem* sys = ScenarioHost::from(L)->deformablesIfAny();
+  physics::DeformableSystem* sys = ScenarioHost::from(L)->scene().deformablesIfAny();
   physics::Deformable* d = sys ? sys->get(ref->id) : nullptr;
   if (!d) throw LuaArgError("this Deformable was removed");
   return *d;
@@ -44,21 +44,6 @@ int checkParticle(lua_State* L, const physics::Deformable& d, int idx, const cha
   return int(i) - 1;
 }
 
-void checkFields(lua_State* L, const char* fn, std::initializer_list<const char*> valid) {
-  lua_pushnil(L);
-  while (lua_next(L, 1) != 0) {
-    lua_pop(L, 1);
-    std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    bool ok = false;
-    for (const char* v : valid) ok |= key == v;
-    if (!ok) {
-      std::string list;
-      for (const char* v : valid) list += (list.empty() ? "" : ", ") + std::string(v);
-      lua_pop(L, 1);
-      throw LuaArgError(std::string(fn) + ": unknown field '" + key + "' (valid: " + list + ")");
-    }
-  }
-}
 
 physics::DeformableMaterial readMaterial(lua_State* L, physics::DeformableMaterial m) {
   m.stiffness_Npm = Real(optNumberField(L, 1, "stiffness", m.stiffness_Npm));
@@ -84,8 +69,8 @@ int pushNew(lua_State* L, Result<std::unique_ptr<physics::Deformable>> made, con
   if (optVec3Field(L, 1, "wind", &wind)) d.setWind(wind);
   Vec3 color = d.kind() == physics::Deformable::Kind::Rope ? Vec3(0.9f, 0.6f, 0.2f) : Vec3(0.4f, 0.7f, 1.0f);
   optVec3Field(L, 1, "color", &color);
-  const int id = host.deformables().add(std::move(made.value()));
-  host.setDeformableColor(id, color.cast<float>());
+  const int id = host.scene().deformables().add(std::move(made.value()));
+  host.presentation().setDeformableColor(id, color.cast<float>());
   auto* ref = static_cast<DeformableRef*>(lua_newuserdatauv(L, sizeof(DeformableRef), 0));
   ref->id = id;
   luaL_setmetatable(L, kDeformableMeta);
@@ -117,7 +102,7 @@ int pushNew(lua_State* L, Result<std::unique_ptr<physics::Deformable>> made, con
 int ropeNew(lua_State* L) {
   const char* fn = "deformable.rope";
   if (!lua_istable(L, 1)) throw LuaArgError("deformable.rope: expected a table, e.g. deformable.rope{from = {0, 4, 0}, to = {3, 4, 0}}");
-  checkFields(L, fn, {"from", "to", "segments", "mass", "stiffness", "bend", "damping", "air_drag", "friction",
+  checkFields(L, 1, fn, {"from", "to", "segments", "mass", "stiffness", "bend", "damping", "air_drag", "friction",
                       "radius", "substeps", "pin_start", "pin_end", "wind", "color"});
   physics::RopeDef def;
   try {
@@ -165,7 +150,7 @@ int ropeNew(lua_State* L) {
 int clothNew(lua_State* L) {
   const char* fn = "deformable.cloth";
   if (!lua_istable(L, 1)) throw LuaArgError("deformable.cloth: expected a table, e.g. deformable.cloth{origin = {0, 3, 0}}");
-  checkFields(L, fn, {"origin", "u", "v", "columns", "rows", "mass", "stiffness", "shear", "bend", "damping", "drag",
+  checkFields(L, 1, fn, {"origin", "u", "v", "columns", "rows", "mass", "stiffness", "shear", "bend", "damping", "drag",
                       "air_density", "air_drag", "friction", "radius", "substeps", "pins", "wind", "color"});
   physics::ClothDef def;
   try {
@@ -314,7 +299,7 @@ int dStats(lua_State* L) {
 int dRemove(lua_State* L) {
   auto* ref = static_cast<DeformableRef*>(luaL_testudata(L, 1, kDeformableMeta));
   if (!ref) throw LuaArgError(std::string("expected a Deformable, got ") + luaL_typename(L, 1));
-  physics::DeformableSystem* sys = ScenarioHost::from(L)->deformablesIfAny();
+  physics::DeformableSystem* sys = ScenarioHost::from(L)->scene().deformablesIfAny();
   lua_pushboolean(L, sys && sys->remove(ref->id));
   return 1;
 }
@@ -341,16 +326,8 @@ const luaL_Reg kMethods[] = {
 }  // namespace
 
 void openDeformableBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kDeformableMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, dToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
-  luaL_newlib(L, kDeformable);
-  lua_setfield(L, envIndex, "deformable");
+  registerType(L, {kDeformableMeta, kMethods, dToString});
+  registerModule(L, envIndex, "deformable", kDeformable);
 }
 
 }  // namespace tumble::script

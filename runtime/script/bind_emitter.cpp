@@ -33,7 +33,7 @@ particles::EmitterId checkEmitter(lua_State* L, int idx, const char* fn) {
   if (!ref)
     throw LuaArgError(std::string(fn) + ": expected an Emitter (call methods with a colon, e:stop()), got " +
                       luaL_typename(L, idx));
-  particles::ParticleSystem* ps = ScenarioHost::from(L)->particlesIfAny();
+  particles::ParticleSystem* ps = ScenarioHost::from(L)->scene().particlesIfAny();
   particles::EmitterId id = idOf(*ref);
   if (!ps || !ps->isValid(id))
     throw LuaArgError(std::string(fn) +
@@ -61,15 +61,7 @@ Placement readPlacement(lua_State* L, int t, const char* fn) {
   if (!lua_istable(L, t))
     throw LuaArgError(std::string(fn) + ": argument 'at' must be a table, {position = {x, y, z}} or {body = b, "
                                         "offset = {x, y, z}}; got " + luaL_typename(L, t));
-  lua_pushnil(L);
-  while (lua_next(L, t) != 0) {
-    lua_pop(L, 1);
-    std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    if (key != "position" && key != "body" && key != "offset") {
-      lua_pop(L, 1);
-      throw LuaArgError(std::string(fn) + ": unknown field '" + key + "' in 'at' (valid: position, body, offset)");
-    }
-  }
+  checkFields(L, t, std::string(fn) + ": 'at'", {"position", "body", "offset"});
   Placement p;
   try {
     bool hasPosition = optVec3Field(L, t, "position", &p.position);
@@ -99,9 +91,9 @@ particles::EmitterId spawnAt(lua_State* L, const char* fn, int nameIdx, int atId
     throw LuaArgError(std::string(fn) + ": argument 'overrides' must be a table of emitter fields, got " +
                       luaL_typename(L, overridesIdx));
   Placement at = readPlacement(L, atIdx, fn);
-  auto def = host->emitterDef(name, overridesIdx && lua_istable(L, overridesIdx) ? overridesIdx : 0);
+  auto def = host->emitters().definition(name, overridesIdx && lua_istable(L, overridesIdx) ? overridesIdx : 0);
   if (!def) throw LuaArgError(std::string(fn) + "(\"" + name + "\"): " + def.error());
-  particles::ParticleSystem& ps = host->particles();
+  particles::ParticleSystem& ps = host->scene().particles();
   Eigen::Vector3f position = at.position.cast<float>();
   Eigen::Quaternionf rotation = Eigen::Quaternionf::Identity();
   if (at.attached) {
@@ -140,7 +132,8 @@ particles::EmitterId spawnAt(lua_State* L, const char* fn, int nameIdx, int atId
 int particlesSpawn(lua_State* L) {
   const int overridesIdx = lua_gettop(L) >= 3 && lua_istable(L, 3) ? 3 : 0;
   const particles::EmitterId id = spawnAt(L, "particles.spawn", 1, 2, overridesIdx);
-  ScenarioHost::from(L)->rememberEmitterSource(id, lua_tostring(L, 1), overridesIdx);  // for hot reload
+  ScenarioHost* host = ScenarioHost::from(L);
+  host->emitters().rememberSource(id, lua_tostring(L, 1), overridesIdx, host->scene().particles());  // for hot reload
   pushEmitter(L, id);
   return 1;
 }
@@ -161,7 +154,7 @@ int particlesBurst(lua_State* L) {
     throw LuaArgError("particles.burst: argument 'count' must be an integer 0.." +
                       std::to_string(particles::kMaxParticlesPerEmitter));
   particles::EmitterId id = spawnAt(L, "particles.burst", 1, 3, lua_gettop(L) >= 4 ? 4 : 0);
-  particles::ParticleSystem& ps = ScenarioHost::from(L)->particles();
+  particles::ParticleSystem& ps = ScenarioHost::from(L)->scene().particles();
   particles::Emitter* e = ps.get(id);
   e->def.bursts.clear();
   e->rate_per_s = 0;
@@ -173,7 +166,7 @@ int particlesBurst(lua_State* L) {
 /// @function particles.count
 /// @return integer live particles of every emitter (0 before the first spawn)
 int particlesCount(lua_State* L) {
-  particles::ParticleSystem* ps = ScenarioHost::from(L)->particlesIfAny();
+  particles::ParticleSystem* ps = ScenarioHost::from(L)->scene().particlesIfAny();
   lua_pushinteger(L, ps ? ps->particleCount() : 0);
   return 1;
 }
@@ -190,7 +183,7 @@ int emitterSetRate(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:set_rate");
   double rate = checkNumber(L, 2, "Emitter:set_rate: argument 'per_s'");
   if (rate < 0 || rate > 1e6) throw LuaArgError("Emitter:set_rate: rate must be 0..1e6 particles per second");
-  ScenarioHost::from(L)->particles().setRate(id, float(rate));
+  ScenarioHost::from(L)->scene().particles().setRate(id, float(rate));
   return 0;
 }
 
@@ -198,7 +191,7 @@ int emitterSetRate(lua_State* L) {
 /// @return number the current rate, particles per second
 int emitterRate(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:rate");
-  lua_pushnumber(L, ScenarioHost::from(L)->particles().get(id)->rate_per_s);
+  lua_pushnumber(L, ScenarioHost::from(L)->scene().particles().get(id)->rate_per_s);
   return 1;
 }
 
@@ -210,7 +203,7 @@ int emitterBurst(lua_State* L) {
   if (!lua_isinteger(L, 2) || lua_tointeger(L, 2) < 0 || lua_tointeger(L, 2) > particles::kMaxParticlesPerEmitter)
     throw LuaArgError("Emitter:burst: argument 'n' must be an integer 0.." +
                       std::to_string(particles::kMaxParticlesPerEmitter));
-  ScenarioHost::from(L)->particles().burst(id, int(lua_tointeger(L, 2)));
+  ScenarioHost::from(L)->scene().particles().burst(id, int(lua_tointeger(L, 2)));
   return 0;
 }
 
@@ -222,7 +215,7 @@ int emitterBurst(lua_State* L) {
 int emitterSetPosition(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:set_position");
   Vec3 p = checkVec3(L, 2, "Emitter:set_position: argument 'p'");
-  particles::ParticleSystem& ps = ScenarioHost::from(L)->particles();
+  particles::ParticleSystem& ps = ScenarioHost::from(L)->scene().particles();
   particles::Emitter* e = ps.get(id);
   if (e->anchor != particles::kNoAnchor) e->anchorOffset_m = p.cast<float>();
   else ps.setPose(id, p.cast<float>(), e->rotation);
@@ -233,7 +226,7 @@ int emitterSetPosition(lua_State* L) {
 /// @return Vec3 where the emitter is now (world, m)
 int emitterPosition(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:position");
-  pushVec3(L, ScenarioHost::from(L)->particles().get(id)->position_m.cast<Real>());
+  pushVec3(L, ScenarioHost::from(L)->scene().particles().get(id)->position_m.cast<Real>());
   return 1;
 }
 
@@ -246,7 +239,7 @@ int emitterPosition(lua_State* L) {
 /// @example if hi then hud_text(("smoke top: %.1f m"):format(hi.y)) end
 int emitterBounds(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:bounds");
-  const particles::Emitter* e = ScenarioHost::from(L)->particles().get(id);
+  const particles::Emitter* e = ScenarioHost::from(L)->scene().particles().get(id);
   const particles::ParticlePool& p = e->pool;
   if (p.count == 0) {
     lua_pushnil(L);
@@ -274,7 +267,7 @@ int emitterSetDirection(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:set_direction");
   Vec3 d = checkVec3(L, 2, "Emitter:set_direction: argument 'd'");
   if (d.norm() < 1e-6) throw LuaArgError("Emitter:set_direction: the direction must not be zero");
-  ScenarioHost::from(L)->particles().setDirection(id, d.cast<float>());
+  ScenarioHost::from(L)->scene().particles().setDirection(id, d.cast<float>());
   return 0;
 }
 
@@ -282,7 +275,7 @@ int emitterSetDirection(lua_State* L) {
 /// Stops emitting; live particles finish their lives, then the emitter is gone.
 int emitterStop(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:stop");
-  ScenarioHost::from(L)->particles().stop(id);
+  ScenarioHost::from(L)->scene().particles().stop(id);
   return 0;
 }
 
@@ -290,7 +283,7 @@ int emitterStop(lua_State* L) {
 /// Removes the emitter and its particles at once.
 int emitterRemove(lua_State* L) {
   particles::EmitterId id = checkEmitter(L, 1, "Emitter:remove");
-  ScenarioHost::from(L)->particles().remove(id);
+  ScenarioHost::from(L)->scene().particles().remove(id);
   return 0;
 }
 
@@ -299,7 +292,7 @@ int emitterRemove(lua_State* L) {
 int emitterCount(lua_State* L) {
   EmitterRef* ref = testRef(L, 1);
   if (!ref) throw LuaArgError(std::string("Emitter:count: expected an Emitter, got ") + luaL_typename(L, 1));
-  particles::ParticleSystem* ps = ScenarioHost::from(L)->particlesIfAny();
+  particles::ParticleSystem* ps = ScenarioHost::from(L)->scene().particlesIfAny();
   lua_pushinteger(L, ps ? ps->count(idOf(*ref)) : 0);
   return 1;
 }
@@ -309,7 +302,7 @@ int emitterCount(lua_State* L) {
 int emitterAlive(lua_State* L) {
   EmitterRef* ref = testRef(L, 1);
   if (!ref) throw LuaArgError(std::string("Emitter:alive: expected an Emitter, got ") + luaL_typename(L, 1));
-  particles::ParticleSystem* ps = ScenarioHost::from(L)->particlesIfAny();
+  particles::ParticleSystem* ps = ScenarioHost::from(L)->scene().particlesIfAny();
   lua_pushboolean(L, ps && ps->isValid(idOf(*ref)));
   return 1;
 }
@@ -351,18 +344,8 @@ const luaL_Reg kMethods[] = {
 }  // namespace
 
 void openEmitterBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kEmitterMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, emitterToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushcfunction(L, emitterEq);
-  lua_setfield(L, -2, "__eq");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
-  luaL_newlib(L, kParticles);
-  lua_setfield(L, envIndex, "particles");
+  registerType(L, {kEmitterMeta, kMethods, emitterToString, emitterEq});
+  registerModule(L, envIndex, "particles", kParticles);
 }
 
 }  // namespace tumble::script

@@ -105,8 +105,7 @@ const luaL_Reg kGame[] = {
 }  // namespace
 
 void openGameBindings(lua_State* L, int envIndex) {
-  luaL_newlib(L, kGame);
-  lua_setfield(L, envIndex, "game");
+  registerModule(L, envIndex, "game", kGame);
 }
 
 }  // namespace tumble::script

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string_view>
 
+#include "input/input_system.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -195,8 +196,7 @@ const luaL_Reg kInput[] = {
 }  // namespace
 
 void openInputBindings(lua_State* L, int envIndex) {
-  luaL_newlib(L, kInput);
-  lua_setfield(L, envIndex, "input");
+  registerModule(L, envIndex, "input", kInput);
 }
 
 }  // namespace tumble::script

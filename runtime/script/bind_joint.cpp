@@ -29,7 +29,7 @@ physics::JointId checkJoint(lua_State* L, int idx, bool mustBeValid = true) {
   auto* ref = static_cast<JointRef*>(luaL_testudata(L, idx, kJointMeta));
   if (!ref) throw LuaArgError(std::string("expected a Joint, got ") + luaL_typename(L, idx));
   if (mustBeValid) {
-    physics::JointSystem* js = ScenarioHost::from(L)->jointsIfAny();
+    physics::JointSystem* js = ScenarioHost::from(L)->scene().jointsIfAny();
     if (!js || !js->isValid(ref->id))
       throw LuaArgError("this Joint was removed or broke (check joint:is_valid() first)");
   }
@@ -77,26 +77,11 @@ physics::BodyId bodyField(lua_State* L, int t, const char* key, bool required) {
 /// @field break_torque? number likewise for the angular torque, N m
 /// @field collide? boolean whether a and b still collide with each other (default false)
 
-const char* const kJointFields[] = {"type", "a", "b", "anchor", "axis", "lower_angle", "upper_angle",
+const std::set<std::string> kJointFields = {"type", "a", "b", "anchor", "axis", "lower_angle", "upper_angle",
                                     "motor_speed", "max_motor_torque", "swing_limit", "twist_lower",
                                     "twist_upper", "stiffness", "damping", "angular_stiffness",
                                     "angular_damping", "break_force", "break_torque", "collide"};
 
-void checkFields(lua_State* L, int t, const char* fn) {
-  lua_pushnil(L);
-  while (lua_next(L, t) != 0) {
-    lua_pop(L, 1);
-    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    bool known = false;
-    for (const char* k : kJointFields) known = known || key == k;
-    if (!known) {
-      lua_pop(L, 1);
-      std::string valid;
-      for (const char* k : kJointFields) valid += (valid.empty() ? "" : ", ") + std::string(k);
-      throw LuaArgError(std::string(fn) + ": unknown field '" + key + "' (valid: " + valid + ")");
-    }
-  }
-}
 
 /// @function world.joint
 /// Joins two bodies (or a body and the world) where they are now. Solved by
@@ -111,7 +96,7 @@ int worldJoint(lua_State* L) {
   if (!lua_istable(L, 1))
     throw LuaArgError("world.joint: expected a table, e.g. world.joint{type = \"ball\", a = body, anchor = {0, 2, 0}}");
   lua_settop(L, 1);
-  checkFields(L, 1, fn);
+  checkFields(L, 1, fn, kJointFields);
   ScenarioHost& host = *ScenarioHost::from(L);
   physics::JointDef d;
   bool collide = false;
@@ -153,7 +138,7 @@ int worldJoint(lua_State* L) {
   } catch (const LuaArgError& e) {
     throw LuaArgError(std::string(fn) + ": " + e.what());
   }
-  auto id = host.joints().createJoint(d);
+  auto id = host.scene().joints().createJoint(d);
   if (!id) throw LuaArgError(std::string(fn) + ": " + id.error());
   if (!collide && !d.bodyB.isNull()) host.world().disableCollision(d.bodyA, d.bodyB);
   host.world().wake(d.bodyA);
@@ -183,7 +168,7 @@ int worldGrab(lua_State* L) {
   const physics::Body& b = host.world().body(body);
   if (b.type != physics::BodyType::Dynamic) throw LuaArgError("world.grab: the body must be dynamic");
   const physics::JointDef d = physics::makeGrabDef(host.world(), body, local, target, Real(hz));
-  auto id = host.joints().createJoint(d);
+  auto id = host.scene().joints().createJoint(d);
   if (!id) throw LuaArgError("world.grab: " + id.error());
   host.world().wake(body);
   pushJoint(L, id.value());
@@ -191,24 +176,23 @@ int worldGrab(lua_State* L) {
 }
 
 /// @function world.joint_solver
-/// @return string the scene's joint formulation now: "lagrange" or "impulse"
+/// @return string the scene's joint solver now: "lagrange" or "impulse"
 int worldJointSolver(lua_State* L) {
-  physics::JointSystem* js = ScenarioHost::from(L)->jointsIfAny();
-  lua_pushstring(L, js ? physics::jointSolverName(js->solver()) : ScenarioHost::from(L)->jointSolverName());
+  lua_pushstring(L, physics::jointSolverName(ScenarioHost::from(L)->scene().jointSolver()));
   return 1;
 }
 
 /// @function world.set_joint_solver
-/// Switches the joint formulation while running ("lagrange": Lagrange
-/// multipliers before the step; "impulse": impulses with the contacts).
+/// Switches the joint solver while running ("lagrange": Lagrange
+/// multipliers from the joints' sparse factor; "impulse": impulses solved
+/// with the contacts). Joints that exist switch too.
 /// @param name string "lagrange" or "impulse"
 int worldSetJointSolver(lua_State* L) {
   const char* name = luaL_checkstring(L, 1);
   physics::JointSolverKind kind;
   if (!physics::parseJointSolver(name, &kind))
     throw LuaArgError(std::string("world.set_joint_solver: expected \"lagrange\" or \"impulse\", got \"") + name + "\"");
-  ScenarioHost& host = *ScenarioHost::from(L);
-  host.setJointSolver(kind == physics::JointSolverKind::Impulse);
+  ScenarioHost::from(L)->scene().setJointSolver(kind);
   return 0;
 }
 
@@ -219,14 +203,14 @@ int worldSetJointSolver(lua_State* L) {
 int worldSetDt(lua_State* L) {
   const double dt = checkNumber(L, 1, "world.set_dt dt");
   if (!(dt >= 0.0005 && dt <= 0.1)) throw LuaArgError("world.set_dt: dt must be in [0.0005, 0.1] s");
-  ScenarioHost::from(L)->requestDt(dt);
+  ScenarioHost::from(L)->scene().requestDt(dt);
   return 0;
 }
 
 /// @function world.dt
 /// @return number the fixed time step in use, s
 int worldDt(lua_State* L) {
-  lua_pushnumber(L, ScenarioHost::from(L)->dt_s());
+  lua_pushnumber(L, ScenarioHost::from(L)->scene().dt_s());
   return 1;
 }
 
@@ -238,7 +222,7 @@ int worldDt(lua_State* L) {
 /// @return boolean false once the joint was removed, released or broke (or a body of it removed)
 int jointIsValid(lua_State* L) {
   const physics::JointId id = checkJoint(L, 1, false);
-  physics::JointSystem* js = ScenarioHost::from(L)->jointsIfAny();
+  physics::JointSystem* js = ScenarioHost::from(L)->scene().jointsIfAny();
   lua_pushboolean(L, js && js->isValid(id));
   return 1;
 }
@@ -248,7 +232,7 @@ int jointIsValid(lua_State* L) {
 /// @return boolean true if it was still there
 int jointRemove(lua_State* L) {
   const physics::JointId id = checkJoint(L, 1, false);
-  physics::JointSystem* js = ScenarioHost::from(L)->jointsIfAny();
+  physics::JointSystem* js = ScenarioHost::from(L)->scene().jointsIfAny();
   lua_pushboolean(L, js && js->destroyJoint(id));
   return 1;
 }
@@ -264,7 +248,7 @@ int jointRelease(lua_State* L) { return jointRemove(L); }
 int jointSetTarget(lua_State* L) {
   const physics::JointId id = checkJoint(L, 1);
   const Vec3 p = checkVec3(L, 2, "Joint:set_target point");
-  if (!ScenarioHost::from(L)->joints().setWorldAnchor(id, p))
+  if (!ScenarioHost::from(L)->scene().joints().setWorldAnchor(id, p))
     throw LuaArgError("Joint:set_target: only for joints held to the world (b = nil) and grabs");
   return 0;
 }
@@ -278,14 +262,14 @@ int jointSetMotor(lua_State* L) {
   const double speed = checkNumber(L, 2, "Joint:set_motor speed");
   const double torque = checkNumber(L, 3, "Joint:set_motor max_torque");
   if (torque < 0) throw LuaArgError("Joint:set_motor: max_torque must be >= 0 N m");
-  ScenarioHost::from(L)->joints().setMotor(id, Real(speed), Real(torque));
+  ScenarioHost::from(L)->scene().joints().setMotor(id, Real(speed), Real(torque));
   return 0;
 }
 
 /// @function Joint:angle
 /// @return number hinge angle or cone-twist twist angle now, rad (0 for other types)
 int jointAngle(lua_State* L) {
-  lua_pushnumber(L, ScenarioHost::from(L)->joints().jointAngle_rad(checkJoint(L, 1)));
+  lua_pushnumber(L, ScenarioHost::from(L)->scene().joints().jointAngle_rad(checkJoint(L, 1)));
   return 1;
 }
 
@@ -294,7 +278,7 @@ int jointAngle(lua_State* L) {
 /// @return number the constraint torque of the angular rows, N m
 int jointForce(lua_State* L) {
   const physics::JointId id = checkJoint(L, 1);
-  physics::JointSystem& js = ScenarioHost::from(L)->joints();
+  physics::JointSystem& js = ScenarioHost::from(L)->scene().joints();
   lua_pushnumber(L, js.lastForce_N(id).norm());
   lua_pushnumber(L, js.lastTorque_Nm(id).norm());
   return 2;
@@ -336,19 +320,10 @@ const luaL_Reg kMethods[] = {
 }  // namespace
 
 void openJointBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kJointMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, jointToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushcfunction(L, jointEq);
-  lua_setfield(L, -2, "__eq");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
+  registerType(L, {kJointMeta, kMethods, jointToString, jointEq});
   // Into the `world` table made by openWorldBindings.
   lua_getfield(L, envIndex, "world");
-  luaL_setfuncs(L, kWorldJoint, 0);
+  registerFunctions(L, -1, kWorldJoint);
   lua_pop(L, 1);
 }
 

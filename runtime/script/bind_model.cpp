@@ -75,12 +75,10 @@ int bodySetModel(lua_State* L) {
   a.body = id;
   a.file = resolve(L, 2, fn);
   ScenarioHost* host = ScenarioHost::from(L);
-  if (host->options().modelBounds) {
-    if (auto box = host->options().modelBounds(a.file); !box) throw LuaArgError(std::string(fn) + ": " + box.error());
-  }
+  if (auto box = host->scene().modelBounds(a.file); !box) throw LuaArgError(std::string(fn) + ": " + box.error());
   if (!lua_isnoneornil(L, 3)) {
     if (!lua_istable(L, 3)) throw LuaArgError(std::string(fn) + ": options must be a table {offset=, rotation=, scale=}");
-    checkOptionFields(L, 3, fn, {"offset", "rotation", "scale"});
+    checkFields(L, 3, fn, {"offset", "rotation", "scale"});
     try {
       optVec3Field(L, 3, "offset", &a.offset_m);
       a.rotation = readRotation(L, 3);
@@ -149,7 +147,7 @@ int worldAddStaticModel(lua_State* L) {
   Eigen::Vector3f color(0.55f, 0.5f, 0.45f);
   if (!lua_isnoneornil(L, 2)) {
     if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": the second argument must be a table {position=, ...}");
-    checkOptionFields(L, 2, fn, {"position", "rotation", "scale", "collision", "friction", "color"});
+    checkFields(L, 2, fn, {"position", "rotation", "scale", "collision", "friction", "color"});
     try {
       optVec3Field(L, 2, "position", &s.position_m);
       s.rotation = readRotation(L, 2);
@@ -167,19 +165,12 @@ int worldAddStaticModel(lua_State* L) {
                       collision + "\"");
   }
   ScenarioHost* host = ScenarioHost::from(L);
-  const ModelBoundsFn& bounds = host->options().modelBounds;
-  std::optional<ModelBox> box;
-  if (bounds) {
-    auto b = bounds(s.file);
-    if (!b) throw LuaArgError(std::string(fn) + ": " + b.error());
-    box = *b;
-  }
+  auto box = host->scene().modelBounds(s.file);
+  if (!box) throw LuaArgError(std::string(fn) + ": " + box.error());
   if (collision == "mesh") {
-    const ModelMeshShapeFn& meshShape = host->options().modelMeshShape;
-    if (!meshShape) throw LuaArgError(std::string(fn) + ": this run cannot read model meshes; use collision = \"none\"");
     // One shape per (file, scale), shared by every placement of it: the
     // shape is immutable and in the model's frame, the body places it.
-    auto shape = meshShape(s.file, s.scale);
+    auto shape = host->scene().modelMeshShape(s.file, s.scale);
     if (!shape) throw LuaArgError(std::string(fn) + ": " + shape.error());
     physics::BodyDef d;
     d.type = physics::BodyType::Static;
@@ -190,9 +181,8 @@ int worldAddStaticModel(lua_State* L) {
     auto body = host->world().createBody(d);
     if (!body) throw LuaArgError(std::string(fn) + ": " + body.error());
     s.body = *body;
-    host->setColor(*body, color);
+    host->presentation().setColor(*body, color);
   } else if (collision == "box") {
-    if (!box) throw LuaArgError(std::string(fn) + ": this run cannot read model bounds; use collision = \"none\"");
     physics::BodyDef d;
     d.type = physics::BodyType::Static;
     const Vec3 half = (box->max_m - box->min_m).cwiseProduct(s.scale) / 2;
@@ -205,7 +195,7 @@ int worldAddStaticModel(lua_State* L) {
     auto body = host->world().createBody(d);
     if (!body) throw LuaArgError(std::string(fn) + ": " + body.error());
     s.body = *body;
-    host->setColor(*body, color);
+    host->presentation().setColor(*body, color);
   }
   host->presentation().statics.push_back(s);
   ++host->presentation().revision;
@@ -236,7 +226,7 @@ int worldModelMassProperties(lua_State* L) {
   Vec3 scale = Vec3::Ones();
   if (!lua_isnoneornil(L, 2)) {
     if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": options must be a table {density=, scale=}");
-    checkOptionFields(L, 2, fn, {"density", "scale"});
+    checkFields(L, 2, fn, {"density", "scale"});
     try {
       density = Real(optNumberField(L, 2, "density", density));
       scale = readScale(L, 2);
@@ -245,9 +235,7 @@ int worldModelMassProperties(lua_State* L) {
     }
     if (!(density > 0)) throw LuaArgError(std::string(fn) + ": option 'density' must be > 0 kg/m^3");
   }
-  const ModelTrianglesFn& triangles = ScenarioHost::from(L)->options().modelTriangles;
-  if (!triangles) throw LuaArgError(std::string(fn) + ": this run cannot read model meshes");
-  auto mesh = triangles(file);
+  auto mesh = ScenarioHost::from(L)->scene().modelTriangles(file);
   if (!mesh) throw LuaArgError(std::string(fn) + ": " + mesh.error());
   for (Vec3& v : mesh->vertices_m) v = v.cwiseProduct(scale);
   if (!physics::isClosedMesh(mesh->vertices_m, mesh->triangles)) {
@@ -278,6 +266,11 @@ const luaL_Reg kBodyModelMethods[] = {
     {"clear_model", guarded<bodyClearModel>},
     {nullptr, nullptr},
 };
+const luaL_Reg kWorldModel[] = {
+    {"add_static_model", guarded<worldAddStaticModel>},
+    {"model_mass_properties", guarded<worldModelMassProperties>},
+    {nullptr, nullptr},
+};
 
 }  // namespace
 
@@ -285,14 +278,11 @@ void openModelBindings(lua_State* L, int envIndex) {
   // Body methods: added to the Body metatable's method table.
   luaL_getmetatable(L, kBodyMeta);
   lua_getfield(L, -1, "__index");
-  luaL_setfuncs(L, kBodyModelMethods, 0);
+  registerFunctions(L, -1, kBodyModelMethods);
   lua_pop(L, 2);
-  // world.add_static_model: added to the env's world table.
+  // world.add_static_model, world.model_mass_properties: into the env's world table.
   lua_getfield(L, envIndex, "world");
-  lua_pushcfunction(L, guarded<worldAddStaticModel>);
-  lua_setfield(L, -2, "add_static_model");
-  lua_pushcfunction(L, guarded<worldModelMassProperties>);
-  lua_setfield(L, -2, "model_mass_properties");
+  registerFunctions(L, -1, kWorldModel);
   lua_pop(L, 1);
 }
 

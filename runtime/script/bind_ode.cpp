@@ -204,16 +204,7 @@ int odeSystem(lua_State* L) {
     throw LuaArgError("ode.system: expected a table, e.g. ode.system{state = {1, 0}, derivative = function(t, y) "
                       "return {y[2], -y[1]} end}");
   lua_settop(L, 1);
-  lua_pushnil(L);
-  while (lua_next(L, 1) != 0) {
-    lua_pop(L, 1);
-    std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    if (key != "state" && key != "derivative" && key != "jacobian" && key != "energy" && key != "method" &&
-        key != "time") {
-      lua_pop(L, 1);
-      throw LuaArgError("ode.system: unknown field '" + key + "' (valid: state, derivative, jacobian, energy, method, time)");
-    }
-  }
+  checkFields(L, 1, "ode.system", {"state", "derivative", "jacobian", "energy", "method", "time"});
   if (lua_getfield(L, 1, "state") != LUA_TTABLE) throw LuaArgError("ode.system: field 'state' must be a table of numbers");
   const int dim = int(lua_rawlen(L, -1));
   if (dim < 1 || dim > 10000) throw LuaArgError("ode.system: field 'state' must hold 1..10000 numbers");
@@ -396,11 +387,11 @@ int odeToString(lua_State* L) {
 /// @param b Vec3Arg the other end (m)
 /// @param color? Vec3Arg linear RGB 0..1 (default yellow)
 int drawLine(lua_State* L) {
-  ScenarioHost::ScriptLine line;
+  ScriptLine line;
   line.a_m = checkVec3(L, 1, "draw_line a");
   line.b_m = checkVec3(L, 2, "draw_line b");
   line.color = lua_isnoneornil(L, 3) ? Eigen::Vector3f(1, 1, 0) : checkVec3(L, 3, "draw_line color").cast<float>();
-  if (ScenarioHost* host = ScenarioHost::from(L)) host->addScriptLine(line);
+  if (ScenarioHost* host = ScenarioHost::from(L)) host->presentation().addScriptLine(line);
   return 0;
 }
 
@@ -414,24 +405,17 @@ const luaL_Reg kMethods[] = {
     {"get", guarded<odeGet>},     {"time", guarded<odeTime>},   {"energy", guarded<odeEnergy>},
     {"stats", guarded<odeStats>}, {nullptr, nullptr},
 };
+const luaL_Reg kGlobals[] = {
+    {"draw_line", guarded<drawLine>},
+    {nullptr, nullptr},
+};
 
 }  // namespace
 
 void openOdeBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kOdeMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, odeGc);
-  lua_setfield(L, -2, "__gc");
-  lua_pushcfunction(L, odeToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
-  luaL_newlib(L, kOde);
-  lua_setfield(L, envIndex, "ode");
-  lua_pushcfunction(L, guarded<drawLine>);
-  lua_setfield(L, envIndex, "draw_line");
+  registerType(L, {kOdeMeta, kMethods, odeToString, nullptr, odeGc});
+  registerModule(L, envIndex, "ode", kOde);
+  registerFunctions(L, envIndex, kGlobals);
 }
 
 }  // namespace tumble::script

@@ -53,7 +53,7 @@ physics::RagdollDesc readDescription(lua_State* L, int t) {
     const int pt = lua_gettop(L);
     physics::RagdollPart p;
     try {
-      checkOptionFields(L, pt, where, {"name", "shape", "size", "radius", "length", "mass", "position", "rotation"});
+      checkFields(L, pt, where, {"name", "shape", "size", "radius", "length", "mass", "position", "rotation"});
       p.name = optStringField(L, pt, "name", "");
       if (p.name.empty()) throw LuaArgError("field 'name' is required");
       for (const physics::RagdollPart& q : d.parts)
@@ -95,7 +95,7 @@ physics::RagdollDesc readDescription(lua_State* L, int t) {
     const int jt = lua_gettop(L);
     physics::RagdollJoint j;
     try {
-      checkOptionFields(L, jt, where,
+      checkFields(L, jt, where,
                         {"name", "type", "child", "parent", "anchor", "axis", "lower_angle", "upper_angle",
                          "swing_limit", "twist_lower", "twist_upper", "break_force"});
       j.name = optStringField(L, jt, "name", "");
@@ -209,7 +209,7 @@ int spawnRagdoll(lua_State* L) {
   Quat q = Quat::Identity();
   physics::RagdollDesc desc;
   try {
-    checkOptionFields(L, 1, fn, {"position", "rotation", "scale", "height", "mass", "parts", "joints", "friction"});
+    checkFields(L, 1, fn, {"position", "rotation", "scale", "height", "mass", "parts", "joints", "friction"});
     optVec3Field(L, 1, "position", &position);
     q = rotationField(L, 1);
     const Real scale = Real(optNumberField(L, 1, "scale", 1));
@@ -236,7 +236,7 @@ int spawnRagdoll(lua_State* L) {
   } catch (const LuaArgError& e) {
     throw LuaArgError(std::string(fn) + ": " + e.what());
   }
-  auto r = physics::buildRagdoll(host.world(), host.joints(), desc, position, q);
+  auto r = physics::buildRagdoll(host.world(), host.scene().joints(), desc, position, q);
   if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
   lua_createtable(L, 0, int(desc.parts.size()));
   for (std::size_t i = 0; i < desc.parts.size(); ++i) {
@@ -250,19 +250,20 @@ int spawnRagdoll(lua_State* L) {
 /// @return number the largest joint anchor separation now (m), 0 without joints; springs (grabs) do not count
 /// @return number the largest seen since the start (m)
 int jointsError(lua_State* L) {
-  physics::JointSystem* j = ScenarioHost::from(L)->jointsIfAny();
+  physics::JointSystem* j = ScenarioHost::from(L)->scene().jointsIfAny();
   lua_pushnumber(L, j ? j->anchorError_m(false) : 0.0);
   lua_pushnumber(L, j ? j->maxAnchorError_m() : 0.0);
   return 2;
 }
 
+const luaL_Reg kGlobals[] = {
+    {"spawn_ragdoll", guarded<spawnRagdoll>},
+    {"joints_error", guarded<jointsError>},
+    {nullptr, nullptr},
+};
+
 }  // namespace
 
-void openRagdollBindings(lua_State* L, int envIndex) {
-  lua_pushcfunction(L, guarded<spawnRagdoll>);
-  lua_setfield(L, envIndex, "spawn_ragdoll");
-  lua_pushcfunction(L, guarded<jointsError>);
-  lua_setfield(L, envIndex, "joints_error");
-}
+void openRagdollBindings(lua_State* L, int envIndex) { registerFunctions(L, envIndex, kGlobals); }
 
 }  // namespace tumble::script

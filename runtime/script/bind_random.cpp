@@ -231,12 +231,7 @@ const luaL_Reg kMethods[] = {
 /// @return any
 
 void openRandomBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kRandomMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
+  registerType(L, {kRandomMeta, kMethods});
 
   lua_createtable(L, 0, 6);
   lua_pushcfunction(L, guarded<randomNew>);

@@ -157,8 +157,7 @@ const luaL_Reg kFunctions[] = {{"read", guarded<saveRead>}, {"write", guarded<sa
 }  // namespace
 
 void openSaveBindings(lua_State* L, int envIndex) {
-  luaL_newlib(L, kFunctions);
-  lua_setfield(L, envIndex, "save");
+  registerModule(L, envIndex, "save", kFunctions);
 }
 
 }  // namespace tumble::script

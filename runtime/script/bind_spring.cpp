@@ -31,15 +31,7 @@ int worldSpring(lua_State* L) {
   if (!lua_istable(L, 1))
     throw LuaArgError("world.spring: expected a table, e.g. world.spring{a = body, anchor = {0, 5, 0}, stiffness = 100}");
   lua_settop(L, 1);
-  lua_pushnil(L);
-  while (lua_next(L, 1) != 0) {
-    lua_pop(L, 1);
-    std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    if (key != "a" && key != "b" && key != "anchor" && key != "stiffness" && key != "damping" && key != "rest_length") {
-      lua_pop(L, 1);
-      throw LuaArgError("world.spring: unknown field '" + key + "' (valid: a, b, anchor, stiffness, damping, rest_length)");
-    }
-  }
+  checkFields(L, 1, fn, {"a", "b", "anchor", "stiffness", "damping", "rest_length"});
   physics::SpringDef def;
   lua_getfield(L, 1, "a");
   if (!testBody(L, -1, &def.a)) throw LuaArgError("world.spring: field 'a' must be a Body");

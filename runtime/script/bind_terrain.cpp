@@ -296,12 +296,7 @@ Result<terrain::HeightMap> buildScenarioTerrain(ScenarioHost& host, int width, i
   if (auto st = terrain::checkHeightMapSize(width, height, "terrain.build"); !st) return makeError(st.error());
   terrain::HeightMap map(width, height);
   lua_State* L = host.luaState();
-  if (luaL_newmetatable(L, kHeightMapMeta)) {
-    luaL_newlib(L, kMethods);
-    lua_setfield(L, -2, "__index");
-    lua_pushboolean(L, 0);
-    lua_setfield(L, -2, "__metatable");
-  }
+  if (luaL_getmetatable(L, kHeightMapMeta) == LUA_TNIL) registerType(L, {kHeightMapMeta, kMethods});
   lua_pop(L, 1);
   MapBox* box = nullptr;
   ScriptError err;

@@ -6,11 +6,13 @@ namespace tumble::script {
 
 /// @module timer
 /// Calls a function after a delay or every period, in simulated time. Timers
-/// are checked before on_update each step: a timer due at t fires in the
-/// first step that starts at or after t, at most once per step, in order of
-/// due time and then of creation. They count from the time of the callback
-/// that made them (0 in on_start). A failing timer.every is cancelled after
-/// 3 failures in a row.
+/// are checked after each physics step, after on_contact and the triggers:
+/// a timer due at t fires after the first step that ends at or after t (so
+/// before the next on_update), at most once per step, in order of due time
+/// and then of creation; ctx.time is the time the step ended. Timers made
+/// in on_start with delay 0 fire right after on_start. They count from the
+/// time of the callback that made them (0 in on_start). A failing
+/// timer.every is cancelled after 3 failures in a row.
 
 namespace {
 
@@ -34,7 +36,8 @@ int add(lua_State* L, const char* fn, bool repeat) {
   if (!lua_isfunction(L, 2))
     throw LuaArgError(std::string(fn) + ": argument 2 must be a function, got " + luaL_typename(L, 2));
   lua_settop(L, 2);
-  std::uint32_t id = ScenarioHost::from(L)->addTimer(seconds, repeat ? seconds : 0);  // pops the function
+  ScenarioHost* host = ScenarioHost::from(L);
+  std::uint32_t id = host->timers().add(host->now_s(), seconds, repeat ? seconds : 0);  // pops the function
   auto* ref = static_cast<TimerRef*>(lua_newuserdatauv(L, sizeof(TimerRef), 0));
   ref->id = id;
   luaL_setmetatable(L, kTimerMeta);
@@ -66,14 +69,14 @@ int timerEvery(lua_State* L) { return add(L, "timer.every", true); }
 /// Stops the timer; it will not fire again.
 /// @return boolean true if it was still active
 int timerCancel(lua_State* L) {
-  lua_pushboolean(L, ScenarioHost::from(L)->cancelTimer(checkTimer(L, 1)));
+  lua_pushboolean(L, ScenarioHost::from(L)->timers().cancel(checkTimer(L, 1)));
   return 1;
 }
 
 /// @function Timer:active
 /// @return boolean false once it fired (timer.after), was cancelled or stopped
 int timerActive(lua_State* L) {
-  lua_pushboolean(L, ScenarioHost::from(L)->timerActive(checkTimer(L, 1)));
+  lua_pushboolean(L, ScenarioHost::from(L)->timers().active(checkTimer(L, 1)));
   return 1;
 }
 
@@ -97,16 +100,8 @@ const luaL_Reg kMethods[] = {
 }  // namespace
 
 void openTimerBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kTimerMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, timerToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
-  luaL_newlib(L, kTimer);
-  lua_setfield(L, envIndex, "timer");
+  registerType(L, {kTimerMeta, kMethods, timerToString});
+  registerModule(L, envIndex, "timer", kTimer);
 }
 
 }  // namespace tumble::script

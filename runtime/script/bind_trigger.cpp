@@ -58,15 +58,7 @@ int triggerBox(lua_State* L) {
     throw LuaArgError("trigger.box: expected a table, e.g. trigger.box{center = {0, 1, 0}, size = {2, 2, 2}, "
                       "on_enter = function(body) ... end}");
   lua_settop(L, 1);
-  lua_pushnil(L);
-  while (lua_next(L, 1) != 0) {
-    lua_pop(L, 1);
-    std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
-    if (key != "center" && key != "size" && key != "on_enter" && key != "on_exit") {
-      lua_pop(L, 1);
-      throw LuaArgError("trigger.box: unknown field '" + key + "' (valid: center, size, on_enter, on_exit)");
-    }
-  }
+  checkFields(L, 1, fn, {"center", "size", "on_enter", "on_exit"});
   Vec3 center, size;
   try {
     if (!optVec3Field(L, 1, "center", &center)) throw LuaArgError("field 'center' is required ({x, y, z}, m)");
@@ -77,7 +69,7 @@ int triggerBox(lua_State* L) {
   if (size.minCoeff() <= 0) throw LuaArgError("trigger.box: every component of 'size' must be > 0 m");
   int onEnter = optFunctionField(L, 1, "on_enter", fn);
   int onExit = optFunctionField(L, 1, "on_exit", fn);
-  std::uint32_t id = ScenarioHost::from(L)->addTrigger(center, size / 2, onEnter, onExit);
+  std::uint32_t id = ScenarioHost::from(L)->triggers().add(center, size / 2, onEnter, onExit);
   pushTrigger(L, id);
   return 1;
 }
@@ -89,14 +81,14 @@ int triggerBox(lua_State* L) {
 /// Removes the trigger; no more events. Bodies inside get no on_exit.
 /// @return boolean true if it was still there
 int triggerRemove(lua_State* L) {
-  lua_pushboolean(L, ScenarioHost::from(L)->removeTrigger(checkTrigger(L, 1)));
+  lua_pushboolean(L, ScenarioHost::from(L)->triggers().remove(checkTrigger(L, 1)));
   return 1;
 }
 
 /// @function Trigger:bodies
 /// @return Body[] the bodies inside after the last step, in body order
 int triggerBodies(lua_State* L) {
-  const auto* inside = ScenarioHost::from(L)->triggerBodies(checkTrigger(L, 1));
+  const auto* inside = ScenarioHost::from(L)->triggers().bodiesIn(checkTrigger(L, 1));
   lua_createtable(L, inside ? int(inside->size()) : 0, 0);
   if (!inside) return 1;
   for (std::size_t i = 0; i < inside->size(); ++i) {
@@ -113,7 +105,7 @@ int triggerContains(lua_State* L) {
   std::uint32_t id = checkTrigger(L, 1);
   physics::BodyId body;
   if (!testBody(L, 2, &body)) throw LuaArgError(std::string("Trigger:contains: expected a Body, got ") + luaL_typename(L, 2));
-  const auto* inside = ScenarioHost::from(L)->triggerBodies(id);
+  const auto* inside = ScenarioHost::from(L)->triggers().bodiesIn(id);
   bool found = false;
   if (inside)
     for (physics::BodyId b : *inside) found |= b == body;
@@ -124,7 +116,7 @@ int triggerContains(lua_State* L) {
 /// @function Trigger:count
 /// @return integer the number of bodies inside after the last step
 int triggerCount(lua_State* L) {
-  const auto* inside = ScenarioHost::from(L)->triggerBodies(checkTrigger(L, 1));
+  const auto* inside = ScenarioHost::from(L)->triggers().bodiesIn(checkTrigger(L, 1));
   lua_pushinteger(L, inside ? lua_Integer(inside->size()) : 0);
   return 1;
 }
@@ -163,18 +155,8 @@ void pushTrigger(lua_State* L, std::uint32_t id) {
 }
 
 void openTriggerBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kTriggerMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, triggerToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushcfunction(L, triggerEq);
-  lua_setfield(L, -2, "__eq");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
-  luaL_newlib(L, kTrigger);
-  lua_setfield(L, envIndex, "trigger");
+  registerType(L, {kTriggerMeta, kMethods, triggerToString, triggerEq});
+  registerModule(L, envIndex, "trigger", kTrigger);
 }
 
 }  // namespace tumble::script

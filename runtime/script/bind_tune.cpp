@@ -29,24 +29,6 @@ namespace {
 // free of allocations.
 std::string callName(lua_State* L, const char* fn) { return std::string(fn) + "(\"" + lua_tostring(L, 1) + "\")"; }
 
-void checkOptionKeys(lua_State* L, int idx, const char* fn, std::initializer_list<const char*> allowed) {
-  lua_pushnil(L);
-  while (lua_next(L, idx) != 0) {
-    lua_pop(L, 1);
-    bool ok = lua_type(L, -1) == LUA_TSTRING;
-    if (ok) {
-      ok = false;
-      for (const char* a : allowed) ok = ok || std::strcmp(lua_tostring(L, -1), a) == 0;
-    }
-    if (!ok) {
-      std::string known;
-      for (const char* a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
-      std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : luaL_typename(L, -1);
-      lua_pop(L, 1);
-      throw LuaArgError(callName(L, fn) + ": unknown option '" + key + "' (known: " + known + ")");
-    }
-  }
-}
 
 std::string checkName(lua_State* L, const char* fn) {
   if (lua_type(L, 1) != LUA_TSTRING || lua_rawlen(L, 1) == 0)
@@ -92,7 +74,7 @@ int tuneNumber(lua_State* L) {
     throw LuaArgError(callName(L, fn) + ": argument 2 (the default) must be a finite number");
   t.defaultValue = lua_tonumber(L, 2);
   if (int o = optionsIndex(L, fn, 3)) {
-    checkOptionKeys(L, o, fn, {"min", "max", "step", "unit", "description"});
+    checkFields(L, o, callName(L, fn), {"min", "max", "step", "unit", "description"});
     t.min = optNumberField(L, o, "min", t.min);
     t.max = optNumberField(L, o, "max", t.max);
     t.step = optNumberField(L, o, "step", 0);
@@ -117,7 +99,7 @@ int tuneBool(lua_State* L) {
   t.kind = Tunable::Kind::Bool;
   t.defaultValue = lua_toboolean(L, 2) ? 1 : 0;
   if (int o = optionsIndex(L, fn, 3)) {
-    checkOptionKeys(L, o, fn, {"description"});
+    checkFields(L, o, callName(L, fn), {"description"});
     t.description = optStringField(L, o, "description", "");
   }
   return declareAndPush(L, std::move(t));
@@ -139,7 +121,7 @@ int tuneChoice(lua_State* L) {
   std::string def = lua_tostring(L, 2);
   int o = optionsIndex(L, fn, 3);
   if (!o) throw LuaArgError(callName(L, fn) + ": argument 3 must be {choices = {\"a\", \"b\", ...}}");
-  checkOptionKeys(L, o, fn, {"choices", "description"});
+  checkFields(L, o, callName(L, fn), {"choices", "description"});
   Tunable t;
   t.name = name;
   t.kind = Tunable::Kind::Choice;
@@ -192,8 +174,7 @@ const luaL_Reg kTune[] = {
 }  // namespace
 
 void openTuneBindings(lua_State* L, int envIndex) {
-  luaL_newlib(L, kTune);
-  lua_setfield(L, envIndex, "tune");
+  registerModule(L, envIndex, "tune", kTune);
 }
 
 }  // namespace tumble::script

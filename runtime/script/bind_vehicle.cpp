@@ -37,23 +37,21 @@ VehicleRef* refOf(lua_State* L, int idx) {
 vehicle::VehicleId checkVehicle(lua_State* L, int idx) {
   VehicleRef* ref = refOf(L, idx);
   vehicle::VehicleId id{ref->index, ref->generation};
-  vehicle::VehicleSystem* sys = ScenarioHost::from(L)->vehiclesIfAny();
+  vehicle::VehicleSystem* sys = ScenarioHost::from(L)->scene().vehiclesIfAny();
   if (!sys || !sys->isValid(id)) throw LuaArgError("this Vehicle was removed; check car:is_valid() before using it");
   return id;
 }
 
-vehicle::VehicleSystem& systemOf(lua_State* L) { return ScenarioHost::from(L)->vehicles(); }
+vehicle::VehicleSystem& systemOf(lua_State* L) { return ScenarioHost::from(L)->scene().vehicles(); }
 
 /// The definition of "mod:name" (or "name": base), loaded once per run.
 // chassis.inertia = "mesh": the chassis mesh as a uniform solid scaled to the
 // chassis mass; its inertia diagonal along the chassis axes (the products of
 // inertia of a left-right symmetric car are small and left out).
 Vec3 meshInertia(ScenarioHost& host, const ModInfo& mod, const vehicle::VehicleDef& def, const std::string& ref) {
-  const ModelTrianglesFn& triangles = host.options().modelTriangles;
   const std::string where = "vehicle \"" + ref + "\": chassis.inertia = \"mesh\": ";
-  if (!triangles) throw LuaArgError(where + "this run cannot read model meshes");
   const std::string file = (std::filesystem::path(mod.dir) / def.chassis.mesh).string();
-  auto mesh = triangles(file);
+  auto mesh = host.scene().modelTriangles(file);
   if (!mesh) throw LuaArgError(where + mesh.error());
   if (!physics::isClosedMesh(mesh->vertices_m, mesh->triangles))
     throw LuaArgError(where + file + " is not one closed surface; the inertia needs a closed mesh");
@@ -123,85 +121,12 @@ int vehicleSpawn(lua_State* L) {
   ref->heading = float(heading);
   std::snprintf(ref->name, sizeof ref->name, "%s", name.c_str());
   luaL_setmetatable(L, kVehicleMeta);
-  ScenarioHost::from(L)->setColor(systemOf(L).chassis(id.value()), Eigen::Vector3f(0.8f, 0.25f, 0.2f));
+  ScenarioHost::from(L)->presentation().setColor(systemOf(L).chassis(id.value()), Eigen::Vector3f(0.8f, 0.25f, 0.2f));
   return 1;
 }
 
-/// @class VehicleDefinition
-/// What mods/<mod>/vehicles/<name>.lua returns (docs/vehicles.md explains
-/// each field). Every field is optional; a misspelt one is an error.
-/// Chassis frame: origin at the box centre, +Z forward, +Y up, +X left.
-/// @field name? string shown to the player
-/// @field description? string the feel, in a sentence
-/// @field chassis? VehicleChassis body, mass, drag
-/// @field axles? VehicleAxle[] 2 to 8 axles, front first; an axle copies the fields it leaves out from the one before (except steered, driven, handbrake, drive_share)
-/// @field tyre? VehicleTyre slip curves and rolling resistance
-/// @field engine? VehicleEngine torque curve and speeds
-/// @field gearbox? VehicleGearbox ratios and shift points
-/// @field steering? VehicleSteering angles and rate
-
-/// @class VehicleChassis
-/// @field mass? number kg, whole vehicle (default 1200)
-/// @field size? number[] {width, height, length} of the collision box, m (default {1.7, 0.6, 4.0})
-/// @field com? number[] centre of mass from the box centre, m (default {0, 0, 0})
-/// @field drag_area? number drag coefficient times frontal area, m^2 (default 0.7)
-/// @field air_density? number kg/m^3 (default 1.2)
-/// @field friction? number chassis contact friction (default 0.4)
-/// @field restitution? number 0..1 (default 0.1)
-/// @field mesh? string visual mesh, a path inside the mod
-
-/// @class VehicleAxle
-/// @field position? number[] left hub at full bump {x, y, z}, m; x is half the track (default {0.75, -0.2, 1.3})
-/// @field radius? number wheel radius, m (default 0.31)
-/// @field width? number wheel width, m (default 0.2)
-/// @field inertia? number one wheel, kg m^2 (default 1.0)
-/// @field steered? boolean (default false)
-/// @field driven? boolean (default false)
-/// @field brake? number N m per wheel at full brake (default 1500)
-/// @field handbrake? number N m per wheel at full handbrake (default 0)
-/// @field drive_share? number fraction of the drive torque, 0..1 (default: equal among driven axles)
-/// @field differential? string "open" or "limited_slip" (default "open")
-/// @field lsd_bias? number limited slip: largest torque ratio between the wheels, >= 1 (default 2)
-/// @field suspension? VehicleSuspension springs and dampers
-
-/// @class VehicleSuspension
-/// @field travel? number hub travel from full bump to full droop, m (default 0.2)
-/// @field rest_length? number spring length at zero force, m (default 0.3)
-/// @field stiffness? number N/m per wheel (default: from frequency)
-/// @field frequency? number natural frequency with the static load, Hz (default 1.5)
-/// @field bump? number compression damping, N s/m (default: from bump_ratio)
-/// @field rebound? number extension damping, N s/m (default: from rebound_ratio)
-/// @field bump_ratio? number fraction of critical damping (default 0.3)
-/// @field rebound_ratio? number fraction of critical damping (default 0.5)
-/// @field anti_roll? number anti-roll bar, N per m of compression difference (default 0)
-
-/// @class VehicleTyre
-/// @field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
-/// @field lateral? number[][] {{slip angle rad, friction}, ...}
-/// @field rolling_resistance? number C_rr (default 0.012)
-/// @field soft_ground_drag? number extra C_rr per unit of surface softness (terrain softness layer or vehicle.set_softness; mud 0.7, grass 0.4, ice 0) (default 0.08)
-
-/// @class VehicleEngine
-/// @field torque? number[][] {{rpm, N m}, ...} at full throttle
-/// @field idle_rpm? number rpm (default 900)
-/// @field max_rpm? number rev limiter, rpm (default 6800)
-/// @field launch_rpm? number the automatic clutch holds about this pulling away, rpm (default 2500)
-/// @field inertia? number kg m^2 (default 0.2)
-/// @field braking_torque? number engine braking at max rpm, N m (default 30)
-
-/// @class VehicleGearbox
-/// @field ratios? number[] forward gear ratios (default {3.5, 2.1, 1.4, 1.05, 0.85})
-/// @field reverse? number ratio (default 3.3)
-/// @field final_drive? number ratio (default 4.0)
-/// @field efficiency? number 0..1 (default 0.9)
-/// @field shift_up_rpm? number for the automatic gearbox, rpm (default 6200)
-/// @field shift_down_rpm? number rpm (default 2600)
-/// @field shift_time? number clutch open during a shift, s (default 0.25)
-
-/// @class VehicleSteering
-/// @field max_angle? number at standstill, rad (default 0.55)
-/// @field speed_sensitivity? number the largest angle is max / (1 + this * v), s/m (default 0.02)
-/// @field rate? number how fast the wheels turn, rad/s (default 2.5)
+// The VehicleDefinition classes of the reference come from the field tables
+// (vehicle_defs.cpp, vehicleDefinitionDocBlocks).
 
 /// @function vehicle.definition
 /// The definition of a vehicle as a table in the file's format (every
@@ -275,21 +200,16 @@ int vSetControls(lua_State* L) {
   const vehicle::VehicleId id = checkVehicle(L, 1);
   if (!lua_istable(L, 2)) throw LuaArgError("Vehicle:set_controls: expected a table {throttle=, brake=, steer=, ...}");
   vehicle::VehicleControls c = systemOf(L).controls(id);
-  lua_pushnil(L);
-  while (lua_next(L, 2) != 0) {
-    const char* key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "";
-    if (!lua_isnumber(L, -1))
-      throw LuaArgError(std::string("Vehicle:set_controls: field '") + key + "' must be a number");
-    const double v = lua_tonumber(L, -1);
-    if (!std::strcmp(key, "throttle")) c.throttle = Real(v);
-    else if (!std::strcmp(key, "brake")) c.brake = Real(v);
-    else if (!std::strcmp(key, "steer")) c.steer = Real(v);
-    else if (!std::strcmp(key, "handbrake")) c.handbrake = Real(v);
-    else if (!std::strcmp(key, "gear")) c.gear = int(std::lround(v));
-    else
-      throw LuaArgError(std::string("Vehicle:set_controls: unknown field '") + key +
-                        "' (known: throttle, brake, steer, handbrake, gear)");
-    lua_pop(L, 1);
+  const char* fn = "Vehicle:set_controls";
+  checkFields(L, 2, fn, {"throttle", "brake", "steer", "handbrake", "gear"});
+  try {
+    c.throttle = Real(optNumberField(L, 2, "throttle", c.throttle));
+    c.brake = Real(optNumberField(L, 2, "brake", c.brake));
+    c.steer = Real(optNumberField(L, 2, "steer", c.steer));
+    c.handbrake = Real(optNumberField(L, 2, "handbrake", c.handbrake));
+    c.gear = int(std::lround(optNumberField(L, 2, "gear", c.gear)));
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what());
   }
   systemOf(L).setControls(id, c);
   return 0;
@@ -514,7 +434,7 @@ int vName(lua_State* L) {
 /// @return boolean false once removed
 int vIsValid(lua_State* L) {
   VehicleRef* ref = refOf(L, 1);
-  vehicle::VehicleSystem* sys = ScenarioHost::from(L)->vehiclesIfAny();
+  vehicle::VehicleSystem* sys = ScenarioHost::from(L)->scene().vehiclesIfAny();
   lua_pushboolean(L, sys && sys->isValid(vehicle::VehicleId{ref->index, ref->generation}));
   return 1;
 }
@@ -554,16 +474,8 @@ const luaL_Reg kFunctions[] = {
 }  // namespace
 
 void openVehicleBindings(lua_State* L, int envIndex) {
-  luaL_newmetatable(L, kVehicleMeta);
-  luaL_newlib(L, kMethods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, vToString);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 1);
-  luaL_newlib(L, kFunctions);
-  lua_setfield(L, envIndex, "vehicle");
+  registerType(L, {kVehicleMeta, kMethods, vToString});
+  registerModule(L, envIndex, "vehicle", kFunctions);
 }
 
 }  // namespace tumble::script

@@ -36,26 +36,11 @@ const std::set<std::string> kCommonFields = {"position", "rotation", "orientatio
                                              "mass", "density", "friction", "restitution", "rolling_resistance", "linear_damping",
                                              "angular_damping", "type", "color", "sleep"};
 
-void checkFields(lua_State* L, int t, const char* fn, std::initializer_list<const char*> shapeFields) {
-  lua_pushnil(L);
-  while (lua_next(L, t) != 0) {
-    lua_pop(L, 1);  // value
-    if (lua_type(L, -1) != LUA_TSTRING) {
-      lua_pop(L, 1);
-      throw LuaArgError(std::string(fn) + ": fields must be named (key = value)");
-    }
-    std::string key = lua_tostring(L, -1);
-    bool known = kCommonFields.count(key) > 0;
-    for (const char* f : shapeFields) known |= key == f;
-    if (!known) {
-      lua_pop(L, 1);
-      std::string valid;
-      for (const char* f : shapeFields) valid += std::string(f) + ", ";
-      for (const auto& f : kCommonFields) valid += f + ", ";
-      valid.resize(valid.size() - 2);
-      throw LuaArgError(std::string(fn) + ": unknown field '" + key + "' (valid: " + valid + ")");
-    }
-  }
+// A body definition's fields: the common ones and the shape's own.
+void checkBodyFields(lua_State* L, int t, const char* fn, std::initializer_list<const char*> shapeFields) {
+  std::set<std::string> allowed = kCommonFields;
+  allowed.insert(shapeFields.begin(), shapeFields.end());
+  checkFields(L, t, fn, allowed);
 }
 
 physics::BodyDef readCommon(lua_State* L, int t, const char* fn) {
@@ -110,7 +95,7 @@ Eigen::Vector3f readColor(lua_State* L, int t, const char* fn, const Eigen::Vect
 int create(lua_State* L, physics::BodyDef d, const char* fn, const Eigen::Vector3f& color) {
   auto r = worldOf(L).createBody(d);
   if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
-  ScenarioHost::from(L)->setColor(*r, color);
+  ScenarioHost::from(L)->presentation().setColor(*r, color);
   pushBody(L, *r);
   return 1;
 }
@@ -162,7 +147,7 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 /// @example local crate = world.box{size = {1, 1, 1}, position = {0, 2, 0}, mass = 10}
 int worldBox(lua_State* L) {
   checkTable(L, "world.box", "{size = {1, 1, 1}, position = {0, 2, 0}}");
-  checkFields(L, 1, "world.box", {"size", "half_extents"});
+  checkBodyFields(L, 1, "world.box", {"size", "half_extents"});
   physics::BodyDef d = readCommon(L, 1, "world.box");
   Vec3 size = Vec3::Ones();
   try {
@@ -183,7 +168,7 @@ int worldBox(lua_State* L) {
 /// @example local ball = world.sphere{radius = 0.5, position = {0, 5, 0}, restitution = 0.8}
 int worldSphere(lua_State* L) {
   checkTable(L, "world.sphere", "{radius = 0.5, position = {0, 2, 0}}");
-  checkFields(L, 1, "world.sphere", {"radius"});
+  checkBodyFields(L, 1, "world.sphere", {"radius"});
   physics::BodyDef d = readCommon(L, 1, "world.sphere");
   try {
     d.shape = physics::Shape::sphere(Real(optNumberField(L, 1, "radius", 0.5)));
@@ -200,7 +185,7 @@ int worldSphere(lua_State* L) {
 /// @example world.capsule{radius = 0.3, length = 1, position = {0, 2, 0}, rotation = {0, 0, math.pi / 2}}
 int worldCapsule(lua_State* L) {
   checkTable(L, "world.capsule", "{radius = 0.3, length = 1, position = {0, 2, 0}}");
-  checkFields(L, 1, "world.capsule", {"radius", "length", "half_height"});
+  checkBodyFields(L, 1, "world.capsule", {"radius", "length", "half_height"});
   physics::BodyDef d = readCommon(L, 1, "world.capsule");
   try {
     Real r = Real(optNumberField(L, 1, "radius", 0.3));
@@ -221,7 +206,7 @@ int worldCapsule(lua_State* L) {
 int worldPlane(lua_State* L) {
   if (lua_isnoneornil(L, 1)) lua_newtable(L), lua_replace(L, 1);
   checkTable(L, "world.plane", "{normal = {0, 1, 0}, point = {0, 0, 0}}");
-  checkFields(L, 1, "world.plane", {"normal", "point"});
+  checkBodyFields(L, 1, "world.plane", {"normal", "point"});
   physics::BodyDef d = readCommon(L, 1, "world.plane");
   d.type = physics::BodyType::Static;
   Vec3 n = Vec3::UnitY();
@@ -295,26 +280,12 @@ void readPose(lua_State* L, int t, Vec3* p, Quat* q) {
   if (optVec3Field(L, t, "rotation", &rv) && rv.norm() > 0) *q = Quat(Eigen::AngleAxis<Real>(rv.norm(), rv.normalized()));
 }
 
+// A shape description's fields (world.compound children, query shapes) and `extra`.
 void checkShapeFields(lua_State* L, int t, const std::string& fn, std::initializer_list<const char*> extra) {
-  static const char* kShapeFields[] = {"shape", "size", "half_extents", "radius", "length", "half_height", "points",
-                                       "position", "rotation"};
-  lua_pushnil(L);
-  while (lua_next(L, t) != 0) {
-    lua_pop(L, 1);
-    const char* key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : nullptr;
-    bool known = false;
-    if (key) {
-      for (const char* f : kShapeFields) known |= std::string(key) == f;
-      for (const char* f : extra) known |= std::string(key) == f;
-    }
-    if (!known) {
-      std::string bad = key ? key : luaL_typename(L, -1);
-      lua_pop(L, 1);
-      throw LuaArgError(fn + ": unknown field '" + bad +
-                        "' (valid: shape, size, half_extents, radius, length, half_height, points, position, rotation" +
-                        (extra.size() ? ", and the query's own fields" : "") + ")");
-    }
-  }
+  std::set<std::string> allowed = {"shape", "size", "half_extents", "radius", "length", "half_height", "points",
+                                   "position", "rotation"};
+  allowed.insert(extra.begin(), extra.end());
+  checkFields(L, t, fn, allowed);
 }
 
 /// Placed body frame from a pose of the given frame and the shape's own frame.
@@ -368,7 +339,7 @@ void refuseZeroMass(lua_State* L, const char* fn) {
 /// @example local wedge = world.hull{points = {{0,0,0}, {2,0,0}, {0,0,1}, {2,0,1}, {0,1,0}, {0,1,1}}, position = {0, 1, 0}}
 int worldHull(lua_State* L) {
   checkTable(L, "world.hull", "{points = {{0,0,0}, {1,0,0}, {0,1,0}, {0,0,1}}, position = {0, 2, 0}}");
-  checkFields(L, 1, "world.hull", {"points"});
+  checkBodyFields(L, 1, "world.hull", {"points"});
   physics::BodyDef d = readCommon(L, 1, "world.hull");
   refuseZeroMass(L, "world.hull");
   physics::ShapeFrame frame;
@@ -390,7 +361,7 @@ int worldHull(lua_State* L) {
 /// @example local t = world.compound{children = {{shape = "box", size = {2, 0.2, 0.2}}, {shape = "capsule", radius = 0.1, length = 0.8, position = {0, 0, 0.6}, rotation = {math.pi / 2, 0, 0}}}, position = {0, 2, 0}}
 int worldCompound(lua_State* L) {
   checkTable(L, "world.compound", "{children = {{shape = \"box\", size = {1, 1, 1}}}, position = {0, 2, 0}}");
-  checkFields(L, 1, "world.compound", {"children"});
+  checkBodyFields(L, 1, "world.compound", {"children"});
   physics::BodyDef d = readCommon(L, 1, "world.compound");
   refuseZeroMass(L, "world.compound");
   if (lua_getfield(L, 1, "children") != LUA_TTABLE)
@@ -652,8 +623,7 @@ const luaL_Reg kWorld[] = {
 }  // namespace
 
 void openWorldBindings(lua_State* L, int envIndex) {
-  luaL_newlib(L, kWorld);
-  lua_setfield(L, envIndex, "world");
+  registerModule(L, envIndex, "world", kWorld);
 }
 
 }  // namespace tumble::script

@@ -1,12 +1,15 @@
 #include "script/emitter_files.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <cstring>
+#include <set>
 
 #include "script/internal/emitter_table.h"
+#include "script/internal/lua_util.h"
 #include "script/lua_vm.h"
 
 extern "C" {
@@ -251,11 +254,8 @@ class Reader {
         continue;
       }
       std::string key = lua_tostring(m_L, -1);
-      if (!std::binary_search(kFields.begin(), kFields.end(), key)) {
-        std::string valid;
-        for (const auto& f : kFields) valid += (valid.empty() ? "" : ", ") + f;
-        problem(key, "unknown field (valid: " + valid + ")");
-      }
+      if (!std::binary_search(kFields.begin(), kFields.end(), key))
+        m_problems.push_back(unknownFieldMessage(key, std::set<std::string>(kFields.begin(), kFields.end())));
     }
   }
 
@@ -265,10 +265,13 @@ class Reader {
   std::vector<std::string>& m_problems;
 };
 
+// The line of the field a problem names ("field 'x': ..." or "unknown field 'x' ...").
 int lineFromProblem(const std::string& path, const std::string& problem) {
-  static const std::regex re(R"(^field '([A-Za-z_]+)')");
-  std::smatch m;
-  if (std::regex_search(problem, m, re)) return lineOfField(path, m[1]);
+  for (const char* prefix : {"field '", "unknown field '"}) {
+    if (problem.rfind(prefix, 0) != 0) continue;
+    const std::size_t begin = std::strlen(prefix), end = problem.find('\'', begin);
+    if (end != std::string::npos) return lineOfField(path, problem.substr(begin, end - begin));
+  }
   return 0;
 }
 
@@ -346,11 +349,22 @@ bool runEmitterChunk(LuaVm& vm, const std::string& path, const std::string& modN
 }
 
 int lineOfField(const std::string& path, const std::string& field) {
+  if (field.empty()) return 0;
+  auto isWord = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  // `field` at the start of a word, then optional blanks and '='.
+  auto assigns = [&](const std::string& line) {
+    for (std::size_t at = line.find(field); at != std::string::npos; at = line.find(field, at + 1)) {
+      if (at > 0 && isWord(line[at - 1])) continue;
+      std::size_t i = at + field.size();
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      if (i < line.size() && line[i] == '=' && (i + 1 == line.size() || line[i + 1] != '=')) return true;
+    }
+    return false;
+  };
   std::ifstream in(path);
-  const std::regex re("(^|[^A-Za-z0-9_])" + field + "\\s*=");
   std::string text;
   for (int n = 1; std::getline(in, text); ++n)
-    if (std::regex_search(text, re)) return n;
+    if (assigns(text)) return n;
   return 0;
 }
 

@@ -116,12 +116,9 @@ class Reader {
     while (lua_next(m_L, idx)) {
       if (lua_type(m_L, -2) == LUA_TSTRING) {
         std::string k = lua_tostring(m_L, -2);
-        if (std::find(known.begin(), known.end(), k) == known.end()) {
-          std::string valid;
-          for (const auto& f : known) valid += (valid.empty() ? "" : ", ") + f;
-          problem(lineOf(k), (where.empty() ? "" : where + ": ") + "unknown field \"" + k + "\"" +
-                                 input::didYouMean(k, known) + " (valid: " + valid + ")");
-        }
+        if (std::find(known.begin(), known.end(), k) == known.end())
+          problem(lineOf(k), (where.empty() ? "" : where + ": ") +
+                                 unknownFieldMessage(k, std::set<std::string>(known.begin(), known.end())));
       } else if (!(lua_isinteger(m_L, -2) && lua_tointeger(m_L, -2) >= 1 && lua_tointeger(m_L, -2) <= skipArray)) {
         problem(0, (where.empty() ? std::string("top level") : where) + ": unexpected list entry");
       }

@@ -41,4 +41,23 @@ Result<std::string> resolveModFile(const std::string& ref, const ModInfo& caller
   return path.string();
 }
 
+void Presentation::setColor(physics::BodyId id, const Eigen::Vector3f& rgb) {
+  if (m_colors.size() <= id.index) m_colors.resize(id.index + 1, Eigen::Vector3f(-1, -1, -1));
+  m_colors[id.index] = rgb;
+}
+
+Eigen::Vector3f Presentation::colorOf(physics::BodyId id) const {
+  if (id.index < m_colors.size() && m_colors[id.index].x() >= 0) return m_colors[id.index];
+  return Eigen::Vector3f(0.75f, 0.75f, 0.78f);
+}
+
+Eigen::Vector3f Presentation::deformableColor(int id) const {
+  auto it = m_deformableColors.find(id);
+  return it == m_deformableColors.end() ? Eigen::Vector3f(0.9f, 0.6f, 0.2f) : it->second;
+}
+
+void Presentation::addScriptLine(const ScriptLine& line) {
+  if (m_scriptLines.size() < kMaxScriptLines) m_scriptLines.push_back(line);
+}
+
 }  // namespace tumble::script

@@ -1,9 +1,10 @@
 #pragma once
 // What scripts ask for that is seen, not simulated: models drawn on bodies
-// (body:set_model), static scenery models (world.add_static_model) and the
-// camera (camera.set_mode). Plain data the app reads each frame; script
-// never includes render (ARCHITECTURE.md), so loading a model's bounds for
-// a collision box goes through ModelBoundsFn, which the app provides.
+// (body:set_model), static scenery models (world.add_static_model), the
+// camera (camera.set_mode), body and rope colours and the lines scripts
+// draw (draw_line). Plain data the app reads each frame; script never
+// includes render (ARCHITECTURE.md), so loading a model's bounds for a
+// collision box goes through SceneSystems, which the app implements.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -25,24 +26,12 @@ struct ModInfo;
 struct ModelBox {
   Vec3 min_m = Vec3::Zero(), max_m = Vec3::Zero();
 };
-/// Loads (or finds in a cache) the model at an absolute path and returns its
-/// bounds, or an error naming the file and what is wrong with it.
-using ModelBoundsFn = std::function<Result<ModelBox>(const std::string& file)>;
-
 /// Every triangle of a model file in its own frame (before scale), for mass
 /// properties (world.model_mass_properties).
 struct ModelTriangles {
   std::vector<Vec3> vertices_m;
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
-using ModelTrianglesFn = std::function<Result<ModelTriangles>(const std::string& file)>;
-
-/// The collision shape of a model file at a placement's scale (world.add_static_model
-/// with collision = "mesh"): a ShapeType::Mesh built from the model's object
-/// tree (physics::makeMeshShape). The app builds one per (file, scale) and
-/// hands the same immutable shape to every placement that asks again; an
-/// error names the file and what is wrong with it.
-using ModelMeshShapeFn = std::function<Result<physics::Shape>(const std::string& file, const Vec3& scale)>;
 
 /// body:set_model: drawn at body transform * translate(offset) * rotate(rotation) * scale.
 struct ModelAttachment {
@@ -76,12 +65,35 @@ struct CameraRequest {
   std::uint64_t revision = 0;          ///< bumped by every camera.set_mode
 };
 
+/// A line a script drew this step (draw_line), world frame.
+struct ScriptLine {
+  Vec3 a_m, b_m;
+  Eigen::Vector3f color;
+};
+
 /// Everything above, owned by the ScenarioHost.
 struct Presentation {
   std::vector<ModelAttachment> attachments;  ///< at most one per body (a new one replaces)
   std::vector<StaticModel> statics;
   CameraRequest camera;
   std::uint64_t revision = 0;  ///< bumped whenever attachments or statics change
+
+  /// Display colour (linear RGB 0..1) of a body the script made or coloured.
+  void setColor(physics::BodyId id, const Eigen::Vector3f& rgb);
+  Eigen::Vector3f colorOf(physics::BodyId id) const;
+  /// Colour of a rope or cloth by its DeformableSystem id.
+  void setDeformableColor(int id, const Eigen::Vector3f& rgb) { m_deformableColors[id] = rgb; }
+  Eigen::Vector3f deformableColor(int id) const;
+  /// Lines drawn since the last fixed step (the host clears them before on_update).
+  const std::vector<ScriptLine>& scriptLines() const { return m_scriptLines; }
+  void addScriptLine(const ScriptLine& line);
+  void clearScriptLines() { m_scriptLines.clear(); }
+  static constexpr std::size_t kMaxScriptLines = 65536;
+
+ private:
+  std::vector<Eigen::Vector3f> m_colors;  ///< by body slot index; x < 0: unset
+  std::map<int, Eigen::Vector3f> m_deformableColors;
+  std::vector<ScriptLine> m_scriptLines;
 };
 
 /// Resolves a model path as scripts write it: "MOD:path/in/mod" or

@@ -23,9 +23,18 @@
 // table changes nothing: the old code keeps running and the error (file,
 // line) is recorded. require'd files of the mod are loaded afresh.
 //
-// Per frame the app calls update() before World::step and afterStep() after
-// it. Neither calls into Lua unless there is something to call: on_update,
-// a due timer, on_contact with a contact event, a trigger enter/exit.
+// The host owns the scenario's Lua state and what lives in it (timers,
+// triggers, emitter files, tunables, game state), never a simulation
+// system: those are the app's, reached through SceneSystems. Per fixed step
+// the app (app/fixed_step.cpp) calls update() before the physics and
+// afterStep() after it. Neither calls into Lua unless there is something to
+// call: on_update, a due timer, on_contact with a contact event, a trigger
+// enter/exit.
+//
+// Files: scenario_host.cpp (lifecycle, ctx, errors, game state),
+// scenario_load.cpp (load and hot reload), sandbox.cpp (the environment),
+// globals.cpp (print, expect, param, hud_text), timers.cpp, triggers.cpp,
+// emitter_cache.cpp, and bind_<topic>.cpp for each Lua module and type.
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -35,23 +44,18 @@
 #include <vector>
 
 #include "core/result.h"
-#include "particles/particle_system.h"
-#include "input/input_system.h"
+#include "physics/joints/joint_system.h"
 #include "physics/world.h"
+#include "script/emitter_cache.h"
 #include "script/lua_vm.h"
 #include "script/mods.h"
 #include "script/presentation.h"
+#include "script/scene_systems.h"
 #include "script/script_error.h"
+#include "script/timers.h"
+#include "script/triggers.h"
 #include "script/tunables.h"
 #include "vehicle/vehicle_def.h"
-
-namespace tumble::physics {
-class JointSystem;
-class DeformableSystem;
-}
-namespace tumble::vehicle {
-class VehicleSystem;
-}
 
 namespace tumble::script {
 
@@ -81,9 +85,6 @@ struct ScenarioOptions {
   /// Other loadable mods, for references like "base:dust" (particles.spawn,
   /// vehicle.spawn). The scenario's own mod is always searched first.
   std::vector<ModInfo> mods;
-  /// The actions scripts read (input.value, ...); not owned, must outlive
-  /// the host. Null: the host makes an empty one (no actions).
-  input::InputSystem* input = nullptr;
   /// --set tune.NAME=VALUE (NAME without "tune."), applied over the file's.
   std::map<std::string, std::string> tuneSets;
   /// The mod's tunable overrides file to read at start (tunables.h); empty:
@@ -91,60 +92,39 @@ struct ScenarioOptions {
   std::string tuneOverridesFile;
   /// Every known mod's folder by name, for "MOD:path" asset references.
   std::map<std::string, std::string> modDirs;
-  /// Bounds of a model file (world.add_static_model's collision box); the
-  /// app provides it. Unset: static models cannot have collision = "box".
-  ModelBoundsFn modelBounds;
-  /// --set physics.joint_solver: "lagrange" or "impulse" (checked by the
-  /// app); empty: the scenario's joint_solver field, else lagrange.
-  std::string jointSolver;
-  /// Triangles of a model file (world.model_mass_properties); from the app.
-  ModelTrianglesFn modelTriangles;
-  /// The mesh shape of a model file at a scale (world.add_static_model's
-  /// collision = "mesh"), shared between placements; from the app. Unset:
-  /// static models cannot have mesh collision.
-  ModelMeshShapeFn modelMeshShape;
 };
-
-/// Emitters attached to bodies carry the body as an opaque anchor number
-/// (particles never sees physics); the app turns it back into a BodyId.
-inline std::uint64_t emitterAnchorOf(physics::BodyId id) {
-  return (std::uint64_t(id.generation) << 32) | id.index;  // generation >= 1: never kNoAnchor
-}
-inline physics::BodyId bodyOfEmitterAnchor(std::uint64_t anchor) {
-  return physics::BodyId{std::uint32_t(anchor & 0xffffffffu), std::uint32_t(anchor >> 32)};
-}
 
 class ScenarioHost {
  public:
   static constexpr int kMaxConsecutiveErrors = 3;
 
-  /// Loads and runs the scenario file's top level. Fails (Result error) if
-  /// the file is missing, does not compile, errors at top level or does not
-  /// return a table; the message names mod, file and line.
+  /// Loads and runs the scenario file's top level (scenario_load.cpp).
+  /// Fails (Result error) if the file is missing, does not compile, errors
+  /// at top level or does not return a table; the message names mod, file
+  /// and line. `scene` must outlive the host.
   static Result<std::unique_ptr<ScenarioHost>> load(const ModInfo& mod, const std::string& scenario,
-                                                    physics::World& world, const ScenarioOptions& options);
+                                                    SceneSystems& scene, const ScenarioOptions& options);
   ~ScenarioHost();
 
+  /// on_start, then the timers it made that are due at once (delay 0).
   void start();
-  /// Before World::step: due timers, then on_update, then (when the scenario
-  /// made rag-dolls) the joints' constraint forces. time_s: the step's start.
+  /// Before the physics of a step (time_s: the step's start): on_update.
+  /// No Lua call when the scenario has none.
   void update(double time_s, double dt_s, std::int64_t step);
-  /// After World::step (time_s: the step's end): on_contact for each contact
-  /// that began, then trigger volumes' on_enter / on_exit. No Lua call, and
-  /// no work beyond two size checks, when the scenario has neither.
+  /// After the physics of a step (time_s: the step's end): on_contact for
+  /// each contact that began, trigger volumes' on_enter / on_exit, then the
+  /// timers due by time_s. No Lua call, and no work beyond a few size
+  /// checks, when the scenario has none of them.
   void afterStep(double time_s, std::int64_t step);
   /// on_finish; then each --set tune.NAME the scenario never declared is
   /// recorded as an error (a misspelt name must not pass silently).
   void finish(double time_s, std::int64_t step);
   /// Runs the (saved) scenario file again and switches to its code, as the
-  /// header says. time_s/step: the current simulated time, for ctx. On an
-  /// error the old code stays, the error is recorded in errors() and
-  /// returned. reloadCount() counts the reloads that took effect.
+  /// header says (scenario_load.cpp). time_s/step: the current simulated
+  /// time, for ctx. On an error the old code stays, the error is recorded
+  /// in errors() and returned. reloadCount() counts the reloads that took effect.
   Status reload(double time_s, std::int64_t step);
   int reloadCount() const { return m_reloadCount; }
-  /// Timers still to fire (not cancelled, not finished) and live triggers.
-  std::size_t activeTimerCount() const;
-  int triggerCount() const { return m_liveTriggers; }
   /// Records an error that did not come from a Lua call (a reload hook, an
   /// overrides file); it shows on the HUD and in the report like the others.
   void recordError(ScriptError error);
@@ -174,6 +154,9 @@ class ScenarioHost {
   /// The scenario's `integrator = "rk4"` field (physics/integrate.h names),
   /// empty when absent; the app checks the name (--integrator wins).
   const std::string& integratorRequest() const { return m_integratorRequest; }
+  /// The scenario's `joint_solver` field, if it has one (the app decides:
+  /// --set physics.joint_solver wins).
+  std::optional<physics::JointSolverKind> jointSolverRequest() const { return m_jointSolverRequest; }
   const std::vector<ScriptError>& errors() const { return m_errors; }
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
@@ -191,66 +174,18 @@ class ScenarioHost {
   double outcomeTime_s() const { return m_outcomeTime_s; }
   /// Simulated time of the callback being run (timers count from it).
   double now_s() const { return m_now_s; }
-  /// Display colour (linear RGB 0..1) of a body made by the script.
-  Eigen::Vector3f colorOf(physics::BodyId id) const;
-  physics::World& world() { return m_world; }
-  /// The input actions scripts read (options.input, or the host's own empty set).
-  input::InputSystem& input() { return *m_input; }
-  /// The scene's joints, created on first use (spawn_ragdoll); null before.
-  physics::JointSystem* jointsIfAny() { return m_joints.get(); }
-  physics::JointSystem& joints();
-  /// The scene's particle emitters, created on first use (particles.spawn);
-  /// null before, so a scene without emitters has no particle pools.
-  particles::ParticleSystem* particlesIfAny() { return m_particles.get(); }
-  particles::ParticleSystem& particles();
-  /// The emitter definition "mod:name" (or "name": this mod, then base) with
-  /// the fields of the table at overridesIdx (0: none) on top. The file is
-  /// read once and cached. Error: file, field and what is expected.
-  Result<particles::EmitterDef> emitterDef(const std::string& ref, int overridesIdx);
-  /// The scene's vehicles, created on first use (vehicle.spawn); null before.
-  vehicle::VehicleSystem* vehiclesIfAny() { return m_vehicles.get(); }
-  const vehicle::VehicleSystem* vehiclesIfAny() const { return m_vehicles.get(); }
-  vehicle::VehicleSystem& vehicles();
+
+  /// The scene's systems, owned by the app (scene_systems.h).
+  SceneSystems& scene() { return m_scene; }
+  physics::World& world() { return m_scene.world(); }
+  input::InputSystem& input() { return m_scene.input(); }
+  /// Timers, trigger boxes and emitter files of this scenario.
+  TimerQueue& timers() { return m_timers; }
+  TriggerSet& triggers() { return m_triggers; }
+  const TriggerSet& triggers() const { return m_triggers; }
+  EmitterCache& emitters() { return m_emitters; }
   /// Vehicle definitions loaded so far, by "mod:name" (bind_vehicle.cpp).
   std::map<std::string, vehicle::VehicleDef>& vehicleDefCache() { return m_vehicleDefs; }
-  /// The scene's ropes and cloth (bind_deformable.cpp), created on first
-  /// use; null before. The app steps them after World::step.
-  physics::DeformableSystem* deformablesIfAny() { return m_deformables.get(); }
-  const physics::DeformableSystem* deformablesIfAny() const { return m_deformables.get(); }
-  physics::DeformableSystem& deformables();
-  void setDeformableColor(int id, const Eigen::Vector3f& rgb) { m_deformableColors[id] = rgb; }
-  Eigen::Vector3f deformableColor(int id) const;
-  /// Lines scripts drew with draw_line since the last update() (bind_ode.cpp).
-  struct ScriptLine {
-    Vec3 a_m, b_m;
-    Eigen::Vector3f color;
-  };
-  const std::vector<ScriptLine>& scriptLines() const { return m_scriptLines; }
-  void addScriptLine(const ScriptLine& line);
-  static constexpr std::size_t kMaxScriptLines = 65536;
-  /// Forgets the cached emitter files, so the next spawn reads them again
-  /// (hot reload). Emitters already running keep their definitions.
-  void forgetEmitterDefinitions();
-  /// particles.spawn remembers which file (and overrides) an emitter came
-  /// from, so a saved emitter file can change it while it runs.
-  void rememberEmitterSource(particles::EmitterId id, const std::string& ref, int overridesIdx);
-  /// Hot reload of emitters/<name>.lua of this mod: the file is read again
-  /// and every running emitter spawned from it takes the new definition
-  /// (with its spawn overrides on top). A broken file changes nothing and
-  /// the error names the file and field.
-  Status reloadEmitterFile(const std::string& relPath);
-  /// Largest joint anchor separation seen (m), 0 without joints: the run
-  /// report's joint_error_max_m.
-  double jointErrorMax_m() const;
-  /// Switches the joint formulation (world.set_joint_solver), also while running.
-  void setJointSolver(bool impulse);
-  /// The fixed step (s): the app's, or what world.set_dt asked for (the app
-  /// reads requestedDt_s() before every step; 0 = no request).
-  double dt_s() const { return m_requestedDt_s > 0 ? m_requestedDt_s : m_dt_s; }
-  void requestDt(double dt_s) { m_requestedDt_s = dt_s; }
-  double requestedDt_s() const { return m_requestedDt_s; }
-  /// "lagrange" or "impulse": the formulation joints() uses (the report's joint_solver).
-  const char* jointSolverName() const { return m_impulseJoints ? "impulse" : "lagrange"; }
   const ModInfo& mod() const { return m_mod; }
   const std::string& scenarioFile() const { return m_file; }
   std::size_t luaMemoryBytes() const { return m_vm.memoryUsed(); }
@@ -259,60 +194,29 @@ class ScenarioHost {
 
   static constexpr std::size_t kMaxMessages = 64;
 
-  // Used by the bindings (bind_*.cpp).
-  void setColor(physics::BodyId id, const Eigen::Vector3f& rgb);
+  // Used by the bindings (bind_*.cpp, globals.cpp).
   void addExpectation(Expectation e) { m_expectations.push_back(std::move(e)); }
   const ScenarioOptions& options() const { return m_options; }
   void setHudText(std::vector<std::string> lines) { m_hudText = std::move(lines); }
   void addMessage(std::string text, double duration_s);
   void setScore(double score) { m_score = score, m_hasScore = true; }
   void decide(Outcome outcome, std::string reason);
-  /// Timers (bind_timer.cpp): the function is on top of the stack and is
-  /// popped. Returns the timer's id (> 0).
-  std::uint32_t addTimer(double delay_s, double period_s);
-  bool cancelTimer(std::uint32_t id);
-  bool timerActive(std::uint32_t id) const;
-  /// Trigger boxes (bind_trigger.cpp): on_enter / on_exit functions at the
-  /// given stack indices (0 = none). Returns the trigger's id (> 0).
-  std::uint32_t addTrigger(const Vec3& center_m, const Vec3& halfSize_m, int onEnterIdx, int onExitIdx);
-  bool removeTrigger(std::uint32_t id);
-  /// Bodies inside a trigger after the last step (empty for a removed one).
-  const std::vector<physics::BodyId>* triggerBodies(std::uint32_t id) const;
   /// Seed for random.new() without a seed: the run's seed mixed with a count.
   std::uint64_t nextRandomSeed();
   static ScenarioHost* from(lua_State* L);
-  /// Models on bodies, static scenery models and the camera request
-  /// (bind_model.cpp, bind_camera.cpp); the app draws from it.
+  /// What the scenario asked to show: models, the camera, colours, lines
+  /// (bind_model.cpp, bind_camera.cpp, ...); the app draws from it.
   Presentation& presentation() { return m_presentation; }
   const Presentation& presentation() const { return m_presentation; }
 
  private:
-  struct Timer {
-    double due_s = 0, period_s = 0;  ///< period 0: fires once
-    std::uint64_t seq = 0;           ///< creation order: ties fire in it
-    std::uint32_t id = 0;
-    int errors = 0;                  ///< consecutive failures
-  };
-  struct Trigger {
-    std::uint32_t id = 0;  ///< 0: removed slot
-    Vec3 center_m = Vec3::Zero(), half_m = Vec3::Zero();
-    int onEnterRef = 0, onExitRef = 0;  ///< registry refs, 0 = none
-    std::vector<physics::BodyId> inside, scratch;  ///< sorted by index
-  };
-  struct TriggerEvent {
-    std::uint32_t trigger;
-    physics::BodyId body;
-    bool enter;
-  };
-
-  ScenarioHost(const ModInfo& mod, physics::World& world, const ScenarioOptions& options);
+  ScenarioHost(const ModInfo& mod, SceneSystems& scene, const ScenarioOptions& options);
   void buildEnvironment();
   /// Loads and runs m_file's top level; leaves its table on the stack.
   bool runScenarioFile(ScriptError* err);
   /// Reads title, duration, terrain (first load only) and callbacks from the
   /// table on top of the stack and makes it the scenario; pops it.
   Status adoptScenarioTable(bool first);
-  void dropTimersAndTriggers();
   bool callLifecycle(const char* name, int nargs, bool* paused, int* consecutive);
   /// Calls the function below nargs args; records an error under `what`.
   bool callRecorded(int nargs, const std::string& what);
@@ -323,7 +227,7 @@ class ScenarioHost {
 
   LuaVm m_vm;
   ModInfo m_mod;
-  physics::World& m_world;
+  SceneSystems& m_scene;
   ScenarioOptions m_options;
   std::string m_file;
   std::string m_title, m_defaultTitle;
@@ -331,6 +235,7 @@ class ScenarioHost {
   std::map<std::string, std::string> m_terrainRequest;
   int m_terrainBuildRef = 0;  ///< registry ref of terrain.build, 0 = none
   std::string m_integratorRequest;
+  std::optional<physics::JointSolverKind> m_jointSolverRequest;
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   int m_requireCacheRef = 0;  ///< require's loaded-modules table
   int m_reloadCount = 0;
@@ -339,6 +244,7 @@ class ScenarioHost {
   bool m_hasContact = false, m_contactPaused = false;
   int m_updateErrors = 0, m_contactErrors = 0;
   double m_now_s = 0;
+  double m_dt_s = 1.0 / 60.0;  ///< the step of the last update(), for timers' ctx.dt
   std::vector<ScriptError> m_errors;
   std::vector<Expectation> m_expectations;
   std::vector<std::string> m_hudText;
@@ -348,74 +254,13 @@ class ScenarioHost {
   Outcome m_outcome = Outcome::None;
   std::string m_outcomeReason;
   double m_outcomeTime_s = 0;
-  std::vector<Eigen::Vector3f> m_colors;  ///< by body slot index
-  // Timers: a min-heap on (due, seq); functions live in a Lua table keyed by
-  // id (m_timerFnsRef), so cancelling removes the function and a popped
-  // timer without one is skipped.
-  std::vector<Timer> m_timers;
-  int m_timerFnsRef = 0;
-  std::uint32_t m_nextTimerId = 1;
-  std::uint64_t m_timerSeq = 0;
-  std::vector<Trigger> m_triggers;
-  std::uint32_t m_nextTriggerId = 1;
-  int m_liveTriggers = 0;
-  std::vector<TriggerEvent> m_triggerEvents;        ///< reused each step
+  TimerQueue m_timers;
+  TriggerSet m_triggers;
+  EmitterCache m_emitters;
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
-  std::unique_ptr<physics::JointSystem> m_joints;  ///< see joints()
-  std::unique_ptr<particles::ParticleSystem> m_particles;  ///< see particles()
-  int m_emitterTablesRef = 0;  ///< registry table: "mod:name" -> the file's returned table
-  struct EmitterSource {
-    particles::EmitterId id;
-    std::string ref;       ///< as given to particles.spawn
-    int overridesRef = 0;  ///< registry ref of a copy of the overrides table, 0 = none
-  };
-  std::vector<EmitterSource> m_emitterSources;  ///< see rememberEmitterSource
-  std::unique_ptr<input::InputSystem> m_ownInput;  ///< when options.input is null
-  input::InputSystem* m_input = nullptr;
-  std::unique_ptr<vehicle::VehicleSystem> m_vehicles;  ///< see vehicles(); after m_joints: removed first
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
   Presentation m_presentation;
-  double m_dt_s = 1.0 / 60.0;       ///< the step of the last update()
-  double m_requestedDt_s = 0;       ///< world.set_dt, 0 = none
-  bool m_impulseJoints = false;  ///< joints() uses formulation B (joint_solver / --set physics.joint_solver)
-  std::unique_ptr<physics::DeformableSystem> m_deformables;  ///< see deformables()
-  std::map<int, Eigen::Vector3f> m_deformableColors;
-  std::vector<ScriptLine> m_scriptLines;
 };
-
-/// Registers the `world` table and Body type (bind_world.cpp, bind_body.cpp).
-void openWorldBindings(lua_State* L, int envIndex);
-void openBodyType(lua_State* L);
-void pushBody(lua_State* L, physics::BodyId id);
-void pushTrigger(lua_State* L, std::uint32_t id);
-/// game, timer, random and trigger tables (bind_game.cpp, bind_timer.cpp,
-/// bind_random.cpp, bind_trigger.cpp), each set as a field of the env.
-void openGameBindings(lua_State* L, int envIndex);
-void openTimerBindings(lua_State* L, int envIndex);
-void openRandomBindings(lua_State* L, int envIndex);
-void openTriggerBindings(lua_State* L, int envIndex);
-/// spawn_ragdoll and joints_error (bind_ragdoll.cpp), set in the env.
-void openRagdollBindings(lua_State* L, int envIndex);
-/// The `particles` table and Emitter type (bind_emitter.cpp).
-void openEmitterBindings(lua_State* L, int envIndex);
-/// The `input` table: actions by name, contexts, injection (bind_input.cpp).
-void openInputBindings(lua_State* L, int envIndex);
-/// The tune table (bind_tune.cpp).
-void openTuneBindings(lua_State* L, int envIndex);
-/// vehicle (bind_vehicle.cpp) and save (bind_save.cpp) tables.
-void openVehicleBindings(lua_State* L, int envIndex);
-void openSaveBindings(lua_State* L, int envIndex);
-/// body:set_model and world.add_static_model (bind_model.cpp; after
-/// openWorldBindings and openBodyType), and the camera table (bind_camera.cpp).
-void openModelBindings(lua_State* L, int envIndex);
-void openCameraBindings(lua_State* L, int envIndex);
-/// deformable table (bind_deformable.cpp); ode table and draw_line (bind_ode.cpp).
-void openDeformableBindings(lua_State* L, int envIndex);
-void openOdeBindings(lua_State* L, int envIndex);
-/// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
-void openSpringBindings(lua_State* L, int envIndex);
-/// world.joint, world.grab, ... and the Joint type (bind_joint.cpp); after openWorldBindings.
-void openJointBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

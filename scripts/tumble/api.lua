@@ -551,82 +551,6 @@ function Trigger:count() end
 ---@field position? Vec3Arg the ground point under the vehicle's centre, m (default {0, 0, 0}); the vehicle is placed resting on its springs
 ---@field heading? number yaw, rad: 0 faces +Z, positive turns towards +X (default 0)
 
----What mods/<mod>/vehicles/<name>.lua returns (docs/vehicles.md explains
----each field). Every field is optional; a misspelt one is an error.
----Chassis frame: origin at the box centre, +Z forward, +Y up, +X left.
----@class VehicleDefinition
----@field name? string shown to the player
----@field description? string the feel, in a sentence
----@field chassis? VehicleChassis body, mass, drag
----@field axles? VehicleAxle[] 2 to 8 axles, front first; an axle copies the fields it leaves out from the one before (except steered, driven, handbrake, drive_share)
----@field tyre? VehicleTyre slip curves and rolling resistance
----@field engine? VehicleEngine torque curve and speeds
----@field gearbox? VehicleGearbox ratios and shift points
----@field steering? VehicleSteering angles and rate
-
----@class VehicleChassis
----@field mass? number kg, whole vehicle (default 1200)
----@field size? number[] {width, height, length} of the collision box, m (default {1.7, 0.6, 4.0})
----@field com? number[] centre of mass from the box centre, m (default {0, 0, 0})
----@field drag_area? number drag coefficient times frontal area, m^2 (default 0.7)
----@field air_density? number kg/m^3 (default 1.2)
----@field friction? number chassis contact friction (default 0.4)
----@field restitution? number 0..1 (default 0.1)
----@field mesh? string visual mesh, a path inside the mod
-
----@class VehicleAxle
----@field position? number[] left hub at full bump {x, y, z}, m; x is half the track (default {0.75, -0.2, 1.3})
----@field radius? number wheel radius, m (default 0.31)
----@field width? number wheel width, m (default 0.2)
----@field inertia? number one wheel, kg m^2 (default 1.0)
----@field steered? boolean (default false)
----@field driven? boolean (default false)
----@field brake? number N m per wheel at full brake (default 1500)
----@field handbrake? number N m per wheel at full handbrake (default 0)
----@field drive_share? number fraction of the drive torque, 0..1 (default: equal among driven axles)
----@field differential? string "open" or "limited_slip" (default "open")
----@field lsd_bias? number limited slip: largest torque ratio between the wheels, >= 1 (default 2)
----@field suspension? VehicleSuspension springs and dampers
-
----@class VehicleSuspension
----@field travel? number hub travel from full bump to full droop, m (default 0.2)
----@field rest_length? number spring length at zero force, m (default 0.3)
----@field stiffness? number N/m per wheel (default: from frequency)
----@field frequency? number natural frequency with the static load, Hz (default 1.5)
----@field bump? number compression damping, N s/m (default: from bump_ratio)
----@field rebound? number extension damping, N s/m (default: from rebound_ratio)
----@field bump_ratio? number fraction of critical damping (default 0.3)
----@field rebound_ratio? number fraction of critical damping (default 0.5)
----@field anti_roll? number anti-roll bar, N per m of compression difference (default 0)
-
----@class VehicleTyre
----@field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
----@field lateral? number[][] {{slip angle rad, friction}, ...}
----@field rolling_resistance? number C_rr (default 0.012)
----@field soft_ground_drag? number extra C_rr per unit of surface softness (terrain softness layer or vehicle.set_softness; mud 0.7, grass 0.4, ice 0) (default 0.08)
-
----@class VehicleEngine
----@field torque? number[][] {{rpm, N m}, ...} at full throttle
----@field idle_rpm? number rpm (default 900)
----@field max_rpm? number rev limiter, rpm (default 6800)
----@field launch_rpm? number the automatic clutch holds about this pulling away, rpm (default 2500)
----@field inertia? number kg m^2 (default 0.2)
----@field braking_torque? number engine braking at max rpm, N m (default 30)
-
----@class VehicleGearbox
----@field ratios? number[] forward gear ratios (default {3.5, 2.1, 1.4, 1.05, 0.85})
----@field reverse? number ratio (default 3.3)
----@field final_drive? number ratio (default 4.0)
----@field efficiency? number 0..1 (default 0.9)
----@field shift_up_rpm? number for the automatic gearbox, rpm (default 6200)
----@field shift_down_rpm? number rpm (default 2600)
----@field shift_time? number clutch open during a shift, s (default 0.25)
-
----@class VehicleSteering
----@field max_angle? number at standstill, rad (default 0.55)
----@field speed_sensitivity? number the largest angle is max / (1 + this * v), s/m (default 0.02)
----@field rate? number how fast the wheels turn, rad/s (default 2.5)
-
 ---A handle to a vehicle made by vehicle.spawn. Methods refuse a removed
 ---vehicle with a clear error.
 ---@class Vehicle
@@ -822,7 +746,7 @@ function Vehicle:remove() end
 ---@class Scenario
 ---@field title string shown in the window title and the HUD
 ---@field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
----@field joint_solver string "lagrange" (default; formulation A, Lagrange multipliers before the step) or "impulse" (formulation B, impulses solved with the contacts); --set physics.joint_solver=... overrides it
+---@field joint_solver string "lagrange" (default: Lagrange multipliers solved with the joints' sparse factor each substep) or "impulse" (impulses solved together with the contacts); --set physics.joint_solver=... overrides it
 ---@field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
 ---@field on_start fun(ctx: Ctx) called once before the first step
 ---@field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
@@ -837,6 +761,90 @@ function Vehicle:remove() end
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
 ---@field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
+
+---What mods/<mod>/vehicles/<name>.lua returns (docs/vehicles.md explains
+---each field). Every field is optional; a misspelt one is an error.
+---Chassis frame: origin at the box centre, +Z forward, +Y up, +X left.
+---@class VehicleDefinition
+---@field name? string shown to the player (default "vehicle")
+---@field description? string the feel, in a sentence
+---@field chassis? VehicleChassis body, mass, drag
+---@field axles? VehicleAxle[] 2 to 8 axles, front first; an axle copies the fields it leaves out from the one before (except steered, driven, handbrake, drive_share)
+---@field tyre? VehicleTyre slip curves and rolling resistance
+---@field engine? VehicleEngine torque curve and speeds
+---@field gearbox? VehicleGearbox ratios and shift points
+---@field steering? VehicleSteering angles and rate
+
+---body, mass, drag
+---@class VehicleChassis
+---@field mass? number whole vehicle, kg (default 1200)
+---@field size? number[] {width, height, length} of the collision box, m (default {1.7, 0.6, 4})
+---@field com? number[] centre of mass from the box centre, m (default {0, 0, 0})
+---@field drag_area? number drag coefficient times frontal area, m^2 (default 0.7)
+---@field air_density? number air density, kg/m^3 (default 1.2)
+---@field friction? number chassis contact friction (default 0.4)
+---@field restitution? number 0..1 (default 0.1)
+---@field mesh? string visual mesh, a path inside the mod
+---@field inertia? string "box": a solid box of size and mass; "mesh": the visual mesh as a uniform solid of the chassis mass (needs mesh): "box" or "mesh" (default "box")
+
+---two wheels at (+x, y, z) (left) and (-x, y, z) (right), chassis frame
+---@class VehicleAxle
+---@field position? number[] left hub at full bump {x, y, z}; x is half the track, m (default {0.75, -0.2, 1.3})
+---@field radius? number wheel radius, m (default 0.31)
+---@field width? number wheel width, m (default 0.2)
+---@field inertia? number one wheel, kg m^2 (default 1)
+---@field steered? boolean the wheels steer (default false)
+---@field driven? boolean the engine drives the wheels (default false)
+---@field brake? number per wheel at full brake, N m (default 1500)
+---@field handbrake? number per wheel at full handbrake, N m (default 0)
+---@field drive_share? number fraction of the drive torque, 0..1 (default 0: equal among driven axles)
+---@field differential? string how the two wheels share the torque: "open" or "limited_slip" (default "open")
+---@field lsd_bias? number limited slip: largest torque ratio between the wheels, >= 1 (default 2)
+---@field suspension? VehicleSuspension springs and dampers
+
+---springs and dampers
+---@class VehicleSuspension
+---@field travel? number hub travel from full bump to full droop, m (default 0.2)
+---@field rest_length? number spring length at zero force, m (default 0.3)
+---@field stiffness? number per wheel, N/m (default from frequency)
+---@field frequency? number natural frequency with the static load, Hz (default 1.5)
+---@field bump? number compression damping, N s/m (default from bump_ratio)
+---@field rebound? number extension damping, N s/m (default from rebound_ratio)
+---@field bump_ratio? number fraction of critical damping (default 0.3)
+---@field rebound_ratio? number fraction of critical damping (default 0.5)
+---@field anti_roll? number anti-roll bar, per metre of compression difference, N/m (default 0)
+
+---slip curves and rolling resistance
+---@class VehicleTyre
+---@field longitudinal? number[][] {{slip ratio, friction}, ...} on a surface of friction 1
+---@field lateral? number[][] {{slip angle rad, friction}, ...}
+---@field rolling_resistance? number C_rr (default 0.012)
+---@field soft_ground_drag? number extra C_rr per unit of surface softness (terrain softness layer or vehicle.set_softness; mud 0.7, grass 0.4, ice 0) (default 0.08)
+
+---torque curve and speeds
+---@class VehicleEngine
+---@field torque? number[][] {{rpm, N m}, ...} at full throttle
+---@field idle_rpm? number idle speed, rpm (default 900)
+---@field max_rpm? number rev limiter, rpm (default 6800)
+---@field launch_rpm? number the automatic clutch holds about this pulling away, rpm (default 2500)
+---@field inertia? number crank, flywheel and clutch, kg m^2 (default 0.2)
+---@field braking_torque? number engine braking at max rpm, N m (default 30)
+
+---ratios and shift points
+---@class VehicleGearbox
+---@field ratios? number[] forward gear ratios (default {3.5, 2.1, 1.4, 1.05, 0.85})
+---@field reverse? number reverse gear ratio (default 3.3)
+---@field final_drive? number final drive ratio (default 4)
+---@field efficiency? number fraction of engine torque reaching the wheels, 0..1 (default 0.9)
+---@field shift_up_rpm? number for the automatic gearbox, rpm (default 6200)
+---@field shift_down_rpm? number for the automatic gearbox, rpm (default 2600)
+---@field shift_time? number clutch open during a shift, s (default 0.25)
+
+---angles and rate
+---@class VehicleSteering
+---@field max_angle? number at standstill, rad (default 0.55)
+---@field speed_sensitivity? number the largest angle is max / (1 + this * v), s/m (default 0.02)
+---@field rate? number how fast the wheels turn, rad/s (default 2.5)
 
 ---The view of the scene: free orbit, following a body, a chase camera, a
 ---hood camera or a cockpit view with its interior drawn as a model. Body
@@ -1230,11 +1238,13 @@ function HeightMap:resample(width, height) end
 function HeightMap:import(path) end
 
 ---Calls a function after a delay or every period, in simulated time. Timers
----are checked before on_update each step: a timer due at t fires in the
----first step that starts at or after t, at most once per step, in order of
----due time and then of creation. They count from the time of the callback
----that made them (0 in on_start). A failing timer.every is cancelled after
----3 failures in a row.
+---are checked after each physics step, after on_contact and the triggers:
+---a timer due at t fires after the first step that ends at or after t (so
+---before the next on_update), at most once per step, in order of due time
+---and then of creation; ctx.time is the time the step ended. Timers made
+---in on_start with delay 0 fire right after on_start. They count from the
+---time of the callback that made them (0 in on_start). A failing
+---timer.every is cancelled after 3 failures in a row.
 timer = {}
 
 ---Calls fn(ctx) once, `seconds` of simulated time from now.
@@ -1410,11 +1420,12 @@ function world.joint(def) end
 ---@return Joint # the grab (a Joint: set_target, release, force)
 function world.grab(body, local_point, target, hertz) end
 
----@return string # the scene's joint formulation now: "lagrange" or "impulse"
+---@return string # the scene's joint solver now: "lagrange" or "impulse"
 function world.joint_solver() end
 
----Switches the joint formulation while running ("lagrange": Lagrange
----multipliers before the step; "impulse": impulses with the contacts).
+---Switches the joint solver while running ("lagrange": Lagrange
+---multipliers from the joints' sparse factor; "impulse": impulses solved
+---with the contacts). Joints that exist switch too.
 ---@param name string "lagrange" or "impulse"
 function world.set_joint_solver(name) end
 
@@ -1648,6 +1659,38 @@ function joints_error() end
 ---@param ... any values, converted with tostring
 function print(...) end
 
+---Records an expectation that lands in the run report; a failed one makes
+---`tumble run` exit with status 2. A boolean without limits must be true; a
+---number needs limits.
+---
+---```lua
+---expect("ball bounced back", ball:position().y, {min = 0.8, max = 1.2})
+---```
+---@param name string what is checked, shown in the report
+---@param value number|boolean the measured value
+---@param limits? table {min = number, max = number}, inclusive
+---@return boolean # whether the expectation held
+function expect(name, value, limits) end
+
+---A scenario parameter from the command line (`--set name=value`),
+---converted to the type of the default; the default when not given.
+---
+---```lua
+---local count = param("count", 10)  -- tumble run mymod:rain --set count=50
+---```
+---@param name string parameter name
+---@param default any returned when absent; its type (number, boolean, string) decides the conversion
+---@return any # the value
+function param(name, default) end
+
+---Replaces the scenario's lines on the HUD; they stay until the next call.
+---
+---```lua
+---hud_text(("height: %.2f m"):format(ball:position().y))
+---```
+---@param ... any one value per line, converted with tostring
+function hud_text(...) end
+
 ---Compiles a chunk of Lua text, as the standard load, but only text: binary
 ---chunks (precompiled bytecode) can crash the VM and are refused. Without
 ---`env` the chunk sees the mod's own environment, never the real globals.
@@ -1693,35 +1736,3 @@ function setmetatable(t, mt) end
 ---@param name string module name: letters, digits and _, separated by dots
 ---@return any # the module's value (true if it returned nothing)
 function require(name) end
-
----Records an expectation that lands in the run report; a failed one makes
----`tumble run` exit with status 2. A boolean without limits must be true; a
----number needs limits.
----
----```lua
----expect("ball bounced back", ball:position().y, {min = 0.8, max = 1.2})
----```
----@param name string what is checked, shown in the report
----@param value number|boolean the measured value
----@param limits? table {min = number, max = number}, inclusive
----@return boolean # whether the expectation held
-function expect(name, value, limits) end
-
----A scenario parameter from the command line (`--set name=value`),
----converted to the type of the default; the default when not given.
----
----```lua
----local count = param("count", 10)  -- tumble run mymod:rain --set count=50
----```
----@param name string parameter name
----@param default any returned when absent; its type (number, boolean, string) decides the conversion
----@return any # the value
-function param(name, default) end
-
----Replaces the scenario's lines on the HUD; they stay until the next call.
----
----```lua
----hud_text(("height: %.2f m"):format(ball:position().y))
----```
----@param ... any one value per line, converted with tostring
-function hud_text(...) end

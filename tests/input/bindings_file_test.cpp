@@ -105,7 +105,7 @@ TEST(BindingsFile, MistakesNameTheFileLineActionFieldAndWhatIsExpected) {
             std::string::npos) << text;
   EXPECT_NE(text.find(file + ":7: action \"steer\".bindings[1]: \"keys:A/D\" is a key pair"), std::string::npos) << text;
   EXPECT_NE(text.find(file + ":8: action \"jump\".type: expected \"button\""), std::string::npos) << text;
-  EXPECT_NE(text.find("unknown field \"invrt\" (did you mean: invert?)"), std::string::npos) << text;
+  EXPECT_NE(text.find("unknown field 'invrt' (did you mean: invert?)"), std::string::npos) << text;
   EXPECT_NE(text.find("action \"look\".bindings[1].dead_zone"), std::string::npos) << text;
   // Everything valid is still there.
   EXPECT_NE(b.set.findAction("fire"), nullptr);

@@ -3,6 +3,8 @@
 #include <fstream>
 
 #include "input_fixture.h"
+#include "app/fixed_step.h"
+#include "app/scene.h"
 #include "physics/world.h"
 #include "script/scenario_host.h"
 
@@ -18,30 +20,31 @@ class LuaInput : public ::testing::Test {
     s.actions = {actionDef("throttle", input::ActionType::Button, "vehicle", {"key:W"}),
                  actionDef("steer", input::ActionType::Axis, "vehicle", {"keys:A/D"}),
                  actionDef("grab", input::ActionType::Button, "interact", {"mouse:left"})};
-    m_input = std::make_unique<input::InputSystem>(s);
+    m_bindings = s;
   }
 
-  std::unique_ptr<script::ScenarioHost> load(const std::string& source) {
-    const fs::path dir = testDir() / "m";
+  /// The scenario in mod "m", in a scene with this test's actions.
+  script::ScenarioHost* load(const std::string& source) {
+    const fs::path root = testDir(), dir = root / "m";
     fs::create_directories(dir / "scenarios");
     std::ofstream(dir / "mod.lua") << "return {name = \"m\", version = \"1.0.0\", api = 1}\n";
     std::ofstream(dir / "scenarios" / "s.lua") << source;
-    script::ModInfo mod;
-    mod.name = "m";
-    mod.version = "1.0.0";
-    mod.dir = dir.string();
-    script::ScenarioOptions o;
-    o.input = m_input.get();
-    auto host = script::ScenarioHost::load(mod, "s", m_world, o);
-    EXPECT_TRUE(host) << (host ? "" : host.error());
-    return host ? std::move(host.value()) : nullptr;
+    app::SceneOptions options;
+    options.scenarioRef = "m:s";
+    options.modDirs = {root.string()};
+    options.bindings = m_bindings;
+    auto scene = app::Scene::create(options);
+    EXPECT_TRUE(scene) << (scene ? "" : scene.error());
+    if (!scene) return nullptr;
+    m_scene = std::move(scene.value());
+    m_input = &m_scene->input();
+    return &m_scene->host();
   }
 
-  /// One fixed step as the app runs it: input first, then the scripts.
-  void step(script::ScenarioHost& host) {
-    m_input->step();
-    host.update(m_time, 1.0 / 60, m_step++);
-    m_world.step(Real(1.0 / 60));
+  /// One fixed step as the app runs it.
+  void step(script::ScenarioHost&) {
+    app::RunTimings t;
+    app::stepScene(*m_scene, app::StepTime{m_time, m_step++}, t);
     m_time += 1.0 / 60;
   }
 
@@ -51,8 +54,9 @@ class LuaInput : public ::testing::Test {
     for (const auto& e : host.errors()) ADD_FAILURE() << e.summary();
   }
 
-  physics::World m_world;
-  std::unique_ptr<input::InputSystem> m_input;
+  input::BindingSet m_bindings;
+  std::unique_ptr<app::Scene> m_scene;
+  input::InputSystem* m_input = nullptr;
   double m_time = 0;
   std::int64_t m_step = 0;
 };
@@ -71,7 +75,7 @@ TEST_F(LuaInput, ScriptsReadTheKeysOnlyThroughTheirActions) {
       expect("no raw keys in the API", input.key == nil and input.keys == nil)
     end})");
   ASSERT_TRUE(host);
-  host->start();
+  m_scene->start();
   m_input->handleEvent(keyEvent(SDL_SCANCODE_W, true));
   m_input->handleEvent(keyEvent(SDL_SCANCODE_A, true));
   step(*host);
@@ -85,7 +89,7 @@ TEST_F(LuaInput, ScriptsReadTheKeysOnlyThroughTheirActions) {
 TEST_F(LuaInput, AnUnknownActionIsALuaErrorThatSuggestsTheName) {
   auto host = load(R"(return {on_update = function() local v = input.value("trottle") end})");
   ASSERT_TRUE(host);
-  host->start();
+  m_scene->start();
   step(*host);
   ASSERT_EQ(host->errors().size(), 1u);
   const std::string msg = host->errors()[0].message;
@@ -109,7 +113,7 @@ TEST_F(LuaInput, InjectedValuesDriveActionsFromTheNextStep) {
       expect("back to the (idle) keyboard", not values[4][3])
     end})");
   ASSERT_TRUE(host);
-  host->start();
+  m_scene->start();
   for (int i = 0; i < 4; ++i) step(*host);
   host->finish(m_time, m_step);
   expectAllHeld(*host);
@@ -129,7 +133,7 @@ TEST_F(LuaInput, ContextsSwitchFromLuaAndUnknownOnesAreErrors) {
       expect("actions listed", table.concat(names, ",") == "throttle:button:vehicle,steer:axis:vehicle,grab:button:interact")
     end})");
   ASSERT_TRUE(host);
-  host->start();
+  m_scene->start();
   expectAllHeld(*host);
   EXPECT_TRUE(m_input->contextEnabled("interact"));
 }
@@ -140,7 +144,7 @@ TEST_F(LuaInput, ANonStringActionNameIsAClearError) {
       expect("rejected", not ok and err:find("expected an action name", 1, true) ~= nil)
     end})");
   ASSERT_TRUE(host);
-  host->start();
+  m_scene->start();
   expectAllHeld(*host);
 }
 
@@ -157,7 +161,7 @@ TEST_F(LuaInput, ThePointerRayFeedsWorldRaycastToPickWhatIsUnderTheMouse) {
       expect("at its front face, m", hit and hit.distance or -1, {min = 9.49, max = 9.51})
     end})");
   ASSERT_TRUE(host);
-  host->start();
+  m_scene->start();
   m_input->setPointerRay(Vec3(0, 2, 0), Vec3(0, 0, -1));  // what play computes from the camera
   step(*host);
   expectAllHeld(*host);
@@ -175,8 +179,6 @@ TEST(Interact, GrabDragsTheBodyUnderThePointerAndImpulseKicksIt) {
   s.contexts = {{"interact", 5, false}};
   for (const char* name : {"grab", "impulse", "dt_up", "dt_down"})
     s.actions.push_back(actionDef(name, input::ActionType::Button, "interact", {"key:G"}));
-  input::InputSystem in(s);
-  physics::World world;
   const fs::path dir = fs::path(TUMBLE_TEST_TMP) / "Interact" / "m";
   fs::create_directories(dir / "scenarios");
   std::ofstream(dir / "mod.lua") << "return {name = \"m\", version = \"1.0.0\", api = 1}\n";
@@ -203,22 +205,19 @@ TEST(Interact, GrabDragsTheBodyUnderThePointerAndImpulseKicksIt) {
       end,
     }
   )";
-  script::ModInfo mod;
-  mod.name = "m";
-  mod.version = "1.0.0";
-  mod.dir = dir.string();
-  script::ScenarioOptions o;
-  o.input = &in;
-  o.scriptsDir = std::string(TUMBLE_SOURCE_DIR) + "/scripts";
-  auto host = script::ScenarioHost::load(mod, "s", world, o);
-  ASSERT_TRUE(host) << host.error();
-  script::ScenarioHost& h = **host;
-  h.start();
+  app::SceneOptions options;
+  options.scenarioRef = "m:s";
+  options.modDirs = {dir.parent_path().string()};
+  options.bindings = s;
+  auto scene = app::Scene::create(options);
+  ASSERT_TRUE(scene) << scene.error();
+  script::ScenarioHost& h = scene.value()->host();
+  input::InputSystem& in = scene.value()->input();
+  scene.value()->start();
   const int grab = in.find("grab"), impulse = in.find("impulse");
   auto step = [&](int i) {
-    in.step();
-    h.update(i / 60.0, 1.0 / 60, i);
-    world.step(Real(1.0 / 60));
+    app::RunTimings t;
+    app::stepScene(*scene.value(), app::StepTime{i / 60.0, i}, t);
   };
   in.setPointerRay(Vec3(0, 0, 0), Vec3(0, 0, -1));  // the camera looks at the crate
   in.inject(grab, 1);

@@ -40,13 +40,9 @@ TEST_F(Api, NoCallbacksMeansNoLuaCallsPerFrame) {
   auto host = load("return {on_start = function() world.plane{} world.sphere{position = {0, 1, 0}} end}");
   EXPECT_FALSE(host->hasUpdate());
   EXPECT_FALSE(host->hasContact());
-  host->start();
+  sceneOf(*host).start();
   std::uint64_t calls = host->luaCallCount();
-  for (int i = 0; i < 120; ++i) {
-    host->update(i / 60.0, 1 / 60.0, i);
-    m_world.step(Real(1.0 / 60));
-    host->afterStep((i + 1) / 60.0, i);
-  }
+  for (int i = 0; i < 120; ++i) stepOnce(*host, i / 60.0, i);
   EXPECT_EQ(host->luaCallCount(), calls);
 }
 

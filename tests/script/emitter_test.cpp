@@ -17,19 +17,8 @@ const std::map<std::string, std::string> kEmitterFiles = {
 
 class Emitters : public ScriptTest {
  protected:
-  // start, steps of (update, physics, afterStep, particles), finish
-  void runWithParticles(script::ScenarioHost& host, int steps, double dt = 1.0 / 60) {
-    host.start();
-    double t = 0;
-    for (int i = 0; i < steps; ++i) {
-      host.update(t, dt, i);
-      m_world.step(Real(dt));
-      t = double(i + 1) * dt;
-      host.afterStep(t, i);
-      if (auto* ps = host.particlesIfAny()) ps->step(float(dt));
-    }
-    host.finish(t, steps);
-  }
+  // start, fixed steps (particles included), finish
+  void runWithParticles(script::ScenarioHost& host, int steps) { run(host, steps); }
 };
 
 }  // namespace
@@ -38,7 +27,7 @@ TEST_F(Emitters, ASceneThatSpawnsNothingHasNoParticleSystem) {
   auto host = load("return {on_start = function() world.plane{} expect('none yet', particles.count() == 0) end}", {},
                    "fx", 1, kEmitterFiles);
   runWithParticles(*host, 30);
-  EXPECT_EQ(host->particlesIfAny(), nullptr);
+  EXPECT_EQ(sceneOf(*host).particlesIfAny(), nullptr);
   expectAllHeld(*host);
 }
 
@@ -67,8 +56,8 @@ TEST_F(Emitters, SpawnWithOverridesAndDriveTheRateFromLua) {
     })", {}, "fx", 1, kEmitterFiles);
   runWithParticles(*host, 120);
   expectAllHeld(*host);
-  ASSERT_NE(host->particlesIfAny(), nullptr);
-  EXPECT_EQ(host->particlesIfAny()->emitterCount(), 0);
+  ASSERT_NE(sceneOf(*host).particlesIfAny(), nullptr);
+  EXPECT_EQ(sceneOf(*host).particlesIfAny()->emitterCount(), 0);
 }
 
 TEST_F(Emitters, BurstRemoveAndOneShotBursts) {
@@ -134,13 +123,13 @@ TEST_F(Emitters, EditedFilesAreReadAgainAfterForgettingTheCache) {
   auto host = load(R"(
     return {on_update = function() particles.spawn("fx:puff", {position = {0, 0, 0}}) end})", {}, "fx", 1,
                    kEmitterFiles);
-  host->start();
-  host->update(0, 1.0 / 60, 0);
+  sceneOf(*host).start();
+  stepOnce(*host, 0, 0);
   writeFile(m_root / "fx" / "emitters" / "puff.lua", "return {rate = 33}\n");
-  host->update(1.0 / 60, 1.0 / 60, 1);  // cached: still the old file
-  host->forgetEmitterDefinitions();
-  host->update(2.0 / 60, 1.0 / 60, 2);
-  const particles::ParticleSystem* ps = host->particlesIfAny();
+  stepOnce(*host, 1.0 / 60, 1);  // cached: still the old file
+  host->emitters().forget();
+  stepOnce(*host, 2.0 / 60, 2);
+  const particles::ParticleSystem* ps = sceneOf(*host).particlesIfAny();
   ASSERT_NE(ps, nullptr);
   std::vector<float> rates;
   ps->forEach([&](particles::EmitterId, const particles::Emitter& e) { rates.push_back(e.rate_per_s); });
@@ -158,14 +147,14 @@ TEST_F(Emitters, AnEmitterFileIsDataAndCannotReachTheWorld) {
     end})", {}, "fx", 1, files);
   runWithParticles(*host, 1);
   expectAllHeld(*host);
-  EXPECT_EQ(m_world.bodyCount(), 0);
+  EXPECT_EQ(world().bodyCount(), 0);
 }
 
 }  // namespace tumble::test
 
 namespace tumble::test {
 
-// Hot reload (issue 6 item 7): a saved emitter file changes the emitters
+// Hot reload: a saved emitter file changes the emitters
 // running from it, with their spawn overrides still on top; a broken save
 // changes nothing and names the file and field.
 TEST_F(Emitters, ASavedEmitterFileChangesTheRunningEmitters) {
@@ -181,14 +170,14 @@ TEST_F(Emitters, ASavedEmitterFileChangesTheRunningEmitters) {
                     {"emitters/broken_later.lua", "return {rate = 7, lifetime = 1, speed = 1}\n"}});
   ASSERT_TRUE(host);
   runWithParticles(*host, 5);
-  particles::ParticleSystem* ps = host->particlesIfAny();
+  particles::ParticleSystem* ps = sceneOf(*host).particlesIfAny();
   ASSERT_NE(ps, nullptr);
   std::vector<particles::EmitterId> ids;
   ps->forEach([&](particles::EmitterId id, const particles::Emitter&) { ids.push_back(id); });
   ASSERT_EQ(ids.size(), 3u);
 
   writeFile(m_root / "fx/emitters/puff.lua", "return {rate = 40, lifetime = {0.5, 0.5}, speed = 2, max_count = 900}\n");
-  ASSERT_TRUE(host->reloadEmitterFile("emitters/puff.lua").ok());
+  ASSERT_TRUE(host->emitters().reloadFile("emitters/puff.lua", ps).ok());
   EXPECT_FLOAT_EQ(ps->get(ids[0])->def.rate_per_s, 40);
   EXPECT_FLOAT_EQ(ps->get(ids[0])->rate_per_s, 40) << "no set_rate: the new rate applies";
   EXPECT_FLOAT_EQ(ps->get(ids[0])->def.speedMax_mps, 2);
@@ -197,7 +186,7 @@ TEST_F(Emitters, ASavedEmitterFileChangesTheRunningEmitters) {
   EXPECT_FLOAT_EQ(ps->get(ids[2])->def.rate_per_s, 7) << "another file's emitter is untouched";
 
   writeFile(m_root / "fx/emitters/puff.lua", "return {rate = -1, lifetime = 1}\n");
-  auto st = host->reloadEmitterFile("emitters/puff.lua");
+  auto st = host->emitters().reloadFile("emitters/puff.lua", ps);
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.error().find("puff.lua"), std::string::npos) << st.error();
   EXPECT_NE(st.error().find("rate"), std::string::npos) << st.error();

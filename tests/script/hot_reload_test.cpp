@@ -21,21 +21,16 @@ class HotReloadTest : public ScriptTest {
     fs::last_write_time(path, fs::last_write_time(path) + std::chrono::seconds(++m_saves));
   }
 
-  // `n` fixed steps from m_step on: update, World::step, afterStep.
+  // `n` fixed steps from m_step on.
   void steps(script::ScenarioHost& host, int n) {
-    const double dt = 1.0 / 60;
-    for (int i = 0; i < n; ++i, ++m_step) {
-      host.update(double(m_step) * dt, dt, m_step);
-      m_world.step(Real(dt));
-      host.afterStep(double(m_step + 1) * dt, m_step);
-    }
+    for (int i = 0; i < n; ++i, ++m_step) stepOnce(host, double(m_step) / 60, m_step);
   }
 
   double time_s() const { return double(m_step) / 60; }
 
   Vec3 onlyBodyVelocity() {
     Vec3 v = Vec3::Zero();
-    m_world.forEachBody([&](physics::BodyId, const physics::Body& b) { v = b.linearVelocity_mps; });
+    world().forEachBody([&](physics::BodyId, const physics::Body& b) { v = b.linearVelocity_mps; });
     return v;
   }
 
@@ -81,7 +76,7 @@ TEST_F(HotReloadTest, ASavedScenarioRunsTheNewCodeWithTheOldState) {
   auto host = load(kCounterV1);
   ASSERT_TRUE(host);
   script::HotReload reload(*host);
-  host->start();
+  sceneOf(*host).start();
   steps(*host, 30);
   EXPECT_LT(onlyBodyVelocity().y(), -4.0) << "falling freely for 0.5 s: v = -g t = -4.9 m/s";
 
@@ -110,7 +105,7 @@ TEST_F(HotReloadTest, ASaveIsPickedUpWithinAQuarterSecondOfPlaying) {
   auto host = load(kCounterV1);
   ASSERT_TRUE(host);
   script::HotReload reload(*host, 0.25);
-  host->start();
+  sceneOf(*host).start();
   EXPECT_TRUE(reload.poll(100.0, 0, 0).empty());  // the first poll scans: nothing saved yet
   save(file(), kCounterV2);
   EXPECT_TRUE(reload.poll(100.1, 0, 0).empty()) << "between scans nothing is read";
@@ -126,7 +121,7 @@ TEST_F(HotReloadTest, ASaveThatDoesNotCompileKeepsTheOldCodeAndNamesTheLine) {
   auto host = load(kCounterV1);
   ASSERT_TRUE(host);
   script::HotReload reload(*host);
-  host->start();
+  sceneOf(*host).start();
   steps(*host, 10);
   save(file(), "local x = 1\nreturn {\n  on_update = function(ctx, dt)\n    ctx.state.ticks = ctx.state.ticks +* 1000\n"
                "  end,\n}\n");
@@ -183,10 +178,10 @@ return {
 )";
   auto host = load(source);
   ASSERT_TRUE(host);
-  host->start();
+  sceneOf(*host).start();
   steps(*host, 5);
-  EXPECT_EQ(host->activeTimerCount(), 2u);
-  EXPECT_EQ(host->triggerCount(), 1);
+  EXPECT_EQ(host->timers().activeCount(), 2u);
+  EXPECT_EQ(host->triggers().liveCount(), 1);
   ASSERT_TRUE(host->reload(time_s(), m_step));
   const std::size_t afterFirst = host->luaMemoryBytes();
   for (int i = 0; i < 100; ++i) {
@@ -194,8 +189,8 @@ return {
     ASSERT_TRUE(host->reload(time_s(), m_step));
   }
   EXPECT_EQ(host->reloadCount(), 101);
-  EXPECT_EQ(host->activeTimerCount(), 2u) << "each reload's on_reload re-made the timers; the old ones are gone";
-  EXPECT_EQ(host->triggerCount(), 1);
+  EXPECT_EQ(host->timers().activeCount(), 2u) << "each reload's on_reload re-made the timers; the old ones are gone";
+  EXPECT_EQ(host->triggers().liveCount(), 1);
   // One generation of the file is ~100 KiB (the table); 100 leaked ones
   // would be megabytes. Allow a few KiB for the collector's bookkeeping.
   EXPECT_LT(host->luaMemoryBytes(), afterFirst + 16 * 1024)
@@ -212,13 +207,13 @@ return {
 }
 )");
   ASSERT_TRUE(host);
-  host->start();
-  steps(*host, 30);  // 0.5 s: fired at 0.1, 0.2, 0.3, 0.4
+  sceneOf(*host).start();
+  steps(*host, 30);  // 0.5 s: fired after the steps ending at 0.1, 0.2, 0.3, 0.4, 0.5
   for (int i = 0; i < 10; ++i) ASSERT_TRUE(host->reload(time_s(), m_step));
-  EXPECT_EQ(host->activeTimerCount(), 1u);
-  steps(*host, 30);  // and at 0.5 .. 0.9
+  EXPECT_EQ(host->timers().activeCount(), 1u);
+  steps(*host, 30);  // and at 0.6 .. 1.0
   host->finish(time_s(), m_step);
-  EXPECT_EQ(expectation(*host, "fired")->value, 9);
+  EXPECT_EQ(expectation(*host, "fired")->value, 10);
 }
 
 TEST_F(HotReloadTest, ASavedModuleIsRequiredAfresh) {
@@ -231,7 +226,7 @@ return {
 )", {}, "escape", 1, {{"lib/values.lua", "return {speed = 1}"}});
   ASSERT_TRUE(host);
   script::HotReload reload(*host);
-  host->start();
+  sceneOf(*host).start();
   save(m_root / "escape" / "lib" / "values.lua", "return {speed = 7}");
   auto events = reload.pollNow(0, 0);
   ASSERT_EQ(events.size(), 1u);

@@ -1,7 +1,8 @@
 #pragma once
-// A scenario in a throw-away mod folder, run against a real physics::World:
+// A scenario in a throw-away mod folder, run in a real scene (app::Scene,
+// the one owner of a scene's systems) through the app's fixed step:
 //   auto host = load(R"( return {on_start = function() ... end} )");
-//   run(*host, 60);  // start, 60 fixed steps (update, step, afterStep), finish
+//   run(*host, 60);  // start, 60 fixed steps (app::stepScene), finish
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +11,8 @@
 #include <memory>
 #include <string>
 
+#include "app/fixed_step.h"
+#include "app/scene.h"
 #include "physics/world.h"
 #include "script/mods.h"
 #include "script/scenario_host.h"
@@ -38,6 +41,23 @@ inline fs::path makeMod(const fs::path& root, const std::string& name, const std
   return dir;
 }
 
+/// A loaded scenario: the scene that owns it, used like a pointer to its host.
+struct LoadedScenario {
+  std::unique_ptr<app::Scene> scene;
+  script::ScenarioHost* operator->() const { return &scene->host(); }
+  script::ScenarioHost& operator*() const { return scene->host(); }
+  explicit operator bool() const { return scene != nullptr; }
+};
+
+/// The scene a host belongs to (every host in these tests is an app::Scene's).
+inline app::Scene& sceneOf(script::ScenarioHost& host) { return dynamic_cast<app::Scene&>(host.scene()); }
+
+/// One fixed step of the host's scene, as `tumble run` takes it.
+inline void stepOnce(script::ScenarioHost& host, double time_s, std::int64_t step) {
+  app::RunTimings t;
+  app::stepScene(sceneOf(host), app::StepTime{time_s, step}, t);
+}
+
 class ScriptTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -47,35 +67,39 @@ class ScriptTest : public ::testing::Test {
   }
 
   /// Loads `source` as scenarios/s.lua of mod `mod` (a fresh folder per name).
-  std::unique_ptr<script::ScenarioHost> load(const std::string& source, const script::VmLimits& limits = {},
-                                             const std::string& mod = "escape", std::uint64_t seed = 1,
-                                             const std::map<std::string, std::string>& extraFiles = {}) {
+  LoadedScenario load(const std::string& source, const script::VmLimits& limits = {},
+                      const std::string& mod = "escape", std::uint64_t seed = 1,
+                      const std::map<std::string, std::string>& extraFiles = {},
+                      const std::map<std::string, std::string>& sets = {}) {
     std::map<std::string, std::string> files = extraFiles;
     files["scenarios/s.lua"] = source;
-    fs::path dir = makeMod(m_root, mod, "", files);
-    auto info = script::loadManifest(dir.string());
-    EXPECT_TRUE(info) << (info ? "" : info.error());
-    script::ScenarioOptions options;
+    makeMod(m_root, mod, "", files);
+    app::SceneOptions options;
+    options.scenarioRef = mod + ":s";
+    options.modDirs = {m_root.string()};
     options.limits = limits;
     options.seed = seed;
-    options.scriptsDir = TUMBLE_SCRIPTS_DIR;
-    auto host = script::ScenarioHost::load(*info, "s", m_world, options);
-    EXPECT_TRUE(host) << (host ? "" : host.error());
-    return host ? std::move(host.value()) : nullptr;
+    options.sets = sets;
+    auto scene = app::Scene::create(options);
+    EXPECT_TRUE(scene) << (scene ? "" : scene.error());
+    if (!scene) return {};
+    m_world = &scene.value()->world();
+    return LoadedScenario{std::move(scene.value())};
   }
 
-  /// start, `steps` fixed steps of dt (update, World::step, afterStep), finish.
+  /// start, `steps` fixed steps of dt (app::stepScene), finish.
   void run(script::ScenarioHost& host, int steps, double dt = 1.0 / 60) {
-    host.start();
+    sceneOf(host).start();
     double t = 0;
     for (int i = 0; i < steps; ++i) {
-      host.update(t, dt, i);
-      m_world.step(Real(dt));
+      stepOnce(host, t, i);
       t = double(i + 1) * dt;
-      host.afterStep(t, i);
     }
     host.finish(t, steps);
   }
+
+  /// The world of the scenario loaded last.
+  physics::World& world() { return *m_world; }
 
   static const script::Expectation* expectation(const script::ScenarioHost& host, const std::string& name) {
     for (const auto& e : host.expectations())
@@ -91,7 +115,7 @@ class ScriptTest : public ::testing::Test {
   }
 
   fs::path m_root;
-  physics::World m_world;
+  physics::World* m_world = nullptr;
 };
 
 }  // namespace tumble::test

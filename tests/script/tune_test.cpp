@@ -5,6 +5,8 @@
 
 #include "core/file_util.h"
 #include "script/tunables.h"
+#include <cstdlib>
+
 #include "script_fixture.h"
 
 namespace tumble::test {
@@ -30,23 +32,30 @@ return {
 
 class TuneTest : public ScriptTest {
  protected:
-  std::unique_ptr<script::ScenarioHost> loadWith(const std::string& source, script::ScenarioOptions options) {
-    fs::path dir = makeMod(m_root, "tuned", "", {{"scenarios/s.lua", source}});
-    auto info = script::loadManifest(dir.string());
-    EXPECT_TRUE(info);
-    options.scriptsDir = TUMBLE_SCRIPTS_DIR;
-    auto host = script::ScenarioHost::load(*info, "s", m_world, options);
-    EXPECT_TRUE(host) << (host ? "" : host.error());
-    return host ? std::move(host.value()) : nullptr;
+  // Loads mod "tuned" with --set tune.NAME=VALUE for each of `tuneSets`;
+  // with `overrides` it reads <m_root>/config/tune/tuned.json as `play` does.
+  LoadedScenario loadWith(const std::string& source, const std::map<std::string, std::string>& tuneSets,
+                          bool overrides = false) {
+    makeMod(m_root, "tuned", "", {{"scenarios/s.lua", source}});
+    ::setenv("TUMBLE_CONFIG_DIR", (m_root / "config").c_str(), 1);
+    app::SceneOptions options;
+    options.scenarioRef = "tuned:s";
+    options.modDirs = {m_root.string()};
+    options.tuneOverrides = overrides;
+    for (const auto& [name, value] : tuneSets) options.sets["tune." + name] = value;
+    auto scene = app::Scene::create(options);
+    EXPECT_TRUE(scene) << (scene ? "" : scene.error());
+    if (!scene) return {};
+    m_world = &scene.value()->world();
+    return LoadedScenario{std::move(scene.value())};
   }
   void step(script::ScenarioHost& host) {
-    host.update(m_t, 1.0 / 60, m_i++);
-    m_world.step(Real(1.0 / 60));
+    stepOnce(host, m_t, m_i++);
     m_t += 1.0 / 60;
   }
   Vec3 velocity() {
     Vec3 v = Vec3::Zero();
-    m_world.forEachBody([&](physics::BodyId, const physics::Body& b) { v = b.linearVelocity_mps; });
+    world().forEachBody([&](physics::BodyId, const physics::Body& b) { v = b.linearVelocity_mps; });
     return v;
   }
   double m_t = 0;
@@ -58,7 +67,7 @@ class TuneTest : public ScriptTest {
 TEST_F(TuneTest, APanelChangeAppliesAtTheNextStep) {
   auto host = loadWith(kSpeedScenario, {});
   ASSERT_TRUE(host);
-  host->start();
+  sceneOf(*host).start();
   step(*host);
   EXPECT_NEAR(velocity().x(), 2, 1e-5);
   const auto& items = host->tunables().items();
@@ -87,22 +96,18 @@ TEST_F(TuneTest, APanelChangeAppliesAtTheNextStep) {
 }
 
 TEST_F(TuneTest, SetOnTheCommandLineAppliesFromTheFirstStep) {
-  script::ScenarioOptions o;
-  o.tuneSets = {{"speed", "4"}, {"axis", "z"}};
-  auto host = loadWith(kSpeedScenario, o);
+  auto host = loadWith(kSpeedScenario, {{"speed", "4"}, {"axis", "z"}});
   ASSERT_TRUE(host);
-  host->start();
+  sceneOf(*host).start();
   step(*host);
   EXPECT_NEAR(velocity().z(), 4, 1e-5);
   EXPECT_TRUE(host->errors().empty());
 }
 
 TEST_F(TuneTest, ABadCommandLineValueIsAnErrorNamingIt) {
-  script::ScenarioOptions o;
-  o.tuneSets = {{"speed", "fast"}};
-  auto host = loadWith(kSpeedScenario, o);
+  auto host = loadWith(kSpeedScenario, {{"speed", "fast"}});
   ASSERT_TRUE(host);
-  host->start();
+  sceneOf(*host).start();
   step(*host);
   EXPECT_NEAR(velocity().x(), 2, 1e-5) << "the default stays";
   ASSERT_EQ(host->errors().size(), 1u);
@@ -114,16 +119,14 @@ TEST_F(TuneTest, OverridesRoundTripThroughTheFile) {
   const std::string path = (m_root / "config" / "tune" / "tuned.json").string();
   {
     auto host = loadWith(kSpeedScenario, {});
-    host->start();
+    sceneOf(*host).start();
     step(*host);
     ASSERT_TRUE(host->tunables().set("speed", 3.25));
     ASSERT_TRUE(host->tunables().set("axis", 1));
     ASSERT_TRUE(host->tunables().saveOverrides(path, "tuned"));
   }
-  script::ScenarioOptions o;
-  o.tuneOverridesFile = path;
-  auto host = loadWith(kSpeedScenario, o);
-  host->start();
+  auto host = loadWith(kSpeedScenario, {}, true);
+  sceneOf(*host).start();
   step(*host);
   EXPECT_NEAR(velocity().z(), 3.25, 1e-5);
   EXPECT_FALSE(host->tunables()[1].isUserSet()) << "only changed values are saved";
@@ -133,11 +136,9 @@ TEST_F(TuneTest, OverridesRoundTripThroughTheFile) {
 TEST_F(TuneTest, ACorruptOverridesFileGivesAMessageAndTheDefaults) {
   const fs::path path = m_root / "config" / "tune" / "tuned.json";
   writeFile(path, "{\"values\": {\"speed\": 3,");
-  script::ScenarioOptions o;
-  o.tuneOverridesFile = path.string();
-  auto host = loadWith(kSpeedScenario, o);
+  auto host = loadWith(kSpeedScenario, {}, true);
   ASSERT_TRUE(host);
-  host->start();
+  sceneOf(*host).start();
   step(*host);
   EXPECT_NEAR(velocity().x(), 2, 1e-5);
   ASSERT_EQ(host->messages().size(), 1u);
@@ -146,8 +147,8 @@ TEST_F(TuneTest, ACorruptOverridesFileGivesAMessageAndTheDefaults) {
 
   // A value of the wrong type: that value is refused, by name.
   writeFile(path, R"({"mod": "tuned", "values": {"speed": 30, "reverse": true}})");
-  auto again = loadWith(kSpeedScenario, o);
-  again->start();
+  auto again = loadWith(kSpeedScenario, {}, true);
+  sceneOf(*again).start();
   step(*again);
   EXPECT_NEAR(velocity().x(), -2, 1e-5) << "reverse applied, speed 30 refused";
   ASSERT_EQ(again->errors().size(), 1u);
@@ -166,7 +167,7 @@ return {on_start = function()
   local ok5, e5 = pcall(tune.choice, "c", "d", {choices = {"a", "b"}})
   local ok6, e6 = pcall(tune.get, "nope")
   expect("default outside limits", not ok1 and e1:find("default 30 is outside %[0, 20%]") ~= nil)
-  expect("misspelt option", not ok2 and e2:find("unknown option 'maxx'") ~= nil)
+  expect("misspelt option", not ok2 and e2:find("unknown field 'maxx'") ~= nil)
   expect("unknown name is declared fresh", ok3)
   expect("one name, one kind", not ok4 and e4:find("already a number tunable") ~= nil)
   expect("default not a choice", not ok5 and e5:find("not one of the choices") ~= nil)

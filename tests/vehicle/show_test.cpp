@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 
+#include "app/fixed_step.h"
 #include "app/scene.h"
 #include "app/scene_models.h"
 #include "render/model.h"
@@ -24,17 +25,17 @@ TEST(DriveShow, ChassisModelsStandOnTheTyresContactPoints) {
   auto created = Scene::create(options);
   ASSERT_TRUE(created.ok()) << created.error();
   Scene& scene = **created;
-  scene.host().start();
+  scene.start();
   const double dt = scene.dt_s();
+  RunTimings timings;
   for (int step = 0; step < 150; ++step) {  // 2.5 s: the springs settle
     scene.savePreviousState();
-    scene.host().update(step * dt, dt, step);
-    scene.world().step(Real(dt));
+    stepScene(scene, StepTime{step * dt, step}, timings);
   }
   scene.savePreviousState();
   render::FrameSnapshot frame;
   scene.snapshot(frame, 1.0);
-  const vehicle::VehicleSystem* vehicles = scene.host().vehiclesIfAny();
+  const vehicle::VehicleSystem* vehicles = scene.vehiclesIfAny();
   ASSERT_NE(vehicles, nullptr);
   int checked = 0;
   vehicles->forEach([&](vehicle::VehicleId id) {

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/scene.h"
 #include "input/input_system.h"
 #include "physics/world.h"
 #include "script/mod_bindings.h"
@@ -40,28 +41,26 @@ void runLuaLoop(benchmark::State& state, const std::string& body) {
   std::ofstream(dir / "scenarios" / "s.lua")
       << "local v = 0\nlocal function f(name) return 0 end\nreturn {on_update = function()\n  for i = 1, "
       << kCallsPerUpdate << " do " << body << " end\nend}\n";
-  script::ModInfo mod;
-  mod.name = "m";
-  mod.version = "1.0.0";
-  mod.dir = dir.string();
-  input::InputSystem in(baseBindings());
-  in.inject(in.find("throttle"), 0.7);
-  physics::World world;
-  script::ScenarioOptions o;
-  o.input = &in;
-  auto host = script::ScenarioHost::load(mod, "s", world, o);
-  if (!host) {
-    state.SkipWithError(host.error().c_str());
+  app::SceneOptions options;
+  options.scenarioRef = "m:s";
+  options.modDirs = {dir.parent_path().string()};
+  options.bindings = baseBindings();
+  auto scene = app::Scene::create(options);
+  if (!scene) {
+    state.SkipWithError(scene.error().c_str());
     return;
   }
-  (*host)->start();
+  input::InputSystem& in = scene.value()->input();
+  script::ScenarioHost& host = scene.value()->host();
+  in.inject(in.find("throttle"), 0.7);
+  scene.value()->start();
   std::int64_t step = 0;
   for (auto _ : state) {
     in.step();
-    (*host)->update(double(step) / 60, 1.0 / 60, step);
+    host.update(double(step) / 60, 1.0 / 60, step);
     ++step;
   }
-  if (!(*host)->errors().empty()) state.SkipWithError((*host)->errors()[0].summary().c_str());
+  if (!host.errors().empty()) state.SkipWithError(host.errors()[0].summary().c_str());
   state.SetItemsProcessed(state.iterations() * kCallsPerUpdate);
 }
 

@@ -16,6 +16,7 @@
 #include "physics/deformable.h"
 #include "physics/world.h"
 #include "script/mods.h"
+#include "app/scene.h"
 #include "script/scenario_host.h"
 
 namespace {
@@ -57,23 +58,23 @@ void BM_OdeRk4Lua(benchmark::State& state) {
          "  end,\n"
          "  on_update = function(ctx, dt) sys:step(1, "
       << kStepsPerUpdate << ") end,\n}\n";
-  auto registry = script::ModRegistry::discover({dir.string()});
-  const script::ModInfo* mod = registry.find("benchode");
-  physics::World world;
-  script::ScenarioOptions options;
+  app::SceneOptions options;
+  options.scenarioRef = "benchode:pendulum";
+  options.modDirs = {dir.string()};
   options.limits.instructionsPerCall = 1'000'000'000;
-  auto host = script::ScenarioHost::load(*mod, "pendulum", world, options);
-  if (!host) {
-    state.SkipWithError(host.error().c_str());
+  auto scene = app::Scene::create(options);
+  if (!scene) {
+    state.SkipWithError(scene.error().c_str());
     return;
   }
-  (*host)->start();
+  script::ScenarioHost& host = scene.value()->host();
+  scene.value()->start();
   std::int64_t step = 0;
   for (auto _ : state) {
-    (*host)->update(double(step) / 60, 1.0 / 60, step);
+    host.update(double(step) / 60, 1.0 / 60, step);
     ++step;
   }
-  if (!(*host)->errors().empty()) state.SkipWithError((*host)->errors().front().message.c_str());
+  if (!host.errors().empty()) state.SkipWithError(host.errors().front().message.c_str());
   state.counters["derivatives"] =
       benchmark::Counter(double(state.iterations()) * kStepsPerUpdate * 4, benchmark::Counter::kIsRate);
 }

@@ -17,6 +17,8 @@
 #include <memory>
 #include <string>
 
+#include "app/fixed_step.h"
+#include "app/scene.h"
 #include "core/file_watch.h"
 #include "physics/world.h"
 #include "script/mods.h"
@@ -28,32 +30,31 @@ namespace {
 namespace fs = std::filesystem;
 constexpr int kCalls = 10000;
 
-// A throw-away mod with one scenario, loaded against `world`.
-std::unique_ptr<script::ScenarioHost> loadScenario(physics::World& world, const std::string& source) {
+// A throw-away mod with one scenario, loaded in a scene of its own.
+std::unique_ptr<app::Scene> loadScenario(const std::string& source) {
   fs::path dir = fs::temp_directory_path() / ("tumble_bench_script_" + std::to_string(::getpid())) / "bench";
   fs::create_directories(dir / "scenarios");
   std::ofstream(dir / "mod.lua") << "return {name = \"bench\", version = \"1.0.0\", api = 1}\n";
   std::ofstream(dir / "scenarios" / "s.lua") << source;
-  auto mod = script::loadManifest(dir.string());
-  if (!mod) return nullptr;
-  script::ScenarioOptions options;
-  options.scriptsDir = TUMBLE_SOURCE_DIR "/scripts";
-  auto host = script::ScenarioHost::load(*mod, "s", world, options);
-  return host ? std::move(host.value()) : nullptr;
+  app::SceneOptions options;
+  options.scenarioRef = "bench:s";
+  options.modDirs = {dir.parent_path().string()};
+  auto scene = app::Scene::create(options);
+  return scene ? std::move(scene.value()) : nullptr;
 }
 
 // on_update calls `call` kCalls times; `setup` runs in on_start.
 void callLoop(benchmark::State& state, const std::string& setup, const std::string& call) {
-  physics::World world;
   const std::string source = "local ball, f\nreturn {\n  on_start = function(ctx)\n" + setup +
                              "\n  end,\n  on_update = function(ctx, dt)\n    for i = 1, " + std::to_string(kCalls) +
                              " do " + call + " end\n  end,\n}\n";
-  auto host = loadScenario(world, source);
-  if (!host) {
+  auto scene = loadScenario(source);
+  if (!scene) {
     state.SkipWithError("scenario did not load");
     return;
   }
-  host->start();
+  scene->start();
+  script::ScenarioHost* host = &scene->host();
   std::int64_t step = 0;
   for (auto _ : state) host->update(double(step) / 60, 1.0 / 60, step), ++step;
   if (!host->errors().empty()) state.SkipWithError(host->errors().front().summary().c_str());
@@ -106,15 +107,15 @@ return {
 
 // The script part of a frame: on_update for the 100 entities.
 void BM_Entities100_ScriptPerFrame(benchmark::State& state) {
-  physics::World world;
-  auto host = loadScenario(world, kEntities);
-  if (!host) return state.SkipWithError("scenario did not load");
-  host->start();
+  auto scene = loadScenario(kEntities);
+  if (!scene) return state.SkipWithError("scenario did not load");
+  scene->start();
+  script::ScenarioHost* host = &scene->host();
   std::int64_t step = 0;
   for (auto _ : state) {
     host->update(double(step) / 60, 1.0 / 60, step);
     state.PauseTiming();  // physics is not what this measures, but it keeps the state realistic
-    world.step(Real(1.0 / 60));
+    scene->world().step(Real(1.0 / 60));
     state.ResumeTiming();
     ++step;
   }
@@ -123,15 +124,14 @@ void BM_Entities100_ScriptPerFrame(benchmark::State& state) {
 
 // A whole fixed step (script + physics), for scale.
 void BM_Entities100_WholeStep(benchmark::State& state) {
-  physics::World world;
-  auto host = loadScenario(world, kEntities);
-  if (!host) return state.SkipWithError("scenario did not load");
-  host->start();
+  auto scene = loadScenario(kEntities);
+  if (!scene) return state.SkipWithError("scenario did not load");
+  scene->start();
   std::int64_t step = 0;
+  app::RunTimings timings;
   for (auto _ : state) {
-    host->update(double(step) / 60, 1.0 / 60, step);
-    world.step(Real(1.0 / 60));
-    host->afterStep(double(step + 1) / 60, step);
+    app::stepScene(*scene, app::StepTime{double(step) / 60, step}, timings);
+    timings.stepMs.clear();
     ++step;
   }
 }

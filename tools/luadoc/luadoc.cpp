@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+#include "script/vehicle_defs.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -70,8 +72,7 @@ std::pair<std::string, std::string> splitWord(const std::string& s) {
   return {s.substr(0, sp), trim(s.substr(sp))};
 }
 
-bool parseFile(const fs::path& file, const std::string& shown, std::vector<Block>& out) {
-  std::ifstream in(file);
+bool parseStream(std::istream& in, const std::string& shown, std::vector<Block>& out) {
   std::string line;
   Block* cur = nullptr;
   int n = 0;
@@ -380,7 +381,13 @@ int main(int argc, char** argv) {
   }
   Api api;
   bool ok = true;
-  for (const fs::path& f : files) ok &= parseFile(f, fs::relative(f, source).string(), api.blocks);
+  for (const fs::path& f : files) {
+    std::ifstream in(f);
+    ok &= parseStream(in, fs::relative(f, source).string(), api.blocks);
+  }
+  // Definition files' tables are documented by their field tables.
+  std::istringstream vehicleTables(tumble::script::vehicleDefinitionDocBlocks());
+  ok &= parseStream(vehicleTables, "runtime/script/vehicle_defs.cpp (field tables)", api.blocks);
   if (!ok) return 1;
   std::map<std::string, std::string> seen;
   for (const Block& b : api.blocks) {

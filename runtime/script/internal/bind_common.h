@@ -1,5 +1,6 @@
 #pragma once
 #include "physics/world.h"
+#include "script/internal/bindings.h"
 #include "script/internal/lua_util.h"
 #include "script/scenario_host.h"
 

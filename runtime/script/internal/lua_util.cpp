@@ -1,6 +1,11 @@
 #include "script/internal/lua_util.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "input/binding.h"
 
 namespace tumble::script {
 
@@ -131,17 +136,80 @@ void pushVec3(lua_State* L, const Vec3& v) {
   lua_setfield(L, -2, "z");
 }
 
-void checkOptionFields(lua_State* L, int t, const std::string& fn, const std::set<std::string>& allowed) {
+namespace {
+std::string validList(const std::set<std::string>& allowed) {
+  std::string valid;
+  for (const auto& f : allowed) valid += (valid.empty() ? "" : ", ") + f;
+  return valid;
+}
+}  // namespace
+
+std::string unknownFieldMessage(const std::string& key, const std::set<std::string>& allowed) {
+  const std::vector<std::string> names(allowed.begin(), allowed.end());
+  return "unknown field '" + key + "'" + input::didYouMean(key, names) + " (valid: " + validList(allowed) + ")";
+}
+
+void checkFields(lua_State* L, int t, const std::string& where, const std::set<std::string>& allowed) {
+  t = lua_absindex(L, t);
   lua_pushnil(L);
   while (lua_next(L, t) != 0) {
     lua_pop(L, 1);
-    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : std::string("?");
+    if (lua_type(L, -1) != LUA_TSTRING) {
+      const std::string type = luaL_typename(L, -1);
+      lua_pop(L, 1);
+      throw LuaArgError(where + ": a " + type + " key where a field name is expected (valid: " + validList(allowed) +
+                        ")");
+    }
+    const std::string key = lua_tostring(L, -1);
     if (allowed.count(key) == 0) {
       lua_pop(L, 1);
-      std::string valid;
-      for (const auto& f : allowed) valid += (valid.empty() ? "" : ", ") + f;
-      throw LuaArgError(fn + ": unknown option '" + key + "' (valid: " + valid + ")");
+      throw LuaArgError(where + ": " + unknownFieldMessage(key, allowed));
     }
+  }
+}
+
+void checkStackBalance(lua_State* L, int argsOnEntry, int results, const char* binding) {
+  const int top = lua_gettop(L);
+  if (results >= 0 && results <= top && top <= argsOnEntry + results) return;
+  std::fprintf(stderr, "Lua stack imbalance in %s: %d arguments, %d results, %d values on the stack at return "
+                       "(pop what the binding pushed besides its results)\n",
+               binding, argsOnEntry, results, top);
+  std::abort();
+}
+
+void registerType(lua_State* L, const BoundType& type) {
+  luaL_newmetatable(L, type.metatable);
+  luaL_newlib(L, type.methods);
+  lua_setfield(L, -2, "__index");
+  if (type.toString) {
+    lua_pushcfunction(L, type.toString);
+    lua_setfield(L, -2, "__tostring");
+  }
+  if (type.equals) {
+    lua_pushcfunction(L, type.equals);
+    lua_setfield(L, -2, "__eq");
+  }
+  if (type.collect) {
+    lua_pushcfunction(L, type.collect);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");  // scripts cannot swap the methods
+  lua_pop(L, 1);
+}
+
+void registerModule(lua_State* L, int envIndex, const char* name, const luaL_Reg* functions) {
+  envIndex = lua_absindex(L, envIndex);
+  lua_newtable(L);
+  luaL_setfuncs(L, functions, 0);
+  lua_setfield(L, envIndex, name);
+}
+
+void registerFunctions(lua_State* L, int tableIndex, const luaL_Reg* functions) {
+  tableIndex = lua_absindex(L, tableIndex);
+  for (const luaL_Reg* f = functions; f->name; ++f) {
+    lua_pushcfunction(L, f->func);
+    lua_setfield(L, tableIndex, f->name);
   }
 }
 

@@ -10,14 +10,14 @@ end
 return {duration = 0.1, on_start = function()
   local crate = world.box{position = {0, 1, 0}}
   fails("misspelt option", function() crate:set_model(M .. "barrier.obj", {ofset = {0, 1, 0}}) end,
-        "unknown option 'ofset' (valid: offset, rotation, scale)")
+        "unknown field 'ofset' (did you mean: offset?) (valid: offset, rotation, scale)")
   fails("zero scale", function() crate:set_model(M .. "barrier.obj", {scale = 0}) end, "'scale' must be a number > 0")
   fails("not a path", function() crate:set_model(42) end, "expected a model path")
   fails("unknown mod", function() crate:set_model("nomod:assets/x.obj") end, "no mod named \"nomod\"")
   fails("bad collision", function() world.add_static_model(M .. "rock.obj", {collision = "hull"}) end,
         "'collision' must be \"mesh\", \"box\" or \"none\"")
   fails("misspelt collision option", function() world.add_static_model(M .. "rock.obj", {colision = "mesh"}) end,
-        "unknown option 'colision'")
+        "unknown field 'colision' (did you mean: collision")
   fails("unknown camera mode", function() camera.set_mode("helicopter") end, "mode must be \"orbit\"")
   fails("bad interior", function() camera.set_mode("cockpit", {target = crate, interior = M .. "nothing.obj"}) end,
         "option 'interior'")

@@ -14,7 +14,7 @@ return {
     -- Softness (rolling drag) of a body's surface: hard until set, checked input.
     expect("bad softness refused with what is valid", (fails_with("finite number >= 0", vehicle.set_softness, ground, -1)))
     vehicle.set_softness(ground, 0.05)
-    expect("misspelt field named with its path", (fails_with("axles[1].suspension.frequncy: unknown field",
+    expect("misspelt field named with its path", (fails_with("axles[1].suspension: unknown field 'frequncy' (did you mean: frequency?)",
       vehicle.spawn, "vtest:broken")))
     expect("unknown vehicle lists the mod's vehicles", (fails_with("this mod has: broken, kart", vehicle.spawn, "vtest:nope")))
     expect("unknown mod is named", (fails_with("no mod named \"nomod\"", vehicle.spawn, "nomod:car")))

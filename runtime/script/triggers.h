@@ -1,0 +1,63 @@
+#pragma once
+// Trigger boxes of one scenario (trigger.box; bind_trigger.cpp):
+// axis-aligned boxes that report non-static bodies whose centre of mass
+// enters or leaves them. The host updates them among the after-step
+// callbacks: first every trigger's new set of bodies (in body index order,
+// compared with the last step's: enters and exits), then the callbacks,
+// after every trigger is updated, since callbacks may add or remove
+// triggers and bodies.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/math.h"
+#include "physics/body.h"
+
+struct lua_State;
+
+namespace tumble::physics {
+class World;
+}
+
+namespace tumble::script {
+
+class TriggerSet {
+ public:
+  explicit TriggerSet(lua_State* L) : m_L(L) {}
+
+  /// on_enter / on_exit functions at the given stack indices (0 = none).
+  /// Returns the trigger's id (> 0).
+  std::uint32_t add(const Vec3& center_m, const Vec3& halfSize_m, int onEnterIdx, int onExitIdx);
+  bool remove(std::uint32_t id);
+  void clear();
+  int liveCount() const { return m_live; }
+  /// Bodies inside a trigger after the last step (null for a removed one).
+  const std::vector<physics::BodyId>* bodiesIn(std::uint32_t id) const;
+
+  /// Called with the callback's function on top of the stack; it pushes its
+  /// arguments (body, trigger) and makes the call.
+  using Call = std::function<void(physics::BodyId body, std::uint32_t trigger, bool enter)>;
+  /// Updates every trigger against the world, then calls back.
+  void update(const physics::World& world, const Call& call);
+
+ private:
+  struct Trigger {
+    std::uint32_t id = 0;  ///< 0: removed slot
+    Vec3 center_m = Vec3::Zero(), half_m = Vec3::Zero();
+    int onEnterRef = 0, onExitRef = 0;  ///< registry refs, 0 = none
+    std::vector<physics::BodyId> inside, scratch;  ///< sorted by index
+  };
+  struct Event {
+    std::uint32_t trigger;
+    physics::BodyId body;
+    bool enter;
+  };
+
+  lua_State* m_L;
+  std::vector<Trigger> m_triggers;
+  std::uint32_t m_nextId = 1;
+  int m_live = 0;
+  std::vector<Event> m_events;  ///< reused each step
+};
+
+}  // namespace tumble::script
