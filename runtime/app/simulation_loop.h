@@ -1,5 +1,6 @@
 #pragma once
-// The per-frame path, in one place (STYLE.md): fixed-step simulation with
+// `tumble run` (run_command.cpp) and `tumble play` (play_command.cpp). The
+// per-frame path, in one place (STYLE.md): fixed-step simulation with
 // an accumulator, Lua at the fixed rate, rendering interpolated between the
 // last two steps.
 //

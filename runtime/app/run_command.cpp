@@ -1,0 +1,113 @@
+// `tumble run`: a scenario headless (or offscreen for --screenshot) for a
+// number of fixed steps, its expectations, the run report.
+#include <cmath>
+#include <cstdio>
+
+#include "app/fixed_step.h"
+#include "app/run_report.h"
+#include "app/scene_models.h"
+#include "app/scene_view.h"
+#include "app/simulation_loop.h"
+#include "core/log.h"
+#include "physics/joints/joint_system.h"
+
+namespace tumble::app {
+
+int runScenario(const RunOptions& o, const Stopwatch& processClock) {
+  auto created = Scene::create(o.scene);
+  if (!created) {
+    log::error(created.error());
+    return 1;
+  }
+  Scene& scene = **created;
+  RunTimings t;
+  RunCounts counts;
+  const double dt = o.scene.dt_s;
+  long long steps = o.steps >= 0 ? o.steps
+                                 : std::llround((o.seconds >= 0 ? o.seconds : scene.host().duration_s()) / dt);
+  std::unique_ptr<render::Renderer> renderer;
+  if (!o.screenshotPath.empty()) {
+    auto r = makeRenderer(scene, o.width, o.height, true, false);
+    if (!r) {
+      log::error(r.error());
+      return 1;
+    }
+    renderer = std::move(r.value());
+  }
+  {
+    Stopwatch sw;
+    scene.start();
+    t.script_s += sw.seconds();
+  }
+  if (renderer) frameCamera(scene, renderer->camera());  // after on_start made the bodies
+  t.startup_s = processClock.seconds();
+  const double shotAt = o.screenshotAt_s >= 0 ? o.screenshotAt_s : double(steps) * dt;
+  bool shotTaken = false;
+  Status shotStatus = Ok{};
+  CameraDirector director;  // camera.set_mode from the scenario
+  auto takeShot = [&](double time_s) {
+    Stopwatch sw;
+    if (scene.vehiclesIfAny()) frameCamera(scene, renderer->camera());  // where the car is now
+    render::FrameSnapshot frame;
+    director.update(scene, 1.0, 0.0f, renderer->camera());
+    scene.snapshot(frame, 1.0);
+    director.decorate(scene, 1.0, renderer->camera(), frame);
+    frame.simTime_s = time_s;
+    render::Controls controls;
+    shotStatus = renderer->drawFrame(frame, hudStats(scene, 0, RunTimings{}, time_s), controls,
+                                     o.screenshotPath.c_str());
+    shotTaken = true;
+    t.render_s += sw.seconds();
+  };
+  double time_s = 0;
+  // Time is base + (steps since the last dt change) * dt, so that without a
+  // change it is exactly (i + 1) * dt as before. With --seconds (or the
+  // scenario's duration) a changed dt still ends the run at that time.
+  const double endTime_s = double(steps) * dt;
+  double baseTime_s = 0, stepDt = dt;
+  long long baseStep = 0, done = 0;
+  for (long long i = 0; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
+    if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
+    if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
+    stepScene(scene, StepTime{time_s, i}, t);
+    time_s = baseTime_s + double(i + 1 - baseStep) * stepDt;
+    done = i + 1;
+    counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
+    if (const physics::JointSystem* joints = scene.jointsIfAny())
+      counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
+    counts.particlesMax = std::max(counts.particlesMax, particleCount(scene));
+  }
+  steps = done;
+  if (renderer && !shotTaken) takeShot(time_s);
+  {
+    Stopwatch sw;
+    scene.finish(time_s, steps);
+    t.script_s += sw.seconds();
+  }
+  counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
+  t.total_s = processClock.seconds();
+  int status = exitStatusFor(scene);
+  if (!shotStatus) {
+    log::error("screenshot: " + shotStatus.error());
+    status = 1;
+  }
+  auto report = buildReport(scene, steps, time_s, t, counts);
+  if (!o.reportPath.empty()) {
+    if (auto st = writeReport(o.reportPath, report); !st) {
+      log::error("report: " + st.error());
+      return 1;
+    }
+  }
+  // A short summary on stdout; the report has everything.
+  int failed = 0;
+  for (const auto& e : scene.host().expectations()) failed += !e.ok;
+  std::printf("%s: %lld steps (%.2f s simulated) in %.2f s; %zu expectations, %d failed; %zu script errors; "
+              "state %s\n",
+              scene.name().c_str(), steps, time_s, t.total_s, scene.host().expectations().size(), failed,
+              scene.host().errors().size(), report["state_hash"].get<std::string>().c_str());
+  for (const auto& e : scene.host().expectations())
+    if (!e.ok) std::printf("  expectation failed: %s (value %g)\n", e.name.c_str(), e.value);
+  return status;
+}
+
+}  // namespace tumble::app
