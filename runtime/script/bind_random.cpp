@@ -186,7 +186,9 @@ int randomSeed(lua_State* L) {
   return 1;
 }
 
-// random.float(...) == scenarioRandom:float(...): the generator is upvalue 1.
+// random.float(...) == scenarioRandom:float(...): the generator is upvalue 1,
+// passed as the method's first argument (F is the guarded method, so its
+// stack check counts the generator as an argument).
 template <int (*F)(lua_State*)>
 int onDefault(lua_State* L) {
   lua_pushvalue(L, lua_upvalueindex(1));
@@ -238,9 +240,9 @@ void openRandomBindings(lua_State* L, int envIndex) {
   lua_setfield(L, -2, "new");
   pushRandom(L, ScenarioHost::from(L)->nextRandomSeed());  // the scenario's generator
   const std::pair<const char*, lua_CFunction> shared[] = {
-      {"float", guarded<onDefault<randomFloat>>},   {"int", guarded<onDefault<randomInt>>},
-      {"normal", guarded<onDefault<randomNormal>>}, {"chance", guarded<onDefault<randomChance>>},
-      {"pick", guarded<onDefault<randomPick>>},
+      {"float", onDefault<guarded<randomFloat>>},   {"int", onDefault<guarded<randomInt>>},
+      {"normal", onDefault<guarded<randomNormal>>}, {"chance", onDefault<guarded<randomChance>>},
+      {"pick", onDefault<guarded<randomPick>>},
   };
   for (const auto& [name, fn] : shared) {
     lua_pushvalue(L, -1);

@@ -70,6 +70,7 @@ int triggerBox(lua_State* L) {
   int onEnter = optFunctionField(L, 1, "on_enter", fn);
   int onExit = optFunctionField(L, 1, "on_exit", fn);
   std::uint32_t id = ScenarioHost::from(L)->triggers().add(center, size / 2, onEnter, onExit);
+  lua_settop(L, 1);  // the functions are referenced now
   pushTrigger(L, id);
   return 1;
 }

@@ -420,6 +420,7 @@ int vTune(lua_State* L) {
   auto def = vehicleDefFromTable(L, dst, std::string("Vehicle:tune (") + refOf(L, 1)->name + ")");
   if (!def) throw LuaArgError(def.error());
   if (auto s = systemOf(L).setDef(id, def.value(), refOf(L, 1)->name); !s) throw LuaArgError(s.error());
+  lua_settop(L, 2);
   return 0;
 }
 
