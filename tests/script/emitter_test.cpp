@@ -165,7 +165,7 @@ TEST_F(Emitters, AnEmitterFileIsDataAndCannotReachTheWorld) {
 
 namespace tumble::test {
 
-// Hot reload (issue 6 item 7): a saved emitter file changes the emitters
+// Hot reload: a saved emitter file changes the emitters
 // running from it, with their spawn overrides still on top; a broken save
 // changes nothing and names the file and field.
 TEST_F(Emitters, ASavedEmitterFileChangesTheRunningEmitters) {

@@ -1,6 +1,6 @@
 // Tumble side of the comparison: the scene in a physics::World with its
 // default settings (8 substeps x (4 solve + 2 relax) sweeps), gravity
-// from the scene; joints in a JointSystem (formulation B by default).
+// from the scene; joints in a JointSystem (the impulse solver by default).
 #include <algorithm>
 #include <chrono>
 #include <memory>
