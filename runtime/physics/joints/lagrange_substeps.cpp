@@ -236,7 +236,9 @@ static double rowVelocity(const Row& r, const std::vector<V3>& v, const std::vec
 
 /// Hands state i's velocity (im.vk, im.wk) back to the World and keeps it as
 /// the joints' own (the memo: q' of the next solve, see "Time stepping").
-static void handBack(JointSystem::Impl& im, SolverVelocity* vel, std::size_t i) {
+/// Always inlined: as a call per state it cost 0.6 % more instructions in a
+/// Lagrange rag-doll step (callgrind, ragdolls_100).
+[[gnu::always_inline]] inline void handBack(JointSystem::Impl& im, SolverVelocity* vel, std::size_t i) {
   const BodyState& s = im.states[i];
   vel[s.id.index].linear = wide(Vec3(im.vk[i].cast<Real>()));
   vel[s.id.index].angular = wide(Vec3(im.wk[i].cast<Real>()));
