@@ -181,7 +181,7 @@ TEST(ImpulseJoints, SwitchingSolversWhileRunningKeepsTheChain) {
   JointSystem joints(world);
   makeChain(world, joints, 5, Vec3(0, 5, 0), Vec3(1, 0, 0));
   for (int i = 0; i < 60; ++i) joints.step(kDt);
-  const ConstraintSolver* lagrange = world.constraintSolver();  // A solves in the substeps too
+  const ConstraintSolver* lagrange = world.constraintSolver();  // the Lagrange solver solves in the substeps too
   EXPECT_NE(lagrange, nullptr);
   joints.setSolver(JointSolverKind::Impulse);
   EXPECT_NE(world.constraintSolver(), nullptr);
