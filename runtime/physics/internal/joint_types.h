@@ -45,18 +45,24 @@ struct JointTypeRows {
   Vec4r (*impulseReportedAngular)(const ImpulseJoints::Joint& j, const ImpulseJoints::Accum& acc);
 };
 
-/// The entry of one type (joint.cpp).
-const JointTypeRows& jointTypeRows(JointType type);
-
 extern const JointTypeRows kBallJointRows;
 extern const JointTypeRows kHingeJointRows;
 extern const JointTypeRows kConeTwistJointRows;
 extern const JointTypeRows kFixedJointRows;
 
-// The point (ball) rows every type has (ball_joint.cpp).
+/// The entry of one type: a table lookup, inline (it runs per joint and phase).
+inline const JointTypeRows& jointTypeRows(JointType type) {
+  static constexpr const JointTypeRows* kTable[] = {&kBallJointRows, &kHingeJointRows, &kConeTwistJointRows,
+                                                    &kFixedJointRows};
+  static_assert(int(JointType::Ball) == 0 && int(JointType::Hinge) == 1 && int(JointType::ConeTwist) == 2 &&
+                    int(JointType::Fixed) == 3,
+                "kTable follows the order of JointType");
+  return *kTable[int(type)];
+}
+
+// The point (ball) rows every type has (ball_joint.cpp derives them).
 /// Lagrange: the three rows p_a - p_b = 0.
 void lagrangePointRows(lagrange::RowBuilder& rb, const lagrange::JointPose& pa, const lagrange::JointPose& pb);
-/// Impulses: the point block from the anchor offsets rA, rB and points pA, pB (world).
-void impulsePointRows(ImpulseJoints::Joint& j, const Vec3& rA, const Vec3& rB, const Vec3& pA, const Vec3& pB);
+// Impulses: impulsePointRows, inline in internal/impulse_joints.h.
 
 }  // namespace tumble::physics

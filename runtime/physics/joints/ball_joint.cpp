@@ -12,28 +12,16 @@
 //   C = pB - pA,  Cdot = vB + wB x rB - vA - wA x rA,
 //   K = (mA + mB) 1 - [rA] IA^-1 [rA] - [rB] IB^-1 [rB]   ([r] = cross matrix).
 // The sweep (impulse_solver.cpp) reads (K + gamma)^-1, IA^-1 [rA]x,
-// IB^-1 [rB]x and the cross matrices, precomputed here once per solve phase.
+// IB^-1 [rB]x and the cross matrices, precomputed once per solve phase by
+// impulsePointRows. That one is inline in internal/impulse_joints.h, inlined
+// into the impulse solver's refreshGeometry (it runs for every joint twice
+// per substep): compiled here as a call, with timesCross and crossTimes
+// inlined into it, a hanging chain of 1000 ball joints stepped 8 % slower
+// (tumble_bench_joints; perf put 27 % of the time in it).
 #include "physics/internal/joint_types.h"
 
 namespace tumble::physics {
 namespace {
-
-/// I [r]x, column by column ([r]x e_k = r x e_k has two non-zero entries):
-/// 18 multiplies instead of a 3x3 product's 27.
-Mat3 timesCross(const Mat3& I, const Vec3& r) {
-  Mat3 m;
-  m.col(0) = r.z() * I.col(1) - r.y() * I.col(2);
-  m.col(1) = r.x() * I.col(2) - r.z() * I.col(0);
-  m.col(2) = r.y() * I.col(0) - r.x() * I.col(1);
-  return m;
-}
-
-/// [r]x M, column by column (r x each column).
-Mat3 crossTimes(const Vec3& r, const Mat3& M) {
-  Mat3 m;
-  for (int k = 0; k < 3; ++k) m.col(k) = r.cross(M.col(k));
-  return m;
-}
 
 Vec4r warmStartAngular(const ImpulseJoints::Joint&, const ImpulseJoints::Accum& acc) { return acc.angular; }
 
@@ -57,21 +45,6 @@ void lagrangePointRows(lagrange::RowBuilder& rb, const lagrange::JointPose& pa, 
     r.c = c[i];
     r.jdq = jdq[i];
   }
-}
-
-void impulsePointRows(ImpulseJoints::Joint& j, const Vec3& rA, const Vec3& rB, const Vec3& pA, const Vec3& pB) {
-  // K = (mA + mB) 1 - [rA] IA^-1 [rA] - [rB] IB^-1 [rB].
-  const Mat3 MA = timesCross(j.iA, rA), MB = timesCross(j.iB, rB);
-  Mat3 K = (j.mA + j.mB) * Mat3::Identity() - crossTimes(rA, MA) - crossTimes(rB, MB);
-  if (j.soft) K.diagonal().array() += j.gammaLin;
-  const Mat3 Kinv = K.inverse();
-  j.pointOk = Kinv.allFinite();
-  j.pointKinv = wide(Kinv);
-  j.MA = wide(MA);
-  j.MB = wide(MB);
-  j.SA = wide(skew(rA));
-  j.SB = wide(skew(rB));
-  j.C = wide(Vec3(pB - pA));
 }
 
 const JointTypeRows kBallJointRows{

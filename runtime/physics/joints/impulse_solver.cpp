@@ -285,29 +285,28 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
     // Motor and limits first, the equality rows last (they matter most).
     // Which of them a joint has is set by its type (impulseSetup): a hinge
     // the motor and the stops, a cone-twist the swing row and the stops.
-    {
+    // The rows' data (limitK and on) is read only by joints that have them.
+    if (j.motor && j.limitK > 0) {
       const Real k = j.limitK;
-      if (j.motor && k > 0) {
-        const Real cdot = (wB - wA).dot(j.limitAxis) - j.motorSpeed_radps;
-        const Real maxI = j.maxMotorImpulse;
-        Real dl = -cdot / k;
-        const Real next = std::clamp(acc.motor + dl, -maxI, maxI);
-        dl = next - acc.motor;
-        acc.motor = next;
-        wA -= j.limitA * dl;
-        wB += j.limitB * dl;
-        change += dl * dl;
-        total += acc.motor * acc.motor;
-      }
-      if (j.swingRow) {
-        // Rotating a1 towards b1 is positive about the swing axis: the row pushes back.
-        if (j.swingActive)
-          limit(j.swingAxis, j.swingA, j.swingB, -1, j.swingK, j.swingLimit_rad - j.swingAngle, acc.swing);
-        else
-          acc.swing = 0;
-      }
-      if (j.stops) stops(k);
+      const Real cdot = (wB - wA).dot(j.limitAxis) - j.motorSpeed_radps;
+      const Real maxI = j.maxMotorImpulse;
+      Real dl = -cdot / k;
+      const Real next = std::clamp(acc.motor + dl, -maxI, maxI);
+      dl = next - acc.motor;
+      acc.motor = next;
+      wA -= j.limitA * dl;
+      wB += j.limitB * dl;
+      change += dl * dl;
+      total += acc.motor * acc.motor;
     }
+    if (j.swingRow) {
+      // Rotating a1 towards b1 is positive about the swing axis: the row pushes back.
+      if (j.swingActive)
+        limit(j.swingAxis, j.swingA, j.swingB, -1, j.swingK, j.swingLimit_rad - j.swingAngle, acc.swing);
+      else
+        acc.swing = 0;
+    }
+    if (j.stops) stops(j.limitK);
 
     const bool hardRows = !j.soft;
     const Real ms = hardRows ? hardMs : 1, is = hardRows ? hardIs : 0;
