@@ -1,14 +1,15 @@
 #pragma once
 // ConstraintSolver: the hook through which constraints other than contacts
-// (the impulse joints of issue 4, formulation B) are solved inside the
-// World's substep loop, together with the contacts, on the same velocities.
+// (both joint solvers: joints/impulse_solver.cpp, joints/lagrange_substeps.cpp)
+// are solved inside the World's substep loop, together with the contacts, on
+// the same velocities.
 //
 // World::step calls, when a solver is set (World::setConstraintSolver):
 //   prepare(world, dt, substeps)           once, after the narrow phase
 //   per substep:
 //     warmStart(vel, bodies)               after gravity/forces, with the contacts' warm start
 //     solve(vel, bodies, true)  x N        before each contact solve sweep (position error fed back)
-//     beforeIntegrate(vel, bodies)         after the last sweep (optional; formulation A)
+//     beforeIntegrate(vel, bodies)         after the last sweep (optional; the Lagrange joint solver)
 //     -- positions integrated --
 //     solve(vel, bodies, false) x M        before each contact relax sweep (no bias)
 //   finish(world)                          after the substeps, before sleep

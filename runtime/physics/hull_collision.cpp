@@ -104,14 +104,6 @@ int reduceToFour(Cand* c, int k, const Vec3& normal) {
   return n;
 }
 
-void addPoint(Manifold& m, const Vec3& p, Real sep, std::uint32_t id) {
-  if (m.count >= kMaxManifoldPoints) return;
-  ContactPoint& c = m.points[m.count++];
-  c.point_m = p;
-  c.separation_m = sep;
-  c.id = id;
-}
-
 /// Largest separation over the face normals of `ref` (minimum of the other's vertices along each).
 Real faceQuery(const WorldHull& ref, const WorldHull& other, int& bestFace) {
   Real best = -std::numeric_limits<Real>::max();

@@ -29,14 +29,6 @@ struct Xf {
   Mat3 R;
 };
 
-void addPoint(Manifold& m, const Vec3& p, Real sep, std::uint32_t id) {
-  if (m.count >= kMaxManifoldPoints) return;
-  ContactPoint& c = m.points[m.count++];
-  c.point_m = p;
-  c.separation_m = sep;
-  c.id = id;
-}
-
 // Sphere of radius ra at ca against sphere rb at cb.
 int spheres(const Vec3& ca, Real ra, const Vec3& cb, Real rb, Real margin, Manifold& m, std::uint32_t id) {
   Vec3 d = cb - ca;

@@ -1,7 +1,9 @@
 #pragma once
 // The rigid-body world: bodies, collision, the contact solver and stepping.
+// README.md beside this file says which file holds which part.
 //
-// One step of length dt (see world.cpp for the derivation and the choices):
+// One step of length dt (world_step.cpp; the choices are explained where
+// each part is):
 //   broad phase (sweep and prune) -> narrow phase (contact manifolds, once per
 //   step, speculative so fast bodies do not tunnel) -> K substeps of
 //   { integrate velocities (gravity, forces, applied springs, implicit
@@ -107,7 +109,7 @@ struct ShapeCastHit {
 /// Error figures gathered while stepping (filled into the run report).
 struct ErrorStats {
   Real penetrationMax_m = 0;     ///< deepest overlap seen by the narrow phase
-  Real energyRelDriftMax = 0;    ///< largest relative energy gain, see world.cpp
+  Real energyRelDriftMax = 0;    ///< largest relative energy gain, see diagnostics.cpp
   Real momentumRelDriftMax = 0;  ///< largest unexplained change of momentum, relative
   int nanEvents = 0;             ///< bodies frozen because their state became non-finite
   int contactsMax = 0;           ///< most contact points in one step
@@ -122,6 +124,7 @@ class DebugDraw {
 struct Manifold;
 class BroadPhase;
 class ConstraintSolver;
+struct SolverSettings;
 struct StepScratch;
 
 class World {
@@ -244,7 +247,7 @@ class World {
   /// height-field triangle it touches (within kQueryTolerance_m) is the hit.
   /// `ignore` is skipped (e.g. the car casting its wheels). A shape already
   /// overlapping something hits it at distance 0. Conservative advancement
-  /// (see queries.cpp): never reports a hit later than the true one.
+  /// (see queries/shape_cast.cpp): never reports a hit later than the true one.
   bool shapeCast(const Shape& shape, const Vec3& position_m, const Quat& orientation, const Vec3& dir,
                  Real maxDistance_m, ShapeCastHit* hit, BodyId ignore = {}) const;
   static constexpr Real kQueryTolerance_m = Real(1e-3);
@@ -275,16 +278,29 @@ class World {
  private:
   Body& mutableBody(BodyId id);
   void updateInertia(Body& b);
-  void collide(Real dt);
+  // The step (world_step.cpp).
+  void gatherVelocities();
+  void substep(const SolverSettings& ss, ConstraintSolver* joints);
   void integrateVelocities(Real h);
   void integratePositions(Real h);
-  void clampToStatic();
-  void updateSleep(Real dt);
+  void scatterVelocities();
+  void collectContactEvents();
   void freezeNonFinite();
   void freezeBody(std::uint32_t index);
-  void trackErrors(Real dt);
-  void wakeIsland(std::uint32_t index);
+  // The collision pipeline (collision_pipeline.cpp).
+  void collide(Real dt);
+  void bucketOldManifolds();
+  void buildSweptBoxes(Real dt);
+  void findCandidatePairs();
+  void collideBodyPair(std::uint32_t ia, std::uint32_t ib, Real dt, int& points);
+  void finishPairManifold(Manifold& m, Real dt);
+  void collideHeightField(Real dt, int& points);
+  void inheritImpulses(const Manifold& previous, Manifold& m) const;
   bool pairFiltered(std::uint32_t a, std::uint32_t b) const;
+  void clampToStatic();  ///< continuous collision (ccd.cpp)
+  void updateSleep(Real dt);  ///< sleep.cpp
+  void wakeIsland(std::uint32_t index);
+  void trackErrors(Real dt);  ///< diagnostics.cpp
 
   /// A body pair by index (a < b) and generations: the collision filter and
   /// the island links, kept sorted by (a, b) for binary search.
@@ -294,9 +310,6 @@ class World {
     bool operator==(const BodyPair& o) const { return a == o.a && b == o.b; }
   };
   static BodyPair makePair(BodyId x, BodyId y);
-
-  void collideHeightField(Real dt, int& points);
-  void inheritImpulses(const Manifold& previous, Manifold& m) const;
 
   WorldSettings m_settings;
   const HeightField* m_heightField = nullptr;

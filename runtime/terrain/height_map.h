@@ -17,7 +17,7 @@
 
 namespace tumble::terrain {
 
-/// Largest supported side, in samples (a few km at 1 m, ARCHITECTURE / issue 5).
+/// Largest supported side, in samples (a few km at 1 m, ARCHITECTURE).
 constexpr int kMaxHeightMapSide = 4097;
 /// Smallest side: one block needs 2 samples.
 constexpr int kMinHeightMapSide = 2;

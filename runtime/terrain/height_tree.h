@@ -19,7 +19,7 @@
 //
 // Memory. With 8 x 8-block leaves the tree is 4 bytes / 64 blocks * 4/3
 // ~= 0.083 bytes per block, so heights + tree stay under 2.1 bytes per
-// sample (issue 5's target). Finer leaves are allowed (2 x 2 blocks costs
+// sample (the terrain's target). Finer leaves are allowed (2 x 2 blocks costs
 // 1.33 bytes per block, still under the 8-byte budget) but the budget of 2.1
 // bytes/sample then fails; below a leaf, queries walk blocks directly and
 // read the 4 samples of each block, which are already in cache.

@@ -90,7 +90,7 @@ TEST(Cli, ListShowsModsAndScenarios) {
 namespace tumble::test {
 
 // `tumble check` finds references by literal name to things that do not
-// exist (issue 6 item 1): emitters, vehicles, input actions, assets; each
+// exist: emitters, vehicles, input actions, assets; each
 // with its file and line; comments are not read. A trailing slash on the
 // folder (a shell's completion) is fine.
 TEST(Cli, CheckFindsMissingEmittersVehiclesActionsAndAssets) {

@@ -1,4 +1,4 @@
-// A scenario shapes its own terrain in Lua (terrain.build(map), issue 5
+// A scenario shapes its own terrain in Lua (terrain.build(map)
 // item 2): the heights it sets are where physics finds the ground, the
 // generators are deterministic, a command-line map replaces the built one,
 // and mistakes give clear messages naming the file and line.

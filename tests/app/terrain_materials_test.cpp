@@ -109,7 +109,7 @@ TEST(TerrainMaterials, ALayerFileOfTheWrongSizeIsAnErrorNamingItAndTheSizeExpect
   std::filesystem::remove_all(dir);
 }
 
-// The drag map decides how far a sliding block goes (issue 5 check): the
+// The drag map decides how far a sliding block goes: the
 // same block at the same speed on grass (mu 0.64) and on mud (mu 0.16) of
 // one terrain stops where Coulomb friction says, v0^2 / (2 mu g), with the
 // pair coefficient sqrt(mu_block * mu_ground) (world.h) and mu_block = 1.

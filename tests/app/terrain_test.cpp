@@ -1,4 +1,4 @@
-// Terrain in a run (issue 5, item 7): a scene creates terrain memory only
+// Terrain in a run: a scene creates terrain memory only
 // when asked for, and the report shows it in `subsystems` and `peak_rss_mb`.
 #include <gtest/gtest.h>
 

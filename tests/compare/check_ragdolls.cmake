@@ -3,7 +3,7 @@
 # Runs `tumble_compare ragdolls_100 --steps 60 --report REPORT` (1 s: the
 # dolls fall and land) and checks that both engines built the 1000 joints
 # and report joint_error_max_m, and that neither let a joint come apart
-# (anchors within 10 cm; Tumble's formulation B within the issue's 5 cm).
+# (anchors within 10 cm; Tumble's impulse joint solver within 5 cm).
 file(REMOVE ${REPORT})
 execute_process(COMMAND ${EXE} ragdolls_100 --steps 60 --no-bullet-default --report ${REPORT}
                 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)

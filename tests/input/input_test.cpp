@@ -346,7 +346,7 @@ TEST(InputCapture, TheMenuCapturesTheNextKeyInsteadOfActing) {
 
 namespace tumble::test {
 
-// Hot reload of bindings.lua (issue 6 item 7): new defaults apply at once;
+// Hot reload of bindings.lua: new defaults apply at once;
 // an action the player rebound keeps the player's binding; a context a
 // script switched on stays on; a new action appears.
 TEST(InputReload, RedefineKeepsThePlayersOverridesAndTheContexts) {

@@ -1,6 +1,6 @@
-// Joint system, formulation B (impulses inside the contact solver):
+// Joint system, impulse solver (impulses inside the contact solver):
 // pendulum period, chain error at rest, energy of a frictionless chain,
-// limits, motor, springs, breaking, and both formulations on the ground.
+// limits, motor, springs, breaking, and both joint solvers on the ground.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,7 +35,7 @@ TEST(ImpulseJoints, PendulumPeriodWithinOnePercent) {
   {
     World world(quietSettings());
     JointSystem joints(world, impulseSettings());
-    EXPECT_NE(world.constraintSolver(), nullptr) << "formulation B registers with the World";
+    EXPECT_NE(world.constraintSolver(), nullptr) << "the impulse solver registers with the World";
   }
   const test::PendulumSwing p = test::swingPendulum(impulseSettings());
   std::printf("[B pendulum] analytic T = %.5f s, measured %.5f s (%.3f%%), anchor error max %.2e m\n", p.analytic_s,
@@ -176,12 +176,12 @@ TEST(ImpulseJoints, BreakableJointBreaksAboveItsForce) {
   EXPECT_LT(world.body(lost).position_m.y(), 1.0) << "the released body falls";
 }
 
-TEST(ImpulseJoints, SwitchingFormulationsWhileRunningKeepsTheChain) {
+TEST(ImpulseJoints, SwitchingSolversWhileRunningKeepsTheChain) {
   World world(quietSettings());
   JointSystem joints(world);
   makeChain(world, joints, 5, Vec3(0, 5, 0), Vec3(1, 0, 0));
   for (int i = 0; i < 60; ++i) joints.step(kDt);
-  const ConstraintSolver* lagrange = world.constraintSolver();  // A solves in the substeps too
+  const ConstraintSolver* lagrange = world.constraintSolver();  // the Lagrange solver solves in the substeps too
   EXPECT_NE(lagrange, nullptr);
   joints.setSolver(JointSolverKind::Impulse);
   EXPECT_NE(world.constraintSolver(), nullptr);
@@ -223,7 +223,7 @@ Drop dropRagdoll(JointSolverKind kind) {
   return d;
 }
 
-TEST(ImpulseJoints, RagdollDroppedOnTheGroundSleepsWithinFiveSecondsUnderBothFormulations) {
+TEST(ImpulseJoints, RagdollDroppedOnTheGroundSleepsWithinFiveSecondsUnderBothSolvers) {
   for (JointSolverKind kind : {JointSolverKind::Lagrange, JointSolverKind::Impulse}) {
     const Drop d = dropRagdoll(kind);
     EXPECT_GE(d.asleepAt_s, 0) << jointSolverName(kind) << ": never fell asleep";

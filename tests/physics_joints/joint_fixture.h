@@ -1,5 +1,5 @@
 #pragma once
-// What the joint tests of both formulations share: a world without sleep, a
+// What the joint tests of both joint solvers share: a world without sleep, a
 // box, a hanging chain of box links, and a one-link pendulum swung at a small
 // angle whose period is measured against the analytic one.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Joint system (formulation A): pendulum period, chain error, energy,
+// Joint system, Lagrange solver: pendulum period, chain error, energy,
 // limits, breaking, linear scaling, integrator stability.
 #include <gtest/gtest.h>
 
@@ -77,7 +77,7 @@ TEST(JointSystem, SwingingChainDoesNotGainEnergy) {
   EXPECT_LE(emax - e0, 0.01 * scale);
 }
 
-// Issue 4: formulation A works with every integrator the World offers. A
+// The Lagrange solver works with every integrator the World offers. A
 // chain whose links do not collide (as world.joint and the rag-doll builder
 // set it up) released horizontally, 5 s at 60 Hz with the default 8
 // substeps: the joints hold and the energy does not grow (explicit Euler,

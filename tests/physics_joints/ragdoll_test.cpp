@@ -91,7 +91,7 @@ DropResult dropRagdoll(const JointSettings& settings, const char* label) {
   return out;
 }
 
-// Formulation A with the World's separate contact solver: the rag-doll
+// The Lagrange solver with the World's separate contact solver: the rag-doll
 // stays in one piece; with the velocity-only projection it comes to rest.
 // Not yet checked (needs World changes, see the report): asleep within 5 s
 // (World::applyForce wakes the body every step) and joints within 1 cm on
@@ -108,12 +108,12 @@ TEST(Ragdoll, DroppedOnTheGroundComesToRestWithVelocityProjection) {
   const DropResult d = dropRagdoll(s, "velocity projection only");
   EXPECT_LT(d.errorEnd_m, 0.05);
   EXPECT_LT(d.fastest_mps, 0.01);
-  // Issue 4: asleep within 5 s of the drop.
+  // Asleep within 5 s of the drop.
   EXPECT_GE(d.asleepAt_s, 0) << "never fell asleep";
   EXPECT_LE(d.asleepAt_s, 5);
 }
 
-// Formulation A with many contacts between jointed bodies of different
+// The Lagrange solver with many contacts between jointed bodies of different
 // dolls: `count` rag-dolls dropped crosswise in a pile (as base:ragdoll_pile
 // --set count=N), offset_m moving every other doll sideways.
 struct PileResult {
@@ -167,9 +167,9 @@ static PileResult pileUnderA(int count, double dt_s, int substeps, double second
 
 // 10 dolls for 8 s: the joints stay together and nothing becomes
 // non-finite. (Before the fixes described under "Robustness" in
-// joint_system.cpp this pile blew up at 6 s or ended at 16.6 cm depending
+// lagrange_substeps.cpp this pile blew up at 6 s or ended at 16.6 cm depending
 // only on the rounding of the World's gyroscopic step.)
-TEST(Ragdoll, TenPiledUnderFormulationAStayTogether) {
+TEST(Ragdoll, TenPiledUnderTheLagrangeSolverStayTogether) {
   const PileResult r = pileUnderA(10, 1.0 / 60, 8, 8);
   EXPECT_EQ(r.nanEvents, 0);
   EXPECT_LT(r.anchorError_m, 0.10);
@@ -185,9 +185,9 @@ TEST(Ragdoll, TenPiledUnderFormulationAStayTogether) {
 // dolls shifted by a millimetre. Each of these alone blew the pile up (or
 // twisted elbows 50-120 degrees off their axis) before; robust means all of
 // them hold, through the impacts (the first 1.5 s, where they failed). The
-// bound on the hinges is loose: at dt 1/30 formulation B twists them by 41
+// bound on the hinges is loose: at dt 1/30 the impulse solver twists them by 41
 // degrees during the impacts.
-TEST(Ragdoll, PileUnderFormulationAHoldsUnderPerturbations) {
+TEST(Ragdoll, PileUnderTheLagrangeSolverHoldsUnderPerturbations) {
   struct Case {
     int count;
     double dt_s;

@@ -1,5 +1,5 @@
 // The joint API from Lua (bind_joint.cpp): world.joint with a hinge motor,
-// Joint:set_motor, a breakable joint, switching formulations while running,
+// Joint:set_motor, a breakable joint, switching joint solvers while running,
 // and bad definitions refused with the field named.
 #include <cmath>
 
@@ -9,7 +9,7 @@ namespace tumble::test {
 
 class JointApi : public ScriptTest {};
 
-TEST_F(JointApi, HingeMotorSpinsAWheelAtItsSpeedUnderBothFormulations) {
+TEST_F(JointApi, HingeMotorSpinsAWheelAtItsSpeedUnderBothSolvers) {
   for (const char* solver : {"lagrange", "impulse"}) {
     auto host = load(std::string(R"(
       local wheel, hinge
@@ -90,7 +90,7 @@ TEST_F(JointApi, BadDefinitionsNameTheField) {
 
 // A rag-doll described part by part from Lua: a box "body" with two capsule
 // "legs" on hinges limited to [-0.3, 0.3] rad, dropped tilted on the ground
-// under both formulations. The joints hold (anchor error), the legs stay
+// under both joint solvers. The joints hold (anchor error), the legs stay
 // within their limits (angle between body and leg axes about the hinge),
 // and the doll comes to rest; masses and placement follow the description
 // and the scale (lengths x s, masses x s^3).

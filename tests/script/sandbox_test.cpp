@@ -1,4 +1,4 @@
-// Sandbox escapes (issue 6): each attempt fails with an error that says what
+// Sandbox escapes: each attempt fails with an error that says what
 // is not allowed, names the mod, file and line, and the host keeps working —
 // a later callback still runs.
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Micro-benchmark for issue 5's targets on a 4097^2 map: tree build time,
+// Micro-benchmark for the terrain's targets on a 4097^2 map: tree build time,
 // bytes per sample (heights + tree), ray casts per second on random rays.
 // Not a test: prints one line per figure. Run: build/tests/terrain_bench
 #include <chrono>

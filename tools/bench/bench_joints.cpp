@@ -1,21 +1,22 @@
-// Joint formulations A (lagrange) and B (impulse) side by side: one World
+// The two joint solvers, lagrange and impulse, side by side: one World
 // step of a hanging chain of 10, 100 and 1000 links (ball joints, links not
 // colliding with their neighbours, nudged sideways so the solver has work),
 // and of 10 rag-dolls dropped on a plane. Counter joint_error_m: the largest
 // anchor separation over the timed steps (5 s simulated each, so both
-// formulations see the same motion). Compare ratios within one run:
+// solvers see the same motion). Compare ratios within one run:
 //   build/bin/tumble_bench_joints
-// Counter solve_ms (formulation A): its own share of the step (assembly,
+// Counter solve_ms (Lagrange solver): its own share of the step (assembly,
 // factorizations, solves in the 8 substeps; JointSolveStats::solveMs).
-// Measured 2026-11-22 (see README, "Joints"): A solves in the World's
-// substeps and kept 4 um / 48 um / 21 um on 10 / 100 / 1000 links where B
-// keeps 0.3 mm / 5 mm / 6.6 cm; A's solve time grows linearly with links.
-// Since A's rows have a 1 % compliance (JointSettings::compliance, for
-// piles of rag-dolls): relative to each row's own links, 43 um / 7.7 mm /
-// 13 cm, solve 0.08 / 0.82 / 8.6 ms (12 um / 55 um / 21 um, 6.9 ms at 1000
-// links with compliance 0); relative to the whole system along the row
-// where no contact touches (now): 12 um / 49 um / 1.1 mm, solve 0.10 /
-// 1.0 / 11.1 ms (one more numeric factorization per substep).
+// Measured 2026-11-22 (see README, "Joints"): the Lagrange solver solves in
+// the World's substeps and kept 4 um / 48 um / 21 um on 10 / 100 / 1000
+// links where the impulse solver keeps 0.3 mm / 5 mm / 6.6 cm; the Lagrange
+// solve time grows linearly with links. Since the Lagrange rows have a 1 %
+// compliance (JointSettings::compliance, for piles of rag-dolls): relative
+// to each row's own links, 43 um / 7.7 mm / 13 cm, solve 0.08 / 0.82 /
+// 8.6 ms (12 um / 55 um / 21 um, 6.9 ms at 1000 links with compliance 0);
+// relative to the whole system along the row where no contact touches
+// (now): 12 um / 49 um / 1.1 mm, solve 0.10 / 1.0 / 11.1 ms (one more
+// numeric factorization per substep).
 #include <benchmark/benchmark.h>
 
 #include "physics/joints/joint_system.h"
@@ -68,7 +69,7 @@ void BM_HangingChain(benchmark::State& state) {
 BENCHMARK(BM_HangingChain)
     ->ArgsProduct({{0, 1}, {10, 100, 1000}})
     ->ArgNames({"impulse", "links"})
-    ->Iterations(300)  // 5 s simulated each: the same motion for both formulations
+    ->Iterations(300)  // 5 s simulated each: the same motion for both solvers
     ->Unit(benchmark::kMillisecond);
 
 void BM_RagdollDrop(benchmark::State& state) {

@@ -1,4 +1,4 @@
-// Particle update cost (issue 6 target: 100 000 particles updated in < 1 ms
+// Particle update cost (target: 100 000 particles updated in < 1 ms
 // on one core). Run: build/bin/tumble_bench_particles
 //
 // BM_ParticleUpdate: one emitter holding N live particles (lifetimes long

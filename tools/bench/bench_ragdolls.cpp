@@ -1,4 +1,4 @@
-// Rag-doll piles under formulation B (joints solved with the contacts): the
+// Rag-doll piles under the impulse joint solver (joints solved with the contacts): the
 // Tumble half of `tools/tumble compare ragdolls_100`, timed by CPU time so
 // that the figure holds on a shared machine (the compare tool times wall
 // clock and divides by Bullet's in the same run).

@@ -1,4 +1,4 @@
-// Lua scripting costs (issue #6): one Lua -> C++ binding call, the
+// Lua scripting costs: one Lua -> C++ binding call, the
 // per-frame cost of 100 bodies each driven from Lua in on_update, and one
 // hot-reload scan of a mod folder.
 //

@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
   bool sleep = false;
   std::string jointSolver = "impulse";
   app.add_option("scene", sceneName, "scene name, or 'list'")->required();
-  app.add_option("--joint-solver", jointSolver, "Tumble's joint formulation for scenes with joints: impulse (B) or lagrange (A)")
+  app.add_option("--joint-solver", jointSolver, "Tumble's joint solver for scenes with joints: impulse or lagrange")
       ->check(CLI::IsMember({"impulse", "lagrange"}));
   app.add_option("--steps", steps, "steps to run (default: 300 for boxes_3000, 600 otherwise)")
       ->check(CLI::Range(1, 1000000));
@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> names = sceneNames();
   if (sceneName == "list") {
     for (const std::string& n : names) std::printf("%-20s %s\n", n.c_str(), sceneDescription(n).c_str());
-    std::printf("%-20s %s\n", "terrain_rays", "a batch of ray casts against a 1025^2 height field (issue 5)");
+    std::printf("%-20s %s\n", "terrain_rays", "a batch of ray casts against a 1025^2 height field");
     return 0;
   }
   if (sceneName == "terrain_rays") {

@@ -1,6 +1,6 @@
 // Tumble side of the comparison: the scene in a physics::World with its
 // default settings (8 substeps x (4 solve + 2 relax) sweeps), gravity
-// from the scene; joints in a JointSystem (formulation B by default).
+// from the scene; joints in a JointSystem (the impulse solver by default).
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -89,7 +89,7 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep, co
   for (int i = 0; i < steps; ++i) {
     const double c0 = threadCpuMs();
     auto t0 = std::chrono::steady_clock::now();
-    if (joints) joints->beforeWorldStep();  // as the scenario host does (A's solve; B's bookkeeping)
+    if (joints) joints->beforeWorldStep();  // as the scenario host does (results, sleepers, the Lagrange projection)
     world.step(h);
     auto t1 = std::chrono::steady_clock::now();
     r.stepCpuMs.push_back(threadCpuMs() - c0);

@@ -97,7 +97,7 @@ struct BulletConfig {
 /// settled scene times an idle world and the two engines' sleep policies
 /// (Tumble 0.5 s, Bullet 2 s) instead of their solvers. --sleep turns each
 /// engine's default sleeping on.
-/// jointSolver: "impulse" (formulation B, default) or "lagrange" (A).
+/// jointSolver: "impulse" (default) or "lagrange".
 RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep,
                     const std::string& jointSolver = "impulse");
 RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletConfig& config);

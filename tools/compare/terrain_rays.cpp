@@ -1,7 +1,7 @@
 // terrain_rays: the same batch of rays against the same height field in
 // Tumble (terrain::Terrain::rayCast, the implicit quad-tree of AABBs) and in
 // Bullet 3 (btHeightfieldTerrainShape in a btCollisionWorld, closest hit),
-// issue 5's ray-cast target.
+// the terrain's ray-cast target.
 //
 // Same triangles: Bullet gets the heights in metres as floats (PHY_FLOAT,
 // scale 1), local scaling (spacing, 1, spacing), and flipQuadEdges chosen so

@@ -1,4 +1,4 @@
--- A hanging chain of N links (issue 4): released at 60 degrees from the
+-- A hanging chain of N links: released at 60 degrees from the
 -- vertical it swings without coming apart and without gaining energy.
 --
 --   tumble run base:chain --set links=100 --set physics.joint_solver=impulse
@@ -24,7 +24,7 @@ local hands
 local scenario = {
   title = "Chain: N links swinging from a world anchor",
   duration = 6,  -- seconds, when run without --seconds/--steps
-  -- Joints solved with the contacts (formulation B); --set physics.joint_solver=lagrange tries A.
+  -- Joints solved with the contacts (the impulse solver); --set physics.joint_solver=lagrange tries the other.
   joint_solver = "impulse",
   actions = {},
 }

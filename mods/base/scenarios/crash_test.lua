@@ -4,7 +4,7 @@
 -- scatters, the car is slowed. The autopilot holds the car straight up to
 -- the impact, then the car coasts. The rag-doll's joints are impulses solved
 -- with the contacts (joint_solver = "impulse"): measured, they hold a 30 m/s
--- hit to 3.3 cm, where the Lagrange formulation (forces from before the
+-- hit to 3.3 cm, where the Lagrange solver (forces from before the
 -- step, blind to the impact) opened 0.44 m at 10 m/s and blew up at 20 m/s.
 -- Expectations: the car was at speed when it hit, the rag-doll was thrown
 -- (its pelvis moved metres and fast), boxes scattered, the car slowed, and

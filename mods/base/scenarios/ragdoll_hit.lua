@@ -1,4 +1,4 @@
--- A heavy box at speed hits a standing rag-doll (issue 4): the doll is
+-- A heavy box at speed hits a standing rag-doll: the doll is
 -- knocked over and thrown, the joints hold, momentum goes where it should.
 --
 --   tumble run base:ragdoll_hit --set physics.joint_solver=impulse --set speed=12
@@ -17,7 +17,7 @@ local hands
 local scenario = {
   title = "Rag-doll hit by a heavy box",
   duration = 5,  -- seconds, when run without --seconds/--steps
-  -- Joints solved with the contacts (formulation B); --set physics.joint_solver=lagrange tries A.
+  -- Joints solved with the contacts (the impulse solver); --set physics.joint_solver=lagrange tries the other.
   joint_solver = "impulse",
 }
 

@@ -1,4 +1,4 @@
--- Rag-dolls dropped in a pile on a plane (issue 4): the joints hold, nothing
+-- Rag-dolls dropped in a pile on a plane: the joints hold, nothing
 -- blows up, and the pile comes to rest.
 --
 --   tumble run base:ragdoll_pile --set count=6
@@ -41,12 +41,12 @@ function scenario.on_finish(ctx)
     end
   end
   expect("every body finite", finite, {min = 1})
-  -- Joints hold (m): the largest anchor separation of the run. Formulation
-  -- A (joint_solver = "lagrange") solves in every substep with the contacts'
-  -- impulses as known forces, taking turns with the contact sweeps: 1.2 cm
-  -- with 3 dolls piled (6.4 cm with 10).
-  -- Formulation B (--set physics.joint_solver=impulse) solves joints with
-  -- the contacts: 1.7 cm; tests/scenarios hold both to the issue's 5 cm
+  -- Joints hold (m): the largest anchor separation of the run. The Lagrange
+  -- solver (joint_solver = "lagrange") solves in every substep with the
+  -- contacts' impulses as known forces, taking turns with the contact
+  -- sweeps: 1.2 cm with 3 dolls piled (6.4 cm with 10).
+  -- The impulse solver (--set physics.joint_solver=impulse) solves joints
+  -- with the contacts: 1.7 cm; tests/scenarios hold both to 5 cm
   -- (--set max_error=0.05).
   local _, worst = joints_error()
   expect("joints hold", worst, {max = param("max_error", 0.15)})

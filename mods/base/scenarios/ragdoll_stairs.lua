@@ -1,4 +1,4 @@
--- A rag-doll tumbling down a staircase of static boxes (issue 4): it gets
+-- A rag-doll tumbling down a staircase of static boxes: it gets
 -- to the bottom in one piece and comes to rest there.
 --
 --   tumble run base:ragdoll_stairs --set physics.joint_solver=impulse
@@ -18,7 +18,7 @@ local hands
 local scenario = {
   title = "Rag-doll down the stairs",
   duration = 10,  -- seconds, when run without --seconds/--steps
-  -- Joints solved with the contacts (formulation B); --set physics.joint_solver=lagrange tries A.
+  -- Joints solved with the contacts (the impulse solver); --set physics.joint_solver=lagrange tries the other.
   joint_solver = "impulse",
 }
 

@@ -1,5 +1,5 @@
 -- Valley: the terrain is shaped here in Lua with the terrain generators and
--- filters (issue 5): rolling plasma hills, a jagged ridge along the north, a
+-- filters: rolling plasma hills, a jagged ridge along the north, a
 -- river ditch winding through the middle, a hill raised with a plasma bump,
 -- then smoothed. Spheres and boxes are dropped on the river's sloping bank
 -- among static rocks. Same expectations as hills: every body rests on the

@@ -1,9 +1,10 @@
 #pragma once
-// ImpulseJoints: formulation B of issue 4, the joints of a JointSystem solved
-// as velocity constraints inside the World's substep loop (the
+// ImpulseJoints: the impulse joint solver, the joints of a JointSystem
+// solved as velocity constraints inside the World's substep loop (the
 // ConstraintSolver hook), by sequential impulses with soft position
 // correction and warm starting. The derivation is at the top of
-// joints/impulse_joints.cpp.
+// joints/impulse_solver.cpp; each joint type's rows are in its own file
+// (joints/ball_joint.cpp, ...).
 #include <cstdint>
 #include <vector>
 
@@ -63,7 +64,9 @@ class ImpulseJoints final : public ConstraintSolver {
     bool movesA = false, movesB = false;
     bool soft = false;           ///< spring joint (JointDef stiffness > 0)
     bool angularFree = false;    ///< soft joint without angular spring: no angular rows
-    bool motor = false, hingeLimit = false;
+    bool motor = false;          ///< hinge motor row
+    bool stops = false;          ///< the two angle stops about the limit axis (hinge limits, twist)
+    bool swingRow = false;       ///< the swing cone row (cone-twist)
     Real mA = 0, mB = 0;         ///< inverse masses, 1/kg
     Mat3 iA = Mat3::Zero(), iB = Mat3::Zero();  ///< inverse world inertia at the start of the step
     Real gammaLin = 0, betaLin = 0, gammaAng = 0, betaAng = 0;  ///< spring gains, per substep
@@ -86,13 +89,13 @@ class ImpulseJoints final : public ConstraintSolver {
     Mat4r pointKinv = Mat4r::Zero();  ///< (K + gamma)^-1 of the point rows (3x3, padded)
     Mat4r MA = Mat4r::Zero(), MB = Mat4r::Zero();  ///< IA^-1 [rA]x, IB^-1 [rB]x: angular change per point impulse
     bool pointOk = false;
-    // Angular equality rows (hinge 2, fixed 3): axes, IA^-1 axis, IB^-1 axis,
-    // (K + gamma)^-1 of the block, position error per row.
+    // Angular equality rows (hinge 2, fixed 3): axes, IA^-1 axis, IB^-1 axis
+    // (setAngularAxis), (K + gamma)^-1 of the block, position error per row.
     int angularRows = 0;
     Vec4r ax[3], axA[3], axB[3];
     Mat4r angKinv = Mat4r::Zero();
     Vec4r angC = Vec4r::Zero();
-    // Limit rows (hinge angle and motor, or twist): one axis.
+    // Limit rows (hinge angle and motor, or twist): one axis (setLimitAxis).
     Vec4r limitAxis = Vec4r::Zero(), limitA = Vec4r::Zero(), limitB = Vec4r::Zero();
     Real limitK = 0;  ///< limitAxis.(IA^-1 + IB^-1) limitAxis
     Real angle = 0;   ///< hinge angle or twist angle, rad
@@ -117,5 +120,64 @@ class ImpulseJoints final : public ConstraintSolver {
   std::vector<Accum> m_accum;  ///< per joint slot
   std::vector<Output> m_out;   ///< per joint slot
 };
+
+/// Angular equality row k along `axis` (world), with IA^-1 axis and IB^-1 axis.
+inline void setAngularAxis(ImpulseJoints::Joint& j, int k, const Vec3& axis) {
+  j.ax[k] = wide(axis);
+  j.axA[k] = wide(Vec3(j.iA * axis));
+  j.axB[k] = wide(Vec3(j.iB * axis));
+}
+
+/// The limit rows' axis n (world), IA^-1 n, IB^-1 n and n.(IA^-1 + IB^-1) n.
+inline void setLimitAxis(ImpulseJoints::Joint& j, const Vec3& n) {
+  const Vec3 nA = j.iA * n, nB = j.iB * n;
+  j.limitAxis = wide(n);
+  j.limitA = wide(nA);
+  j.limitB = wide(nB);
+  j.limitK = n.dot(nA + nB);
+}
+
+// ---- the point block every joint type has (ball_joint.cpp derives it) ----------
+
+// timesCross and crossTimes stay calls and impulsePointRows is inlined into
+// refreshGeometry, as the compiler had them when the three were part of the
+// impulse solver's file: inlined into an out-of-line impulsePointRows they
+// made a hanging chain of 1000 ball joints step 8 % slower (tumble_bench_joints).
+
+/// I [r]x, column by column ([r]x e_k = r x e_k has two non-zero entries):
+/// 18 multiplies instead of a 3x3 product's 27.
+[[gnu::noinline]] inline Mat3 timesCross(const Mat3& I, const Vec3& r) {
+  Mat3 m;
+  m.col(0) = r.z() * I.col(1) - r.y() * I.col(2);
+  m.col(1) = r.x() * I.col(2) - r.z() * I.col(0);
+  m.col(2) = r.y() * I.col(0) - r.x() * I.col(1);
+  return m;
+}
+
+/// [r]x M, column by column (r x each column).
+[[gnu::noinline]] inline Mat3 crossTimes(const Vec3& r, const Mat3& M) {
+  Mat3 m;
+  for (int k = 0; k < 3; ++k) m.col(k) = r.cross(M.col(k));
+  return m;
+}
+
+/// The point block from the anchor offsets rA, rB and anchor points pA, pB
+/// (world): (K + gamma)^-1, IA^-1 [rA]x, IB^-1 [rB]x, the cross matrices and
+/// the error C = pB - pA.
+[[gnu::always_inline]] inline void impulsePointRows(ImpulseJoints::Joint& j, const Vec3& rA, const Vec3& rB,
+                                                    const Vec3& pA, const Vec3& pB) {
+  // K = (mA + mB) 1 - [rA] IA^-1 [rA] - [rB] IB^-1 [rB].
+  const Mat3 MA = timesCross(j.iA, rA), MB = timesCross(j.iB, rB);
+  Mat3 K = (j.mA + j.mB) * Mat3::Identity() - crossTimes(rA, MA) - crossTimes(rB, MB);
+  if (j.soft) K.diagonal().array() += j.gammaLin;
+  const Mat3 Kinv = K.inverse();
+  j.pointOk = Kinv.allFinite();
+  j.pointKinv = wide(Kinv);
+  j.MA = wide(MA);
+  j.MB = wide(MB);
+  j.SA = wide(skew(rA));
+  j.SB = wide(skew(rB));
+  j.C = wide(Vec3(pB - pA));
+}
 
 }  // namespace tumble::physics

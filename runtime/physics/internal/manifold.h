@@ -38,6 +38,16 @@ struct Manifold {
   std::uint16_t childA = 0, childB = 0;
 };
 
+/// Appends a contact point (world point p, separation sep, feature id) to m;
+/// a full manifold keeps the points it has.
+inline void addPoint(Manifold& m, const Vec3& p, Real sep, std::uint32_t id) {
+  if (m.count >= kMaxManifoldPoints) return;
+  ContactPoint& c = m.points[m.count++];
+  c.point_m = p;
+  c.separation_m = sep;
+  c.id = id;
+}
+
 /// Pair key, order independent.
 inline std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
   if (a > b) std::swap(a, b);

@@ -4,18 +4,14 @@
 #include <cmath>
 #include <string>
 
+#include "physics/internal/joint_types.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
 
 const char* jointTypeName(JointType type) {
-  switch (type) {
-    case JointType::Ball: return "ball";
-    case JointType::Hinge: return "hinge";
-    case JointType::ConeTwist: return "cone_twist";
-    case JointType::Fixed: return "fixed";
-  }
-  return "?";
+  if (int(type) < 0 || int(type) > int(JointType::Fixed)) return "?";
+  return jointTypeRows(type).name;
 }
 
 Quat frameFromAxis(const Vec3& axis) {
@@ -55,7 +51,7 @@ JointDef makeGrabDef(const World& world, BodyId body, const Vec3& localPoint_m, 
   d.linearStiffness_Npm = m * omega * omega;
   // Damping m omega: a damping ratio of 0.5 for the centre of mass, rising
   // towards 1 for a point far from it (less effective mass). Critical
-  // damping of the centre (2 m omega) made formulation A's explicit spring
+  // damping of the centre (2 m omega) made the Lagrange solver's explicit spring
   // blow up for a box grabbed at a face (h c / m_eff = 2.1 > 2 at 60 Hz).
   d.linearDamping_Nspm = m * omega;
   return d;

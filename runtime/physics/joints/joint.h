@@ -1,7 +1,9 @@
 #pragma once
 // Joint definitions, shared by both joint solvers of joint_system.h: the
-// Lagrange-multiplier solver (formulation A) and the impulse solver inside
-// the contact loop (formulation B, impulse_joints.cpp).
+// Lagrange-multiplier solver (lagrange_solver.cpp) and the impulse solver
+// inside the contact loop (impulse_solver.cpp). Each type's rows are in
+// its own file (ball_joint.cpp, hinge_joint.cpp, cone_twist_joint.cpp,
+// fixed_joint.cpp).
 //
 // Every joint has a point-to-point (ball) part: an anchor fixed in body A and
 // one fixed in body B must coincide. The types add angular rows on top:
@@ -68,7 +70,7 @@ struct JointDef {
   /// Drives the hinge angle's rate (B relative to A about +X) towards
   /// motorSpeed_radps with a torque of at most maxMotorTorque_Nm. Impulse
   /// solver: a velocity row clamped to +-maxMotorTorque_Nm * h. Lagrange
-  /// solver: an explicit servo torque (see joint_system.cpp).
+  /// solver: an explicit servo torque (see hinge_joint.cpp).
   bool enableMotor = false;
   Real motorSpeed_radps = 0;   ///< rad/s
   Real maxMotorTorque_Nm = 0;  ///< N m, >= 0

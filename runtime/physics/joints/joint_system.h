@@ -1,20 +1,22 @@
 #pragma once
-// JointSystem: joints, solved by Lagrange multipliers (formulation A of
-// issue 4, after Baraff 1996) or by impulses (formulation B). Both run inside
-// the World's substeps through its ConstraintSolver hook. The derivation and
-// the design choices are at the top of joint_system.cpp.
+// JointSystem: joints, solved by Lagrange multipliers (the `lagrange` joint
+// solver, after Baraff 1996) or by impulses (the `impulse` joint solver).
+// Both run inside the World's substeps through its ConstraintSolver hook.
+// joint_system.cpp lists which file holds which part; the derivations and
+// the design choices are at the top of lagrange_solver.cpp,
+// lagrange_substeps.cpp and impulse_solver.cpp.
 //
 // Use:
 //   JointSystem joints(world);
 //   joints.createJoint(makeJointDef(world, JointType::Hinge, a, b, anchor, axis));
 //   each frame: joints.step(dt)   // = beforeWorldStep(); world.step(dt); collect forces, breaks, errors
 //
-// Formulation A solves J W J^T lambda = -J' q' - J W Q - k_s C - k_d C' once
-// per World substep, at the substep's state, with everything else that
+// The Lagrange solver solves J W J^T lambda = -J' q' - J W Q - k_s C - k_d C'
+// once per World substep, at the substep's state, with everything else that
 // changed the velocities since the joints' last solve (gravity, applied
 // forces, the integrator's free motion, the contacts) as the known Q; it
 // then re-projects the joint velocities between the contact solver's sweeps,
-// so joints and contacts settle together (joint_system.cpp, "Time stepping").
+// so joints and contacts settle together (lagrange_substeps.cpp, "Time stepping").
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -26,14 +28,16 @@
 
 namespace tumble::physics {
 
-/// Which formulation solves the joints (issue 4).
+/// Which solver solves the joints (JointSettings::solver; the scenario's
+/// physics.joint_solver).
 enum class JointSolverKind {
-  /// A: Lagrange multipliers (Baraff), one sparse LDL^T factorization per
-  /// World substep, re-used between the contact solver's sweeps.
+  /// "lagrange": Lagrange multipliers (Baraff), one sparse LDL^T
+  /// factorization per World substep, re-used between the contact solver's
+  /// sweeps (lagrange_solver.cpp, lagrange_substeps.cpp).
   Lagrange,
-  /// B: velocity-level impulses solved with the contacts in the World's
-  /// substep loop (sequential impulses, soft constraints, warm starting;
-  /// impulse_joints.cpp), through World::setConstraintSolver.
+  /// "impulse": velocity-level impulses solved with the contacts in the
+  /// World's substep loop (sequential impulses, soft constraints, warm
+  /// starting; impulse_solver.cpp), through World::setConstraintSolver.
   Impulse,
 };
 const char* jointSolverName(JointSolverKind kind);
@@ -44,16 +48,16 @@ struct JointSettings {
   JointSolverKind solver = JointSolverKind::Lagrange;
   /// Impulse solver: stiffness (Hz) and damping ratio of the soft position
   /// correction of the hard rows (Box2D v3 uses 60 Hz, 2; we use 120 Hz,
-  /// measured in impulse_joints.cpp), capped at a quarter of the substep
+  /// measured in impulse_solver.cpp), capped at a quarter of the substep
   /// rate. Springs (JointDef stiffness) use their own k and c instead.
   double impulseHertz = 120;
   double impulseDampingRatio = 2;
   /// Baumgarte feedback C'' = -k_s C - k_d C' against drift: position gain
   /// k_s (1/s^2) and velocity gain k_d (1/s). Critically damped at
   /// k_d = 2 sqrt(k_s). Defaults measured for a 60 Hz step: see the
-  /// stability table at the top of joint_system.cpp (larger gains correct
+  /// stability table at the top of free_integration.cpp (larger gains correct
   /// drift faster but need a smaller dt). In the World's substeps the
-  /// feedback is discretized implicitly (joint_system.cpp, "Time stepping").
+  /// feedback is discretized implicitly (lagrange_substeps.cpp, "Time stepping").
   double stiffness_per_s2 = 400;
   double damping_per_s = 40;
   /// Gyroscopic term -w x (I w) in Q (the applied generalized force) of
@@ -73,7 +77,7 @@ struct JointSettings {
   /// 1 / (J W J^T)^-1_ii, so a long hanging chain does not sag
   /// (tumble_bench_joints, 10 / 100 / 1000 links: 12 um / 49 um / 1.1 mm;
   /// own diagonal everywhere: 43 um / 7.7 mm / 13 cm). See "Robustness" at
-  /// the top of joint_system.cpp.
+  /// the top of lagrange_substeps.cpp.
   double compliance = 0.01;
   /// Lagrange: when a joint was created or removed, or a jointed body is new
   /// to the solver (created, woken), beforeWorldStep projects the velocities
@@ -110,7 +114,7 @@ struct JointSolveStats {
   long fillIn = 0;         ///< entries of L where A's lower triangle had none (0 for trees)
   int factorizations = 0;  ///< sparse factorizations in the last World step (or integrateFree call)
   int patternAnalyses = 0; ///< symbolic analyses among them (only when the sparsity pattern changed)
-  double solveMs = 0;      ///< wall time of formulation A in the last step: gather, assemble, factorize, solve, project (ms)
+  double solveMs = 0;      ///< wall time of the Lagrange solver in the last step: gather, assemble, factorize, solve, project (ms)
 };
 
 /// Integration of the joint-only mode (integrateFree): the rigid-body state
@@ -139,7 +143,7 @@ class JointSystem {
   /// Changing settings().solver directly has no effect: use setSolver.
   JointSettings& settings() { return m_settings; }
   const JointSettings& settings() const { return m_settings; }
-  /// Switches the formulation (also while running; the impulse solver
+  /// Switches the joint solver (also while running; the impulse solver
   /// registers itself with World::setConstraintSolver, so one JointSystem
   /// per World). Warm-start impulses start from zero after a switch.
   void setSolver(JointSolverKind kind);
@@ -176,7 +180,7 @@ class JointSystem {
   /// World dropped (reported as broken with zero force), jointed sleepers
   /// next to fast bodies woken; Lagrange: the post-stabilization projection
   /// (JointSettings::postStabilize). The solve itself happens inside
-  /// World::step (both formulations). For callers that step the World
+  /// World::step (both solvers). For callers that step the World
   /// themselves (the scenario host): call it right before World::step.
   void beforeWorldStep();
   /// beforeWorldStep(); world.step(dt); then collects forces and breaks and
@@ -216,16 +220,16 @@ class JointSystem {
       if (m_slots[i].alive) f(JointId{i, m_slots[i].generation}, m_slots[i].def);
   }
 
-  /// Live joint slots in formulation A's elimination order (post-order of
+  /// Live joint slots in the Lagrange solver's elimination order (post-order of
   /// the body tree: leaves first), or in slot order when the joint set
   /// changed since the last step. The impulse solver sweeps in this order,
   /// so one sweep carries a load from the leaves to the root.
   void solveOrder(std::vector<std::uint32_t>& out) const;
 
-  struct Impl;  ///< solver scratch (joint_system.cpp)
+  struct Impl;  ///< the Lagrange solver's data (internal/lagrange_solver.h)
 
  private:
-  friend class LagrangeSubsteps;  ///< formulation A's ConstraintSolver (joint_system.cpp)
+  friend class LagrangeSubsteps;  ///< the Lagrange solver's ConstraintSolver (lagrange_substeps.cpp)
   struct Slot {
     JointDef def;
     std::uint32_t generation = 0;  ///< odd while alive
@@ -239,13 +243,13 @@ class JointSystem {
   void collectImpulseResults();  ///< impulse solver: forces of the last step, breaks
   void collectLagrangeResults(); ///< Lagrange solver: forces of the last step, breaks
   bool allJointedBodiesKnown() const;  ///< Lagrange: every moving jointed body was solved in the last step
-  // Formulation A inside World::step (LagrangeSubsteps calls these).
+  // The Lagrange solver inside World::step (lagrange_substeps.cpp; LagrangeSubsteps calls these).
   void substepPrepare(double h_s);
   void substepSolve(SolverVelocity* vel, const Body* bodies);
   double substepProject(SolverVelocity* vel, bool useBias);
   void substepFinish();
-  void postStabilize();
-  void prepare();  ///< joint order (when dirty), body states, evaluation lists
+  void postStabilize();  ///< lagrange_solver.cpp
+  void prepare();  ///< joint order (when dirty), body states, evaluation lists (lagrange_solver.cpp)
   void recordForces();
   void finishBreaks(std::vector<JointBreakEvent>& events);
   bool dropJointsOfDeadBodies();  ///< false when no joint is left
@@ -260,8 +264,8 @@ class JointSystem {
   JointSolveStats m_stats;
   double m_maxAnchorError_m = 0;
   std::unique_ptr<Impl> m_impl;
-  std::unique_ptr<ImpulseJoints> m_impulse;  ///< formulation B, registered with the World while set
-  std::unique_ptr<ConstraintSolver> m_lagrange;  ///< formulation A, registered with the World while set
+  std::unique_ptr<ImpulseJoints> m_impulse;  ///< the impulse solver, registered with the World while set
+  std::unique_ptr<ConstraintSolver> m_lagrange;  ///< the Lagrange solver's hook, registered with the World while set
 };
 
 }  // namespace tumble::physics

@@ -55,7 +55,7 @@ struct RagdollDesc {
   /// Every part (BodyDef::rollingResistance). Limbs are not steel balls: a
   /// capsule head or arm pinned by its joint would otherwise roll about the
   /// pin on the ground for seconds (measured: the head of a dropped rag-doll
-  /// still creeping at 0.3 rad/s after 5 s, formulation B).
+  /// still creeping at 0.3 rad/s after 5 s, impulse solver).
   Real rollingResistance = Real(0.2);
   /// Pairs of parts whose collisions must be filtered: the adjacent ones
   /// (joined by a joint). Filled by defaultHuman and by validate/finalize;

@@ -1,7 +1,6 @@
-// Shape queries: overlap and shape cast (World::overlapShape, World::shapeCast).
-//
-// Both reuse the narrow phase, so every shape pair that can collide can be
-// queried, compounds and the height field included.
+// Shape cast (World::shapeCast): the first thing a shape swept along a line
+// touches. It reuses the narrow phase, so every shape pair that can collide
+// can be cast, compounds and the height field included.
 //
 // Shape cast by conservative advancement (Mirtich 1996; for a pure
 // translation it is exact on planes): at the current position the narrow
@@ -17,31 +16,19 @@
 // swept-volume GJK (Minkowski sum of the shape with a segment: needs a
 // support-function narrow phase for every pair, including the height field).
 #include <algorithm>
+#include <limits>
+#include <vector>
 
 #include "physics/compound_shape.h"
 #include "physics/internal/height_field_collision.h"
 #include "physics/internal/narrow_phase.h"
+#include "physics/internal/query_probe.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
 namespace {
 
 constexpr int kMaxCastIterations = 48;
-
-bool queryShapeValid(const Shape& shape, const Vec3& p, const Quat& q) {
-  return shape.type != ShapeType::Plane && validateShape(shape).ok() && p.allFinite() && q.coeffs().allFinite() &&
-         q.norm() > Real(1e-6);
-}
-
-Body probeBody(const Shape& shape, const Vec3& p, const Quat& q) {
-  Body b;
-  b.type = BodyType::Kinematic;
-  b.shape = shape;
-  b.position_m = p;
-  b.orientation = q.normalized();
-  b.alive = true;
-  return b;
-}
 
 /// Manifolds of the probe against the height field, child by child for compounds.
 void heightFieldManifolds(const Body& probe, const HeightField& field, const Vec3& lo, const Vec3& hi, Real margin,
@@ -81,29 +68,6 @@ Gap gapOf(const std::vector<Manifold>& ms, const Vec3& d) {
 }
 
 }  // namespace
-
-std::vector<BodyId> World::overlapShape(const Shape& shape, const Vec3& position, const Quat& orientation) const {
-  std::vector<BodyId> out;
-  if (!queryShapeValid(shape, position, orientation)) return out;
-  const Body probe = probeBody(shape, position, orientation);
-  Vec3 lo, hi;
-  shape.bounds(probe.position_m, probe.orientation, &lo, &hi);
-  std::vector<Manifold> found;
-  for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
-    const Body& b = m_bodies[i];
-    if (!b.alive) continue;
-    Vec3 blo, bhi;
-    b.shape.bounds(b.position_m, b.orientation, &blo, &bhi);
-    if ((lo.array() > bhi.array() + kQueryTolerance_m).any() || (hi.array() < blo.array() - kQueryTolerance_m).any())
-      continue;
-    collidePair(probe, b, kQueryTolerance_m, found);
-    bool touches = false;
-    for (const Manifold& m : found)
-      for (int k = 0; k < m.count; ++k) touches |= m.points[k].separation_m <= kQueryTolerance_m;
-    if (touches) out.push_back(idOf(i));
-  }
-  return out;
-}
 
 bool World::shapeCast(const Shape& shape, const Vec3& position, const Quat& orientation, const Vec3& dir,
                       Real maxDistance, ShapeCastHit* hit, BodyId ignore) const {

@@ -1,6 +1,8 @@
-// Joints by sequential impulses inside the contact solver (issue 4,
-// formulation B; after Catto's "soft step" in Box2D v3 and Jolt's
-// constraint parts).
+// The impulse joint solver: joints by sequential impulses inside the
+// contact solver (after Catto's "soft step" in Box2D v3 and Jolt's
+// constraint parts). Each joint type's rows are in its own file
+// (ball_joint.cpp, hinge_joint.cpp, cone_twist_joint.cpp, fixed_joint.cpp);
+// this file runs them.
 //
 // ---- What runs when ---------------------------------------------------------
 // World::step calls this through the ConstraintSolver hook (constraint_solver.h):
@@ -11,25 +13,18 @@
 // positions integrated, one sweep before each relax sweep (no feedback).
 // Joints and contacts thus see each other's impulses within a substep: a
 // limb pressed into the ground by its neighbours is held by the contact, not
-// by a stretched joint (what formulation A cannot do, its forces being fixed
-// before the contacts are solved).
+// by a stretched joint.
 //
 // ---- Rows ---------------------------------------------------------------------
-// Anchors and frames are taken from the bodies' current poses in every sweep
-// (rA = qA localAnchorA, ...), so the rows follow the bodies through the substeps.
-// Impulses act on B, their negative on A. With vA, wA, vB, wB the velocities:
-//   point (3 rows, one 3x3 block):  C = pB - pA,
-//     Cdot = vB + wB x rB - vA - wA x rA,
-//     K = (mA + mB) 1 - [rA] IA^-1 [rA] - [rB] IB^-1 [rB]   ([r] = cross matrix).
-//   hinge alignment (2 rows, one 2x2 block), a1 = A's hinge axis, b2, b3 =
-//     B's frame axes normal to its hinge axis: C_k = a1.b_k, v_k = b_k x a1,
-//     Cdot_k = (wB - wA).v_k, K_ij = v_i.(IA^-1 + IB^-1) v_j.
-//   fixed orientation (3 rows, 3x3 block): C = 2 vec(qB qA^-1) (frames;
-//     the small-angle rotation vector), Cdot = wB - wA, K = IA^-1 + IB^-1.
-//   angle limits, one row each, lambda >= 0 (hinge angle about a1; twist about
-//     the bisector of the twist axes; swing about n = a1 x b1 / |a1 x b1|,
-//     C = swingLimit - acos(a1.b1)): C >= 0, Cdot = +-(wB - wA).n.
-//   hinge motor (1 row): Cdot = (wB - wA).a1 - motorSpeed, |lambda| <= maxTorque h.
+// Anchors and frames are taken from the bodies' current poses in every solve
+// phase (rA = qA localAnchorA, ...), so the rows follow the bodies through
+// the substeps. Impulses act on B, their negative on A. Every type has the
+// point block (ball_joint.cpp); hinges add two alignment rows, a motor and
+// angle stops (hinge_joint.cpp), cone-twists a swing row and twist stops
+// (cone_twist_joint.cpp), fixed joints a 3x3 orientation block
+// (fixed_joint.cpp). The sweep is the same for every type: an angular
+// equality block of 0, 2 or 3 rows, the point block, and the limit rows the
+// type's flags switch on.
 //
 // ---- Soft constraints ----------------------------------------------------------
 // Hard rows correct position error softly (Box2D v3's b2MakeSoft): with
@@ -90,46 +85,11 @@
 #include <cmath>
 #include <limits>
 
+#include "physics/internal/joint_types.h"
 #include "physics/joints/joint_system.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
-
-namespace {
-
-/// The rotated +X axis, q (1, 0, 0): the first column of q's matrix (a
-/// third of the work of rotating a vector).
-Vec3 xAxis(const Quat& q) {
-  const Real x = q.x(), y = q.y(), z = q.z(), w = q.w();
-  return Vec3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y));
-}
-
-/// I [r]x, column by column ([r]x e_k = r x e_k has two non-zero entries):
-/// 18 multiplies instead of a 3x3 product's 27.
-Mat3 timesCross(const Mat3& I, const Vec3& r) {
-  Mat3 m;
-  m.col(0) = r.z() * I.col(1) - r.y() * I.col(2);
-  m.col(1) = r.x() * I.col(2) - r.z() * I.col(0);
-  m.col(2) = r.y() * I.col(0) - r.x() * I.col(1);
-  return m;
-}
-
-/// [r]x M, column by column (r x each column).
-Mat3 crossTimes(const Vec3& r, const Mat3& M) {
-  Mat3 m;
-  for (int k = 0; k < 3; ++k) m.col(k) = r.cross(M.col(k));
-  return m;
-}
-
-Real twistAngle(const Quat& qa, const Quat& qb) {
-  const Quat rel = qa.conjugate() * qb;  // B's frame in A's frame
-  Real t = 2 * std::atan2(rel.x(), rel.w());
-  if (t > kPi) t -= 2 * kPi;
-  if (t < -kPi) t += 2 * kPi;
-  return t;
-}
-
-}  // namespace
 
 ImpulseJoints::ImpulseJoints(const JointSystem& joints, double hertz, double dampingRatio)
     : m_system(joints), m_hertz(hertz), m_zeta(dampingRatio) {}
@@ -190,19 +150,7 @@ void ImpulseJoints::prepare(const World& world, Real dt_s, int substeps) {
       gains(d.angularStiffness_Nmprad, d.angularDamping_Nmsprad, j.gammaAng, j.betaAng);
       j.angularFree = !(d.angularStiffness_Nmprad > 0 || d.angularDamping_Nmsprad > 0);
     }
-    if (d.type == JointType::Hinge) {
-      j.motor = d.enableMotor;
-      j.hingeLimit = d.enableLimit;
-      j.lower_rad = d.lowerAngle_rad;
-      j.upper_rad = d.upperAngle_rad;
-      j.motorSpeed_radps = d.motorSpeed_radps;
-      j.maxMotorImpulse = d.maxMotorTorque_Nm * m_h;
-    } else if (d.type == JointType::ConeTwist) {
-      j.lower_rad = d.twistLower_rad;
-      j.upper_rad = d.twistUpper_rad;
-      j.swingLimit_rad = d.swingLimit_rad;
-      j.cosHalfSwing = std::cos(Real(0.5) * d.swingLimit_rad);
-    }
+    if (const JointTypeRows& rows = jointTypeRows(d.type); rows.impulseSetup) rows.impulseSetup(j, d, m_h);
   }
 }
 
@@ -250,88 +198,13 @@ void ImpulseJoints::refreshGeometry(const Body* bodies) {
       pB = B.position_m + rB;
       qb = B.orientation * d.localFrameB;
     }
-    // Point rows: K = (mA + mB) 1 - [rA] IA^-1 [rA] - [rB] IB^-1 [rB].
-    const Mat3 MA = timesCross(j.iA, rA), MB = timesCross(j.iB, rB);
-    Mat3 K = (j.mA + j.mB) * Mat3::Identity() - crossTimes(rA, MA) - crossTimes(rB, MB);
-    if (j.soft) K.diagonal().array() += j.gammaLin;
-    const Mat3 Kinv = K.inverse();
-    j.pointOk = Kinv.allFinite();
-    j.pointKinv = wide(Kinv);
-    j.MA = wide(MA);
-    j.MB = wide(MB);
-    j.SA = wide(skew(rA));
-    j.SB = wide(skew(rB));
-    j.C = wide(Vec3(pB - pA));
-
-    // Angular rows.
+    impulsePointRows(j, rA, rB, pA, pB);
+    // The type's angular rows.
     j.angularRows = 0;
     const bool angularRows = !(j.soft && j.angularFree);
     const Real gamma = j.soft ? j.gammaAng : 0;
-    auto setAxis = [&](int k, const Vec3& axis) {
-      j.ax[k] = wide(axis);
-      j.axA[k] = wide(Vec3(j.iA * axis));
-      j.axB[k] = wide(Vec3(j.iB * axis));
-    };
-    auto setLimitAxis = [&](const Vec3& n) {
-      const Vec3 nA = j.iA * n, nB = j.iB * n;
-      j.limitAxis = wide(n);
-      j.limitA = wide(nA);
-      j.limitB = wide(nB);
-      j.limitK = n.dot(nA + nB);
-    };
-    if (j.type == JointType::Hinge) {
-      const Mat3 FA = qa.toRotationMatrix(), FB = qb.toRotationMatrix();
-      const Vec3 a1 = FA.col(0);
-      setLimitAxis(a1);
-      j.angle = std::atan2(FB.col(1).dot(FA.col(2)), FB.col(1).dot(FA.col(1)));
-      if (angularRows) {
-        // Alignment: C_k = a1.b_k, v_k = b_k x a1 (b_2, b_3: B's axes normal to its hinge axis).
-        setAxis(0, FB.col(1).cross(a1));
-        setAxis(1, FB.col(2).cross(a1));
-        Eigen::Matrix<Real, 2, 2> K2;
-        for (int r = 0; r < 2; ++r)
-          for (int c = 0; c < 2; ++c) K2(r, c) = j.ax[r].dot(j.axA[c] + j.axB[c]) + (r == c ? gamma : 0);
-        if (std::abs(K2.determinant()) > Real(1e-12)) {
-          j.angularRows = 2;
-          j.angKinv.setZero();
-          j.angKinv.topLeftCorner<2, 2>() = K2.inverse();
-          j.angC = Vec4r(a1.dot(FB.col(1)), a1.dot(FB.col(2)), 0, 0);
-        }
-      }
-    } else if (j.type == JointType::ConeTwist) {
-      const Vec3 a1 = xAxis(qa), b1 = xAxis(qb);
-      const Vec3 axb = a1.cross(b1);
-      const Real sn = axb.norm(), cs = a1.dot(b1);
-      j.swingAxisOk = sn > Real(1e-6);
-      // Swing row only beyond half the cone (angle > limit / 2, compared as
-      // cosines): far inside it the row's axis is undefined and its impulse
-      // would be zero anyway.
-      j.swingActive = j.swingAxisOk && cs < j.cosHalfSwing * std::sqrt(sn * sn + cs * cs);
-      if (j.swingAxisOk) j.swingAxis = wide(Vec3(axb / sn));
-      if (j.swingActive) {
-        const Vec3 n = axb / sn, nA = j.iA * n, nB = j.iB * n;
-        j.swingA = wide(nA);
-        j.swingB = wide(nB);
-        j.swingK = n.dot(nA + nB);
-        j.swingAngle = std::atan2(sn, cs);
-      }
-      const Vec3 n = a1 + b1;
-      setLimitAxis(n.squaredNorm() > Real(1e-12) ? Vec3(n.normalized()) : a1);
-      j.angle = twistAngle(qa, qb);
-    } else if (j.type == JointType::Fixed && angularRows) {
-      // C = 2 vec(qB qA^-1) (the small-angle rotation vector), rows along the world axes.
-      Quat rel = qb * qa.conjugate();
-      if (rel.w() < 0) rel.coeffs() = -rel.coeffs();
-      for (int k = 0; k < 3; ++k) setAxis(k, Vec3::Unit(k));
-      Mat3 K3 = j.iA + j.iB;
-      K3.diagonal().array() += gamma;
-      const Mat3 K3inv = K3.inverse();
-      if (K3inv.allFinite()) {
-        j.angularRows = 3;
-        j.angKinv = wide(K3inv);
-        j.angC = wide(Vec3(2 * rel.vec()));
-      }
-    }
+    if (const JointTypeRows& rows = jointTypeRows(j.type); rows.impulseGeometry)
+      rows.impulseGeometry(j, qa, qb, angularRows, gamma);
   }
 }
 
@@ -344,13 +217,7 @@ void ImpulseJoints::warmStart(SolverVelocity* vel, const Body* bodies) {
   m_relaxing = false;
   for (const Joint& j : m_joints) {
     const Accum& acc = m_accum[j.slot];
-    Vec4r L = acc.angular;
-    if (j.type == JointType::Hinge) L += j.limitAxis * (acc.lower - acc.upper + acc.motor);
-    if (j.type == JointType::ConeTwist) {
-      L += j.limitAxis * (acc.lower - acc.upper);
-      if (acc.swing != 0 && j.swingAxisOk) L -= j.swingAxis * acc.swing;
-    }
-    const Vec3 L3 = narrow(L);
+    const Vec3 L3 = narrow(jointTypeRows(j.type).impulseWarmStartAngular(j, acc));
     const Vec4r& P = acc.linear;
     if (j.movesA) {
       vel[j.a].linear -= j.mA * P;
@@ -416,29 +283,30 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
     };
 
     // Motor and limits first, the equality rows last (they matter most).
-    if (j.type == JointType::Hinge) {
+    // Which of them a joint has is set by its type (impulseSetup): a hinge
+    // the motor and the stops, a cone-twist the swing row and the stops.
+    // The rows' data (limitK and on) is read only by joints that have them.
+    if (j.motor && j.limitK > 0) {
       const Real k = j.limitK;
-      if (j.motor && k > 0) {
-        const Real cdot = (wB - wA).dot(j.limitAxis) - j.motorSpeed_radps;
-        const Real maxI = j.maxMotorImpulse;
-        Real dl = -cdot / k;
-        const Real next = std::clamp(acc.motor + dl, -maxI, maxI);
-        dl = next - acc.motor;
-        acc.motor = next;
-        wA -= j.limitA * dl;
-        wB += j.limitB * dl;
-        change += dl * dl;
-        total += acc.motor * acc.motor;
-      }
-      if (j.hingeLimit) stops(k);
-    } else if (j.type == JointType::ConeTwist) {
+      const Real cdot = (wB - wA).dot(j.limitAxis) - j.motorSpeed_radps;
+      const Real maxI = j.maxMotorImpulse;
+      Real dl = -cdot / k;
+      const Real next = std::clamp(acc.motor + dl, -maxI, maxI);
+      dl = next - acc.motor;
+      acc.motor = next;
+      wA -= j.limitA * dl;
+      wB += j.limitB * dl;
+      change += dl * dl;
+      total += acc.motor * acc.motor;
+    }
+    if (j.swingRow) {
       // Rotating a1 towards b1 is positive about the swing axis: the row pushes back.
       if (j.swingActive)
         limit(j.swingAxis, j.swingA, j.swingB, -1, j.swingK, j.swingLimit_rad - j.swingAngle, acc.swing);
       else
         acc.swing = 0;
-      stops(j.limitK);
     }
+    if (j.stops) stops(j.limitK);
 
     const bool hardRows = !j.soft;
     const Real ms = hardRows ? hardMs : 1, is = hardRows ? hardIs : 0;
@@ -494,10 +362,7 @@ void ImpulseJoints::finish(const World&) {
     Output& o = m_out[j.slot];
     o.generation = acc.generation;
     o.force_N = narrow(acc.linear) * m_invH;
-    Vec4r L = acc.angular + j.limitAxis * (acc.lower - acc.upper);
-    if (j.type == JointType::Hinge) L += j.limitAxis * acc.motor;
-    if (j.type == JointType::ConeTwist) L -= j.swingAxis * acc.swing;
-    o.torque_Nm = narrow(L) * m_invH;
+    o.torque_Nm = narrow(jointTypeRows(j.type).impulseReportedAngular(j, acc)) * m_invH;
     if ((d.breakForce_N > 0 && o.force_N.norm() > d.breakForce_N) ||
         (d.breakTorque_Nm > 0 && o.torque_Nm.norm() > d.breakTorque_Nm))
       o.broken = true;
