@@ -1457,7 +1457,7 @@ function world.add_static_model(path, def) end
 ---of the model must be a closed surface; an open one is an error.
 ---
 ---```lua
----local p = world.model_mass_properties("base:assets/models/wheel.obj", {density = 1100})
+---local p = world.model_mass_properties("base:assets/models/rock.obj", {density = 2600})
 ---print(p.mass, p.inertia.xx)
 ---```
 ---@param path string "MOD:path/in/mod" or a path in this mod

@@ -1,4 +1,4 @@
-#include "app/rigid_body_cases.h"
+#include "tools/report/rigid_body_cases.h"
 
 #include <cmath>
 #include <functional>
@@ -12,7 +12,7 @@
 #include "physics/joints/ragdoll.h"
 #include "physics/world.h"
 
-namespace tumble::app {
+namespace tumble::tools {
 
 namespace {
 
@@ -642,4 +642,4 @@ std::vector<numerics::PrecisionProblem> rigidBodyPrecisionProblems() {
   return problems;
 }
 
-}  // namespace tumble::app
+}  // namespace tumble::tools

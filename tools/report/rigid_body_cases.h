@@ -1,8 +1,9 @@
 #pragma once
-// Rigid-body problems for the numerics lab's reports (issue 7): the world is
-// a physics::World driven through its public API, so the reports measure the
-// same engine the scenarios run. Lives in app because it is the only module
-// that may see both numerics and physics.
+// Rigid-body problems for the numerics lab's reports (`tumble report`): the
+// world is a physics::World driven through its public API, so the reports
+// measure the same engine the scenarios run. Part of the report tool, which
+// links both numerics and physics (runtime modules never see each other
+// here).
 #include <functional>
 #include <memory>
 #include <string>
@@ -12,7 +13,7 @@
 #include "numerics/stability.h"
 #include "physics/world.h"
 
-namespace tumble::app {
+namespace tumble::tools {
 
 /// Work-precision problems: free rigid body (energy and |L|), resting box
 /// stack (drift), a stiff applied spring in the world (every integrator),
@@ -54,4 +55,4 @@ struct JointFormulation {
 void registerJointFormulation(JointFormulation formulation);
 const std::vector<JointFormulation>& jointFormulations();
 
-}  // namespace tumble::app
+}  // namespace tumble::tools
