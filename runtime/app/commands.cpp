@@ -3,20 +3,12 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/meshgen.h"
 #include "app/paths.h"
 #include "app/simulation_loop.h"
 #include "core/log.h"
 #include "script/mod_bindings.h"
 #include "script/mods.h"
 #include "script/vehicle_defs.h"
-
-#ifdef TUMBLE_HAVE_TERRAIN_COMMAND
-#include "app/cmd_terrain.h"
-#endif
-#ifdef TUMBLE_HAVE_REPORT_COMMAND
-#include "app/cmd_report.h"
-#endif
 
 namespace tumble::app {
 
@@ -169,13 +161,6 @@ void addCommands(CLI::App& cli, int* exitCode) {
   CLI::App* list = cli.add_subcommand("list", "list mods, scenarios, vehicles and emitters");
   list->callback([st, exitCode] { *exitCode = listMods(st->modDirs); });
 
-  addMeshgenCommand(cli, *exitCode);
-#ifdef TUMBLE_HAVE_TERRAIN_COMMAND
-  addTerrainCommand(cli, *exitCode);
-#endif
-#ifdef TUMBLE_HAVE_REPORT_COMMAND
-  addReportCommand(cli, *exitCode);
-#endif
   cli.require_subcommand(1);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Mouse picking and dragging (issue 4, item 6): the ray from the camera
+// Mouse picking and dragging (the rag-doll paper's hands): the ray from the camera
 // through a pixel, and a grab that holds the picked body point on a spring
 // (physics::makeGrabDef) to the point under the cursor at the depth where
 // it was picked. The input actions (grab pressed / dragged / released) come

@@ -12,6 +12,10 @@ std::string dataDir() {
 
 std::string scriptsDir() { return (std::filesystem::path(dataDir()) / "scripts").string(); }
 
+std::string assetPath(const std::string& relative) {
+  return (std::filesystem::path(dataDir()) / "assets" / relative).string();
+}
+
 std::vector<std::string> modSearchDirs(const std::vector<std::string>& extra) {
   std::vector<std::string> dirs{(std::filesystem::path(dataDir()) / "mods").string()};
   if (const char* home = std::getenv("HOME"); home && *home)

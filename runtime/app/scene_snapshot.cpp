@@ -6,6 +6,7 @@
 #include <array>
 #include <map>
 
+#include "app/paths.h"
 #include "app/scene.h"
 #include "app/scene_models.h"
 #include "particles/particle_system.h"
@@ -193,16 +194,14 @@ void Scene::snapshotParticles(render::FrameSnapshot& out, double alpha) const {
 
 void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) const {
   const script::Presentation& presentation = m_host->presentation();
-  // Vehicle wheels are ray casts, not bodies: drawn with the shipped wheel
-  // model (axle along X, radius 0.35 m, width 0.25 m) at each hub, steered
-  // and turned by its accumulated spin; as spheres if the model is missing.
+  // Vehicle wheels are ray casts, not bodies: drawn with the runtime's wheel
+  // model (assets/models; axle along X, radius 0.35 m, width 0.25 m) at each
+  // hub, steered and turned by its accumulated spin; as spheres if the model
+  // is missing.
   std::shared_ptr<const render::Model> wheelModel;
   if (const vehicle::VehicleSystem* vehicles = m_vehicles.get(); vehicles && vehicles->count() > 0) {
-    const auto& dirs = m_host->options().modDirs;
-    if (auto base = dirs.find("base"); base != dirs.end()) {
-      auto loaded = m_models->get(base->second + "/assets/models/wheel.obj");
-      if (loaded) wheelModel = loaded.value();
-    }
+    auto loaded = m_models->get(assetPath("models/wheel.obj"));
+    if (loaded) wheelModel = loaded.value();
   }
   constexpr float kWheelModelRadius_m = 0.35f, kWheelModelWidth_m = 0.25f;
   if (const vehicle::VehicleSystem* vehicles = m_vehicles.get())

@@ -2,7 +2,7 @@
 // Work-precision runner: every problem x method x dt, its error against the
 // reference and the CPU time of the integration loop; plus the report texts
 // (CSV, Markdown, gnuplot scripts). Writing files and running gnuplot is the
-// caller's business (app/cmd_report.cpp): numerics stays free of I/O.
+// caller's business (tools/report/report_commands.cpp): numerics stays free of I/O.
 //
 // Timing: std::chrono::steady_clock around integrate() only. A run shorter
 // than the clock's useful resolution is repeated until a batch lasts at least

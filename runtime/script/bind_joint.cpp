@@ -1,6 +1,6 @@
 // Joints for scripts: world.joint{...} (the JointDef of physics/joints/joint.h
 // as a table), world.grab (a spring from a body point to a target, for
-// dragging with the mouse), the Joint handle type, the joint formulation and
+// dragging with the mouse), the Joint handle type, the joint solver and
 // the step length while running.
 //
 //   local j = world.joint{type = "hinge", a = door, b = frame, anchor = {1, 1, 0}, axis = {0, 1, 0},
@@ -85,7 +85,7 @@ const std::set<std::string> kJointFields = {"type", "a", "b", "anchor", "axis", 
 
 /// @function world.joint
 /// Joins two bodies (or a body and the world) where they are now. Solved by
-/// the scene's joint formulation (Scenario.joint_solver). The two bodies stop
+/// the scene's joint solver (Scenario.joint_solver). The two bodies stop
 /// colliding with each other unless `collide = true`.
 /// @param def JointDef type, bodies, anchor, limits, motor, spring, breaking
 /// @return Joint the joint

@@ -217,7 +217,7 @@ int worldAddStaticModel(lua_State* L) {
 /// @param path string "MOD:path/in/mod" or a path in this mod
 /// @param options? table {density = kg/m^3 (default 1000), scale = number or {x, y, z} (default 1)}
 /// @return MeshMassProperties the mass properties
-/// @example local p = world.model_mass_properties("base:assets/models/wheel.obj", {density = 1100})
+/// @example local p = world.model_mass_properties("base:assets/models/rock.obj", {density = 2600})
 /// @example print(p.mass, p.inertia.xx)
 int worldModelMassProperties(lua_State* L) {
   const char* fn = "world.model_mass_properties";

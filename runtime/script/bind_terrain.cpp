@@ -1,6 +1,6 @@
 // Type HeightMap: a scenario builds its own terrain in Lua with the terrain
-// module's generators and filters (issue 5: "generators and filters, in
-// tools/tumble terrain ... and in Lua, deterministic for a seed").
+// module's generators and filters, the same as `tumble terrain ...` offers,
+// deterministic for a seed.
 //
 // The map exists only while the scenario's `terrain.build(map)` runs, before
 // on_start: the app then turns it into the scene's terrain. The userdata

@@ -1393,7 +1393,7 @@ function vehicle.set_softness(body, softness) end
 world = {}
 
 ---Joins two bodies (or a body and the world) where they are now. Solved by
----the scene's joint formulation (Scenario.joint_solver). The two bodies stop
+---the scene's joint solver (Scenario.joint_solver). The two bodies stop
 ---colliding with each other unless `collide = true`.
 ---
 ---```lua
@@ -1468,7 +1468,7 @@ function world.add_static_model(path, def) end
 ---of the model must be a closed surface; an open one is an error.
 ---
 ---```lua
----local p = world.model_mass_properties("base:assets/models/wheel.obj", {density = 1100})
+---local p = world.model_mass_properties("base:assets/models/rock.obj", {density = 2600})
 ---print(p.mass, p.inertia.xx)
 ---```
 ---@param path string "MOD:path/in/mod" or a path in this mod

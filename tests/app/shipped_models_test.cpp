@@ -1,6 +1,7 @@
-// The project's own models (mods/base/assets/models): regenerating them with
-// the generator gives the committed bytes, every part is a closed surface,
-// and mass properties computed from the meshes match the analytic solids.
+// The project's own models (the runtime's assets/models and the base mod's
+// mods/base/assets/models, made by tools/meshgen): regenerating them with the
+// generator gives the committed bytes, every part is a closed surface, and
+// mass properties computed from the meshes match the analytic solids.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,23 +11,32 @@
 #include <map>
 #include <tuple>
 
-#include "app/meshgen.h"
+#include "tools/meshgen/meshgen.h"
 #include "core/file_util.h"
 #include "physics/mass_properties.h"
 #include "render/model.h"
 
-namespace tumble::app {
+namespace tumble::tools {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path modelsDir() {
+fs::path sourceDir() {
   const char* source = std::getenv("TUMBLE_SOURCE_DIR");
-  return fs::path(source ? source : ".") / "mods/base/assets/models";
+  return fs::path(source ? source : ".");
+}
+
+// The committed file `name`, in the folder the generator puts it in.
+fs::path modelPath(const std::string& name) {
+  for (const GeneratedFolder& folder : generateModelFolders())
+    for (const GeneratedFile& file : folder.files)
+      if (file.name == name) return sourceDir() / folder.path / name;
+  ADD_FAILURE() << name << " is not a generated file";
+  return sourceDir() / name;
 }
 
 std::shared_ptr<const render::Model> load(const std::string& name) {
-  auto model = render::loadModel((modelsDir() / name).string());
+  auto model = render::loadModel(modelPath(name).string());
   EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error());
   return model.ok() ? *model : nullptr;
 }
@@ -39,20 +49,30 @@ physics::MassProperties massOf(const render::Model& model, Real density) {
 }
 
 TEST(ShippedModels, RegeneratingGivesTheCommittedBytes) {
-  const std::vector<GeneratedFile> files = generateModelFiles();
-  ASSERT_GE(files.size(), 28u);
-  for (const GeneratedFile& file : files) {
-    auto committed = readBinaryFile((modelsDir() / file.name).string());
-    ASSERT_TRUE(committed.ok()) << file.name << " is generated but not committed: run `tumble meshgen`";
-    const std::string bytes(committed->begin(), committed->end());
-    EXPECT_TRUE(bytes == file.bytes) << file.name << " differs from what `tumble meshgen` writes now";
-  }
-  // Nothing stale: every committed file is one the generator makes.
-  for (const auto& entry : fs::directory_iterator(modelsDir())) {
-    const std::string name = entry.path().filename().string();
-    bool known = false;
-    for (const GeneratedFile& file : files) known |= file.name == name;
-    EXPECT_TRUE(known) << name << " is in the models folder but not generated";
+  const std::vector<GeneratedFolder> folders = generateModelFolders();
+  ASSERT_EQ(folders.size(), 2u);
+  // The runtime's wheel and its two textures; the base mod's 9 models and 6 textures.
+  EXPECT_EQ(folders[0].path, "assets/models");
+  EXPECT_EQ(folders[0].files.size(), 4u);
+  EXPECT_EQ(folders[1].path, "mods/base/assets/models");
+  EXPECT_EQ(folders[1].files.size(), 24u);
+  for (const GeneratedFolder& folder : folders) {
+    const fs::path dir = sourceDir() / folder.path;
+    for (const GeneratedFile& file : folder.files) {
+      auto committed = readBinaryFile((dir / file.name).string());
+      ASSERT_TRUE(committed.ok()) << folder.path << "/" << file.name
+                                  << " is generated but not committed: run `tumble meshgen`";
+      const std::string bytes(committed->begin(), committed->end());
+      EXPECT_TRUE(bytes == file.bytes) << folder.path << "/" << file.name
+                                       << " differs from what `tumble meshgen` writes now";
+    }
+    // Nothing stale: every committed file is one the generator makes.
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      bool known = false;
+      for (const GeneratedFile& file : folder.files) known |= file.name == name;
+      EXPECT_TRUE(known) << folder.path << "/" << name << " is in a generated folder but not generated";
+    }
   }
 }
 
@@ -212,4 +232,4 @@ TEST(ShippedModels, BarrierMassPropertiesMatchTheBox) {
 }
 
 }  // namespace
-}  // namespace tumble::app
+}  // namespace tumble::tools

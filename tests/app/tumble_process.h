@@ -14,9 +14,9 @@ struct ProcessResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// envPrefix is put before the command, e.g. "env -u DISPLAY ".
-inline ProcessResult runTumble(const std::string& args, const std::string& envPrefix = "") {
-  std::string cmd = envPrefix + std::string(TUMBLE_BINARY) + " " + args + " 2>&1";
+/// Runs a shell command and captures its stdout and stderr together.
+inline ProcessResult runCommand(const std::string& command) {
+  const std::string cmd = "(" + command + ") 2>&1";
   ProcessResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -26,6 +26,11 @@ inline ProcessResult runTumble(const std::string& args, const std::string& envPr
   int status = pclose(p);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// envPrefix is put before the command, e.g. "env -u DISPLAY ".
+inline ProcessResult runTumble(const std::string& args, const std::string& envPrefix = "") {
+  return runCommand(envPrefix + std::string(TUMBLE_BINARY) + " " + args);
 }
 
 inline std::string testMods() { return std::string("--mods ") + TUMBLE_TEST_MODS; }

@@ -231,13 +231,15 @@ TEST_F(ModelRender, DroppedModelsLeaveTheGpu) {
 namespace tumble::render {
 namespace {
 
-// Every model the project ships (mods/base/assets/models, made by `tumble
-// meshgen`) loads without a warning, and all of them drawn side by side
-// fill the frame with more than sky.
+// Every model the project ships (the runtime's wheel in assets/models, the
+// base mod's in mods/base/assets/models, made by `tumble meshgen`) loads
+// without a warning, and all of them drawn side by side fill the frame with
+// more than sky.
 TEST_F(ModelRender, ShippedModelsLoadAndDraw) {
   const char* source = std::getenv("TUMBLE_SOURCE_DIR");
   ASSERT_NE(source, nullptr);
-  const std::filesystem::path dir = std::filesystem::path(source) / "mods/base/assets/models";
+  const std::filesystem::path modDir = std::filesystem::path(source) / "mods/base/assets/models";
+  const std::filesystem::path runtimeDir = std::filesystem::path(source) / "assets/models";
   const char* names[] = {"hatchback", "truck", "buggy", "wheel", "cockpit", "rock", "tree", "building", "barrier",
                          "checkpoint_arch"};
   FrameSnapshot frame;
@@ -247,6 +249,7 @@ TEST_F(ModelRender, ShippedModelsLoadAndDraw) {
   frame.shapes.push_back(ground);
   float x = -14;
   for (const char* name : names) {
+    const std::filesystem::path& dir = std::string(name) == "wheel" ? runtimeDir : modDir;
     auto model = loadModel((dir / (std::string(name) + ".obj")).string());
     ASSERT_TRUE(model.ok()) << model.error();
     EXPECT_TRUE((*model)->warnings.empty()) << name << ": " << (*model)->warnings[0];

@@ -1,4 +1,4 @@
-// `tumble terrain ...` end to end, in process: generate -> filter -> info.
+// `tumble terrain ...` (tools/terrain) end to end, in process: generate -> filter -> info.
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
@@ -6,7 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "app/cmd_terrain.h"
+#include "tools/terrain/terrain_commands.h"
 #include "core/file_util.h"
 #include "terrain/height_map.h"
 #include "terrain/terrain.h"
@@ -23,12 +23,13 @@ struct CliRun {
   std::string out, err;
 };
 
-// Parses like main() would: a parse error exits 2 (CLI11's convention is non-zero).
+// Parses `tumble terrain ...` as the tool's main() would, with the leading
+// "terrain" as a subcommand: a parse error exits 2 (CLI11's convention is non-zero).
 CliRun runCli(std::vector<std::string> args) {
   CLI::App app{"test"};
   app.require_subcommand(1);
   CliRun run;
-  addTerrainCommand(app, run.exitCode);
+  tools::addTerrainCommands(*app.add_subcommand("terrain", "height maps"), run.exitCode);
   args.insert(args.begin(), "tumble");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());

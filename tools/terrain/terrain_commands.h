@@ -1,5 +1,6 @@
 #pragma once
-// `tumble terrain ...`: make and inspect height maps from the command line.
+// `tumble terrain ...` (the program tumble-terrain): make and inspect height
+// maps from the command line.
 //
 //   terrain gen      --size N | --width W --height H  --seed S [--roughness R] --out FILE.png
 //   terrain smooth   IN --out OUT [--passes K]
@@ -11,6 +12,7 @@
 //   terrain import   IN --out OUT                 (8-bit / RGB image -> 16-bit height map)
 //   terrain preview  IN --out OUT.png [--azimuth DEG] [--elevation DEG] [--grey]
 //   terrain info     FILE [--json]
+//   terrain materials IN [--island] [--force] [--spacing M] [--height M]
 //
 // Coordinates and lengths (--from, --to, --width, --region, --height,
 // --amplitude) are world metres, converted with the input's sidecar
@@ -22,11 +24,12 @@ namespace CLI {
 class App;
 }
 
-namespace tumble {
+namespace tumble::tools {
 
-/// Registers the `terrain` subcommand and its children on `root`. Each
-/// command's callback sets `exitCode` (0 on success, 1 on error); `exitCode`
-/// must outlive root.parse().
-void addTerrainCommand(CLI::App& root, int& exitCode);
+/// Registers gen, smooth, ... info, materials as subcommands of `terrain`
+/// (the program's own command line, or a `terrain` subcommand of another)
+/// and requires one of them. Each command's callback sets `exitCode` (0 on
+/// success, 1 on error); `exitCode` must outlive terrain's parse().
+void addTerrainCommands(CLI::App& terrain, int& exitCode);
 
-}  // namespace tumble
+}  // namespace tumble::tools

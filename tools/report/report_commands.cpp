@@ -1,4 +1,4 @@
-#include "app/cmd_report.h"
+#include "tools/report/report_commands.h"
 
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -10,14 +10,14 @@
 #include <system_error>
 #include <vector>
 
-#include "app/rigid_body_cases.h"
+#include "tools/report/rigid_body_cases.h"
 #include "core/file_util.h"
 #include "numerics/integrator.h"
 #include "numerics/reference_problems.h"
 #include "numerics/stability.h"
 #include "numerics/work_precision.h"
 
-namespace tumble {
+namespace tumble::tools {
 namespace {
 
 namespace fs = std::filesystem;
@@ -39,13 +39,13 @@ double secondsSince(Clock::time_point start) {
 //   problems.insert(problems.end(), more.begin(), more.end());
 std::vector<numerics::PrecisionProblem> precisionProblems() {
   auto problems = numerics::builtinPrecisionProblems();
-  auto rigid = app::rigidBodyPrecisionProblems();
+  auto rigid = rigidBodyPrecisionProblems();
   problems.insert(problems.end(), rigid.begin(), rigid.end());
   return problems;
 }
 std::vector<numerics::StabilityCase> stabilityCases() {
   auto cases = numerics::builtinStabilityCases();
-  auto rigid = app::rigidBodyStabilityCases();
+  auto rigid = rigidBodyStabilityCases();
   cases.insert(cases.end(), rigid.begin(), rigid.end());
   return cases;
 }
@@ -164,18 +164,16 @@ void addReportSubcommand(CLI::App& report, const char* name, const char* help,
 
 }  // namespace
 
-void addReportCommand(CLI::App& root, int& exitCode) {
-  CLI::App* report = root.add_subcommand(
-      "report", "Numerics lab: integrator error against CPU time, and stability");
-  report->require_subcommand(1);
-  addReportSubcommand(*report, "precision",
+void addReportCommands(CLI::App& report, int& exitCode) {
+  report.require_subcommand(1);
+  addReportSubcommand(report, "precision",
                       "Every integrator over a dt sweep on reference problems: error against "
                       "the exact answer and CPU time; CSV, Markdown and log-log PNG plots",
                       &runPrecisionReport, exitCode);
-  addReportSubcommand(*report, "stability",
+  addReportSubcommand(report, "stability",
                       "Stiff and extreme cases classified stable/drifting/blew_up, and each "
                       "method's largest stable step beside the theory",
                       &runStabilityReport, exitCode);
 }
 
-}  // namespace tumble
+}  // namespace tumble::tools

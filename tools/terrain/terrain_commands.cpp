@@ -1,4 +1,4 @@
-#include "app/cmd_terrain.h"
+#include "tools/terrain/terrain_commands.h"
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -15,7 +15,7 @@
 #include "terrain/terrain.h"
 #include "terrain/terrain_desc.h"
 
-namespace tumble {
+namespace tumble::tools {
 
 namespace {
 
@@ -416,19 +416,18 @@ void addMaterials(CLI::App& terrain, int& exitCode) {
 
 }  // namespace
 
-void addTerrainCommand(CLI::App& root, int& exitCode) {
-  auto* terrain = root.add_subcommand("terrain", "Make, filter and inspect height maps");
-  terrain->require_subcommand(1);
-  addGen(*terrain, exitCode);
-  addSmoothSharpen(*terrain, exitCode);
-  addConvolve(*terrain, exitCode);
-  addResample(*terrain, exitCode);
-  addRidgeCmd(*terrain, exitCode);
-  addBump(*terrain, exitCode);
-  addImport(*terrain, exitCode);
-  addPreview(*terrain, exitCode);
-  addInfo(*terrain, exitCode);
-  addMaterials(*terrain, exitCode);
+void addTerrainCommands(CLI::App& terrain, int& exitCode) {
+  terrain.require_subcommand(1);
+  addGen(terrain, exitCode);
+  addSmoothSharpen(terrain, exitCode);
+  addConvolve(terrain, exitCode);
+  addResample(terrain, exitCode);
+  addRidgeCmd(terrain, exitCode);
+  addBump(terrain, exitCode);
+  addImport(terrain, exitCode);
+  addPreview(terrain, exitCode);
+  addInfo(terrain, exitCode);
+  addMaterials(terrain, exitCode);
 }
 
-}  // namespace tumble
+}  // namespace tumble::tools

@@ -1,4 +1,4 @@
-#include "app/rigid_body_cases.h"
+#include "tools/report/rigid_body_cases.h"
 
 #include <cmath>
 #include <functional>
@@ -12,7 +12,7 @@
 #include "physics/joints/ragdoll.h"
 #include "physics/world.h"
 
-namespace tumble::app {
+namespace tumble::tools {
 
 namespace {
 
@@ -162,9 +162,9 @@ numerics::StabilityCase massRatioCase(Real ratio) {
   return c;
 }
 
-// ---- joint formulations ----------------------------------------------------------
+// ---- joint solvers ---------------------------------------------------------------
 
-/// Formulation A: Lagrange multipliers on the public World API (physics/joints).
+/// The lagrange joint solver on the public World API (physics/joints).
 class LagrangeRig final : public JointRig {
  public:
   explicit LagrangeRig(World& w) : joints(w) {}
@@ -183,16 +183,16 @@ std::unique_ptr<JointRig> lagrangeChain(World& w, const std::vector<BodyId>& bod
   return rig;
 }
 
-/// Formulation B: the same joints as velocity-level impulses solved with the
-/// contacts inside the World's substeps (physics/joints/impulse_joints.cpp).
+/// The impulse joint solver: the same joints as velocity-level impulses solved
+/// with the contacts inside the World's substeps (physics/joints/impulse_solver.cpp).
 std::unique_ptr<JointRig> impulseChain(World& w, const std::vector<BodyId>& bodies, const std::vector<Vec3>& anchors) {
   auto rig = lagrangeChain(w, bodies, anchors);
   static_cast<LagrangeRig&>(*rig).joints.setSolver(physics::JointSolverKind::Impulse);
   return rig;
 }
 
-std::vector<JointFormulation>& formulationRegistry() {
-  static std::vector<JointFormulation> registry{{"A", lagrangeChain}, {"B", impulseChain}};
+std::vector<JointSolverCase>& solverRegistry() {
+  static std::vector<JointSolverCase> registry{{"lagrange", lagrangeChain}, {"impulse", impulseChain}};
   return registry;
 }
 
@@ -255,10 +255,10 @@ numerics::StabilityCase worldSpringCase() {
 
 // 100 links of 0.1 m hanging from a fixed point, released 0.3 rad from
 // vertical. Drifting: a joint's anchors more than 1 cm apart.
-numerics::StabilityCase hangingChainCase(const JointFormulation& f) {
+numerics::StabilityCase hangingChainCase(const JointSolverCase& f) {
   numerics::StabilityCase c;
   c.name = "chain_100_links_" + f.name;
-  c.description = "100 capsule links (0.1 m, 1 kg) hanging by ball joints (formulation " + f.name +
+  c.description = "100 capsule links (0.1 m, 1 kg) hanging by ball joints (joint solver " + f.name +
                   "), released 0.3 rad from vertical; drifting past 1 cm of joint error";
   c.dts_s = {1.0 / 60, 1.0 / 120};
   c.methods = {kWorldMethod};
@@ -368,11 +368,11 @@ numerics::StabilityCase stiffClothCase() {
 
 }  // namespace
 
-void registerJointFormulation(JointFormulation formulation) {
-  formulationRegistry().push_back(std::move(formulation));
+void registerJointSolver(JointSolverCase solver) {
+  solverRegistry().push_back(std::move(solver));
 }
 
-const std::vector<JointFormulation>& jointFormulations() { return formulationRegistry(); }
+const std::vector<JointSolverCase>& jointSolvers() { return solverRegistry(); }
 
 std::vector<numerics::StabilityCase> rigidBodyStabilityCases() {
   std::vector<numerics::StabilityCase> cases;
@@ -469,7 +469,7 @@ std::vector<numerics::StabilityCase> rigidBodyStabilityCases() {
     cases.push_back(c);
   }
   cases.push_back(worldSpringCase());
-  for (const JointFormulation& f : jointFormulations()) cases.push_back(hangingChainCase(f));
+  for (const JointSolverCase& f : jointSolvers()) cases.push_back(hangingChainCase(f));
   cases.push_back(heavyOnRagdollCase());
   cases.push_back(stiffClothCase());
   return cases;
@@ -581,7 +581,7 @@ double worldSpringError(numerics::Method m, double dt) {
 
 // A 10-link chain of 0.2 m links released horizontal (1.5 rad) for 1 s:
 // error = largest joint anchor separation (m), the constraint drift.
-double chainDrift(const JointFormulation& f, double dt) {
+double chainDrift(const JointSolverCase& f, double dt) {
   World w;
   Chain chain = buildChain(w, 10, Real(0.2), Vec3(0, 5, 0), Real(1.5));
   auto rig = f.chain(w, chain.bodies, chain.anchors);
@@ -628,9 +628,9 @@ std::vector<numerics::PrecisionProblem> rigidBodyPrecisionProblems() {
                                   "a 1 kg body on an applied spring in the world, k/m = 1e4, 1 s, one substep; "
                                   "error = largest distance from 0.1 cos(100 t)",
                                   "m", 1, 1.0 / 3840, 1.0 / 60, worldSpringError, every));
-  for (const JointFormulation& f : jointFormulations())
+  for (const JointSolverCase& f : jointSolvers())
     problems.push_back(worldProblem("chain_10_links_" + f.name,
-                                    "10 capsule links of 0.2 m on ball joints (formulation " + f.name +
+                                    "10 capsule links of 0.2 m on ball joints (joint solver " + f.name +
                                         ") released horizontal, 1 s; error = largest joint anchor separation",
                                     "m", 1, 1.0 / 480, 1.0 / 30,
                                     [f](numerics::Method, double dt) { return chainDrift(f, dt); }));
@@ -642,4 +642,4 @@ std::vector<numerics::PrecisionProblem> rigidBodyPrecisionProblems() {
   return problems;
 }
 
-}  // namespace tumble::app
+}  // namespace tumble::tools

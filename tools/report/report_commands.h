@@ -1,8 +1,9 @@
 #pragma once
 // `tumble report precision --out DIR [--quick]` and
-// `tumble report stability --out DIR [--quick]`: the numerics lab's reports
-// (issue 7). The computations live in runtime/numerics; this file owns the
-// command line, the files (written atomically) and running gnuplot.
+// `tumble report stability --out DIR [--quick]` (the program tumble-report):
+// the numerics lab's reports. The computations live in runtime/numerics and
+// the rigid-body cases beside this file (rigid_body_cases.h); this file owns
+// the command line, the files (written atomically) and running gnuplot.
 //
 //   precision  DIR/precision.csv   problem,method,dt,error,cpu_seconds
 //              DIR/precision.md    tables + cheapest method per target error
@@ -19,11 +20,11 @@ namespace CLI {
 class App;
 }
 
-namespace tumble {
+namespace tumble::tools {
 
-/// Adds the `report` command with its `precision` and `stability`
-/// subcommands to root; their callbacks store the exit code in exitCode
-/// (which must outlive root's parse).
-void addReportCommand(CLI::App& root, int& exitCode);
+/// Adds the `precision` and `stability` subcommands to `report` (the
+/// program's own command line) and requires one of them; their callbacks
+/// store the exit code in exitCode (which must outlive report's parse).
+void addReportCommands(CLI::App& report, int& exitCode);
 
-}  // namespace tumble
+}  // namespace tumble::tools
