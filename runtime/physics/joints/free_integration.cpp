@@ -8,7 +8,7 @@
 // constraint forces re-solved at every stage, no projection: the paper's
 // scheme, for its stability claim. Largest stable dt (5-link chain released
 // at 45 degrees, 5 s; stable = finite, anchor error < 5 cm, |E - E0| < m g L;
-// printed by tests/physics_joints):
+// printed by tests/physics/joints):
 //      k_s    k_d   explicit Euler  trapezoid  semi-implicit  RK4
 //        0      0       0.002         0.015       0.001       0.06
 //       25     10       0.002         0.0225      0.0275      0.08

@@ -1,6 +1,7 @@
 // Micro-benchmark for the terrain's targets on a 4097^2 map: tree build time,
 // bytes per sample (heights + tree), ray casts per second on random rays.
-// Not a test: prints one line per figure. Run: build/tests/terrain_bench
+// Not a test: prints one line per figure. Build with `cmake --build build
+// --target benchmarks`, run build/bin/tumble_bench_terrain.
 #include <chrono>
 #include <cstdio>
 
