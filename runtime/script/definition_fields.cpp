@@ -183,5 +183,26 @@ std::string showNumber(double v) {
   return buf;
 }
 
+std::string showNumbers(const std::vector<Real>& v) {
+  std::string out = "{";
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i > 0) out.append(", ");
+    out.append(showNumber(v[i]));
+  }
+  out.append("}");
+  return out;
+}
+
+std::string showVec3(const Vec3& v) { return showNumbers({v.x(), v.y(), v.z()}); }
+
+std::string quoted(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + 2);
+  out.push_back('"');
+  out.append(text);
+  out.push_back('"');
+  return out;
+}
+
 }  // namespace fields
 }  // namespace tumble::script

@@ -63,7 +63,11 @@ void setIndex(lua_State* L, int i);
 int listLength(lua_State* L, const std::string& path, const char* form);
 /// Pushes item i of the list on top of the stack.
 void getItem(lua_State* L, int i);
+/// Values as the docs show them: 1.5, {0.75, -0.2, 1.3}, "open".
 std::string showNumber(double v);
+std::string showVec3(const Vec3& v);
+std::string showNumbers(const std::vector<Real>& v);
+std::string quoted(const std::string& text);
 }  // namespace fields
 
 template <class T>
@@ -187,7 +191,7 @@ typename FieldTable<T>::Field text(const char* name, std::string T::*m, std::str
             fields::pushString(L, o.*m);
             return true;
           },
-          [m](const T& o) { return (o.*m).empty() ? std::string() : "\"" + o.*m + "\""; }};
+          [m](const T& o) { return (o.*m).empty() ? std::string() : fields::quoted(o.*m); }};
 }
 
 template <class T>
@@ -195,11 +199,7 @@ typename FieldTable<T>::Field vec3(const char* name, Vec3 T::*m, const char* uni
   return {name, "number[]", std::move(doc) + ", " + unit,
           [m, unit](lua_State* L, const std::string& path, T& o) { o.*m = fields::readVec3(L, path, unit); },
           [m](lua_State* L, const T& o) { return fields::pushVec3(L, o.*m), true; },
-          [m](const T& o) {
-            const Vec3& v = o.*m;
-            return "{" + fields::showNumber(v.x()) + ", " + fields::showNumber(v.y()) + ", " +
-                   fields::showNumber(v.z()) + "}";
-          }};
+          [m](const T& o) { return fields::showVec3(o.*m); }};
 }
 
 template <class T>
@@ -207,11 +207,7 @@ typename FieldTable<T>::Field numbers(const char* name, std::vector<Real> T::*m,
   return {name, "number[]", std::move(doc),
           [m](lua_State* L, const std::string& path, T& o) { o.*m = fields::readNumbers(L, path); },
           [m](lua_State* L, const T& o) { return fields::pushNumbers(L, o.*m), true; },
-          [m](const T& o) {
-            std::string s;
-            for (Real v : o.*m) s += (s.empty() ? "" : ", ") + fields::showNumber(v);
-            return "{" + s + "}";
-          }};
+          [m](const T& o) { return fields::showNumbers(o.*m); }};
 }
 
 template <class T>
@@ -249,7 +245,7 @@ typename FieldTable<T>::Field choice(const char* name, V T::*m, std::vector<std:
           },
           [m, names](const T& o) {
             for (const auto& [n, value] : names)
-              if (o.*m == value) return "\"" + std::string(n) + "\"";
+              if (o.*m == value) return fields::quoted(n);
             return std::string();
           }};
 }

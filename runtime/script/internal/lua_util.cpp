@@ -179,7 +179,8 @@ void checkStackBalance(lua_State* L, int argsOnEntry, int results, const char* b
 
 void registerType(lua_State* L, const BoundType& type) {
   luaL_newmetatable(L, type.metatable);
-  luaL_newlib(L, type.methods);
+  lua_newtable(L);
+  luaL_setfuncs(L, type.methods, 0);
   lua_setfield(L, -2, "__index");
   if (type.toString) {
     lua_pushcfunction(L, type.toString);
