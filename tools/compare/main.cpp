@@ -5,6 +5,7 @@
 //   tumble_compare list
 //   tumble_compare SCENE [--steps N] [--dt H] [--report FILE] [--quick]
 //                        [--bullet-iterations N] [--no-bullet-default] [--sleep]
+//   tumble_compare SCENE --sweep [--out DIR] [--steps N] [--quick]   (sweep.cpp)
 //   tumble_compare terrain_rays [--rays N] [--terrain-size N] [--report FILE] [--quick]
 //
 // Solver budget. Tumble's default step is 8 substeps x (4 solve + 2 relax)
@@ -28,12 +29,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "core/file_util.h"
+#include "compare_report.h"
 #include "physics/world.h"
 #include "scenes.h"
+#include "sweep.h"
 #include "terrain_rays.h"
 
 using nlohmann::json;
@@ -43,82 +47,6 @@ namespace {
 
 constexpr int kQuickSteps = 20;
 constexpr int kBulletDefaultIterations = 10;  // btContactSolverInfo's default
-
-/// Nearest-rank percentile of a sample (p in [0, 1]).
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  std::size_t rank = std::size_t(std::ceil(p * double(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-json measured(const RunResult& r) {
-  double total = 0;
-  for (double t : r.stepMs) total += t;
-  json j;
-  j["steps_run"] = r.stepMs.size();
-  j["step_ms_median"] = median(r.stepMs);
-  j["step_ms_p99"] = percentile(r.stepMs, 0.99);
-  j["step_ms_max"] = r.stepMs.empty() ? 0.0 : *std::max_element(r.stepMs.begin(), r.stepMs.end());
-  j["step_cpu_ms_median"] = median(r.stepCpuMs);
-  j["total_s"] = total / 1000;
-  j["penetration_max_m"] = r.penetrationMax_m;
-  j["escaped"] = r.escaped;
-  j["stack_drift_m"] = r.stackDrift_m;
-  j["kinetic_energy_end_J"] = r.kineticEnergyEnd_J;
-  // End / start; null when the scene starts at rest.
-  j["kinetic_energy_ratio"] = r.kineticEnergyStart_J > 0 ? json(r.kineticEnergyEnd_J / r.kineticEnergyStart_J) : json(nullptr);
-  j["sleeping_at_end"] = r.sleepingAtEnd;
-  j["joint_error_max_m"] = r.jointErrorMax_m;
-  return j;
-}
-
-json tumbleSettings(bool sleep) {
-  tumble::physics::WorldSettings s;
-  s.enableSleep = sleep;
-  json j;
-  j["substeps"] = s.substeps;
-  j["iterations"] = s.velocityIterations;
-  j["relax_iterations"] = s.relaxIterations;
-  j["sweeps_per_step"] = s.substeps * (s.velocityIterations + s.relaxIterations);
-  j["collision_passes_per_step"] = 1;
-  j["position_correction"] = s.softContacts ? "soft_contacts" : "split_impulse";
-  j["baumgarte"] = s.baumgarte;
-  j["linear_slop_m"] = s.linearSlop_m;
-  j["restitution_threshold_mps"] = s.restitutionThreshold_mps;
-  j["ccd"] = "speculative contacts (always on), margin " + std::to_string(s.speculativeDistance_m) + " m + closing speed x dt";
-  j["sleep"] = s.enableSleep ? "after " + std::to_string(s.timeToSleep_s) + " s below " +
-                                   std::to_string(s.sleepLinearSpeed_mps) + " m/s and " +
-                                   std::to_string(s.sleepAngularSpeed_radps) + " rad/s"
-                             : "off";
-  j["precision"] = sizeof(tumble::Real) == 4 ? "float" : "double";
-  return j;
-}
-
-json bulletSettings(const SceneSpec& scene, const BulletConfig& c) {
-  json j;
-  j["substeps"] = 1;
-  j["iterations"] = c.iterations;
-  j["sweeps_per_step"] = c.iterations;
-  j["collision_passes_per_step"] = 1;
-  j["split_impulse"] = c.splitImpulse;
-  j["erp2"] = 0.2;
-  j["solver_mode"] = "SOLVER_USE_WARMSTARTING | SOLVER_SIMD (default)";
-  j["restitution_threshold_mps"] = 1.0;
-  j["broadphase"] = "btDbvtBroadphase";
-  j["ccd"] = scene.fastBodies ? "on: ccd motion threshold = swept sphere radius = sphere radius" : "off";
-  j["material_rule"] = "per-body sqrt(pair value); Bullet multiplies the two";
-  j["sleep"] = c.sleep ? "default: after 2 s below 0.8 m/s and 1 rad/s" : "off (DISABLE_DEACTIVATION)";
-  j["precision"] = bulletPrecision();
-  return j;
-}
 
 double ratio(const json& a, const json& b, const char* field = "step_ms_median") {
   double den = b[field].get<double>();
@@ -154,6 +82,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 10000));
   app.add_flag("--no-bullet-default", noBulletDefault, "skip the extra Bullet run at its default 10 iterations");
   app.add_flag("--sleep", sleep, "let both engines put resting bodies to sleep (off: time the solvers, not idle worlds)");
+  bool sweep = false;
+  std::string outDir = ".";
+  app.add_flag("--sweep", sweep,
+               "work-precision comparison: each engine over its accuracy settings, quality against CPU time per "
+               "step with Pareto fronts (CSV, gnuplot PNG and JSON); with --quick a 2 x 2 grid of 20 steps");
+  app.add_option("--out", outDir, "--sweep: folder for the CSV, data, gnuplot script and PNG (default: .)");
   TerrainRaysOptions rayOptions;
   app.add_option("--rays", rayOptions.rays, "terrain_rays: rays in the batch (default 100000)")
       ->check(CLI::Range(1, 100000000));
@@ -197,11 +131,44 @@ int main(int argc, char** argv) {
   }
   if (steps == 0) steps = quick ? kQuickSteps : scene.defaultSteps;
 
+  if (sweep) {
+    std::error_code ec;
+    std::filesystem::create_directories(outDir, ec);
+    if (ec) {
+      std::fprintf(stderr, "tumble_compare: cannot create --out folder '%s': %s\n", outDir.c_str(), ec.message().c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "tumble_compare: %s sweep, %zu bodies, %d steps of %.6g s per run\n", scene.name.c_str(),
+                 scene.bodies.size(), steps, dt);
+    SweepOptions options;
+    options.outDir = outDir;
+    options.quick = quick;
+    json report;
+    try {
+      report = runSweep(scene, steps, dt, options);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tumble_compare: %s\n", e.what());
+      return 1;
+    }
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!reportPath.empty()) {
+      if (auto s = tumble::writeFileAtomic(reportPath, text); !s) {
+        std::fprintf(stderr, "tumble_compare: %s\n", s.error().c_str());
+        return 1;
+      }
+    }
+    return 0;
+  }
+
   std::fprintf(stderr, "tumble_compare: %s, %zu bodies, %d steps of %.6g s\n", scene.name.c_str(),
                scene.bodies.size(), steps, dt);
   std::fprintf(stderr, "  tumble ...\n");
-  json tumble = measured(runTumble(scene, steps, dt, sleep, jointSolver));
-  tumble.update(tumbleSettings(sleep));
+  TumbleConfig tumbleConfig;
+  tumbleConfig.sleep = sleep;
+  tumbleConfig.jointSolver = jointSolver;
+  json tumble = measured(runTumble(scene, steps, dt, tumbleConfig));
+  tumble.update(tumbleSettings(tumbleConfig));
   if (!scene.joints.empty()) tumble["joint_solver"] = jointSolver;
   std::fprintf(stderr, "  bullet (%d iterations) ...\n", bulletIterations);
   BulletConfig peer;

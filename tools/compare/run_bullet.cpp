@@ -1,7 +1,8 @@
 // Bullet side of the comparison: btDiscreteDynamicsWorld with the stock
 // pieces (default collision configuration, DBVT broad phase, sequential
 // impulse solver), one internal step of dt per stepSimulation() call
-// (maxSubSteps = 0), and the iteration count given by the caller.
+// (maxSubSteps = 0) or exactly `substeps` internal steps of dt / substeps,
+// and the iteration count and residual threshold given by the caller.
 //
 // Fairness choices:
 // - Materials: Bullet multiplies the two bodies' friction and restitution,
@@ -160,6 +161,7 @@ RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletCo
                              btScalar(scene.gravity_mps2.z())));
   btContactSolverInfo& info = world.getSolverInfo();
   info.m_numIterations = cfg.iterations;
+  info.m_leastSquaresResidualThreshold = btScalar(cfg.residualThreshold_m2ps2);
   info.m_splitImpulse = cfg.splitImpulse ? 1 : 0;
   info.m_restitutionVelocityThreshold = 1;  // Tumble's WorldSettings::restitutionThreshold_mps
 
@@ -200,7 +202,10 @@ RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletCo
   for (int i = 0; i < steps; ++i) {
     const double c0 = threadCpuMs();
     auto t0 = std::chrono::steady_clock::now();
-    world.stepSimulation(btScalar(dt), 0);  // maxSubSteps 0: exactly one step of dt
+    if (cfg.substeps <= 1)
+      world.stepSimulation(btScalar(dt), 0);  // maxSubSteps 0: exactly one step of dt
+    else  // exactly cfg.substeps internal steps of dt / substeps (no interpolation left over)
+      world.stepSimulation(btScalar(dt), cfg.substeps, btScalar(dt / cfg.substeps));
     auto t1 = std::chrono::steady_clock::now();
     r.stepCpuMs.push_back(threadCpuMs() - c0);
     r.stepMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());

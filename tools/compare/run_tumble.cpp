@@ -34,10 +34,13 @@ double kineticEnergy(const World& w, const std::vector<BodyId>& ids) {
 
 }  // namespace
 
-RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep, const std::string& jointSolver) {
+RunResult runTumble(const SceneSpec& scene, int steps, double dt, const TumbleConfig& config) {
   WorldSettings settings;
   settings.gravity_mps2 = scene.gravity_mps2.cast<Real>();
-  settings.enableSleep = sleep;
+  settings.enableSleep = config.sleep;
+  if (config.substeps > 0) settings.substeps = config.substeps;
+  if (config.iterations > 0) settings.velocityIterations = config.iterations;
+  if (config.tolerance >= 0) settings.solverTolerance = Real(config.tolerance);
   World world(settings);
   std::vector<BodyId> ids;
   ids.reserve(scene.bodies.size());
@@ -62,8 +65,8 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep, co
 
   // Joints (rag-dolls): the scene's joints in a JointSystem, as spawn_ragdoll builds them.
   physics::JointSettings js;
-  js.projectPositions = false;  // what the scenario host uses for A
-  physics::parseJointSolver(jointSolver, &js.solver);
+  js.projectPositions = false;  // as spawn_ragdoll's joints in a scenario
+  physics::parseJointSolver(config.jointSolver, &js.solver);
   std::unique_ptr<physics::JointSystem> joints;
   if (!scene.joints.empty()) joints = std::make_unique<physics::JointSystem>(world, js);
   for (const JointSpec& j : scene.joints) {

@@ -33,6 +33,7 @@ void addGroundBox(SceneSpec& s) {
 /// pair value (Bullet's default body friction 0.5 gives a pair 0.25).
 void boxes3000(SceneSpec& s) {
   s.description = "8x8x47 falling cubes (half 1 m, 2 kg) on a ground box, Bullet's 3000-boxes benchmark layout";
+  s.qualityMetric = "penetration_max_m";  // a collapsing pile: drift means nothing, overlap does
   s.friction = 0.5;
   s.restitution = 0;
   s.defaultSteps = 300;
@@ -112,6 +113,39 @@ void pyramid20(SceneSpec& s) {
   }
 }
 
+/// A large pile: a square 3-D pyramid of 14 x 14, 13 x 13, ..., 1 cubes
+/// (1015 cubes of half-extent 0.5 m, 1 kg), touching, on a static ground box
+/// with its top at y = 0; friction 0.6, no sleeping. Every box rests on four
+/// (or the ground), so the contact graph is one large island, the case a
+/// sleeping, island-splitting engine cannot dodge. A well-solved pile stands
+/// still: stack_drift_m measures how much it creeps or slumps.
+void pile1015(SceneSpec& s) {
+  s.description = "3-D pyramid, base 14 x 14 (1015 cubes, half 0.5 m, 1 kg) on a ground box";
+  s.friction = 0.6;
+  s.restitution = 0;
+  s.defaultSteps = 300;
+  BodySpec ground;
+  ground.shape = BodyShape::Box;
+  ground.halfExtents_m = V3(40, 0.5, 40);
+  ground.position_m = V3(0, -0.5, 0);
+  ground.mass_kg = 0;
+  s.bodies.push_back(ground);
+  const int base = 14;
+  const double half = 0.5;
+  for (int layer = 0; layer < base; ++layer) {
+    const int n = base - layer;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        BodySpec b;
+        b.shape = BodyShape::Box;
+        b.halfExtents_m = V3::Constant(half);
+        b.position_m = V3((i - (n - 1) * 0.5) * 2 * half, half + layer * 2 * half, (j - (n - 1) * 0.5) * 2 * half);
+        b.mass_kg = 1;
+        s.bodies.push_back(b);
+      }
+  }
+}
+
 /// 1000 spheres (radius 0.1 m, 1 kg) at 250 m/s in random directions inside
 /// a closed box: 6 static walls 1 m thick around a 20 m cube cavity centred
 /// on the origin. Restitution 1, friction 0, no gravity. At 1/60 s a sphere
@@ -125,6 +159,7 @@ void highspeed1000(SceneSpec& s) {
   s.restitution = 1;
   s.fastBodies = true;
   s.defaultSteps = 600;
+  s.qualityMetric = "energy_rel_change";  // elastic and frictionless: kinetic energy is conserved
   const double inner = 10, wallHalf = 0.5;
   s.containHalf_m = inner;
   for (int axis = 0; axis < 3; ++axis)
@@ -169,6 +204,7 @@ void highspeed1000(SceneSpec& s) {
 /// and btHingeConstraint).
 void ragdolls100(SceneSpec& s) {
   s.description = "100 rag-dolls (11 parts, 10 joints each) dropped on a ground box";
+  s.qualityMetric = "joint_error_max_m";
   s.friction = 0.6;
   s.restitution = 0;
   s.defaultSteps = 300;
@@ -214,6 +250,7 @@ constexpr Entry kScenes[] = {
     {"boxes_3000", boxes3000},
     {"boxes_3000_stacked", boxes3000Stacked},
     {"pyramid_20", pyramid20},
+    {"pile_1015", pile1015},
     {"highspeed_1000", highspeed1000},
     {"ragdolls_100", ragdolls100},
 };

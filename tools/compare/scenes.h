@@ -61,6 +61,10 @@ struct SceneSpec {
   /// |x|,|y|,|z| <= containHalf_m counts as escaped. 0 = no container.
   double containHalf_m = 0;
   int defaultSteps = 600;
+  /// The quality figure `--sweep` draws its headline from (lower is better):
+  /// stack_drift_m, penetration_max_m, joint_error_max_m or
+  /// energy_rel_change (see sweep.cpp).
+  std::string qualityMetric = "stack_drift_m";
   std::vector<BodySpec> bodies;
   std::vector<JointSpec> joints;
 };
@@ -89,18 +93,45 @@ struct RunResult {
 /// Bullet solver configuration for one run.
 struct BulletConfig {
   int iterations = 40;
+  /// Internal steps per dt: stepSimulation(dt, substeps, dt / substeps), so
+  /// collision detection and the solver run once per substep.
+  int substeps = 1;
+  /// btContactSolverInfo::m_leastSquaresResidualThreshold: the iterations of
+  /// a (sub)step stop once the largest squared velocity correction of a sweep
+  /// is at most this, (m/s)^2. 0 (Bullet's default) runs every iteration.
+  double residualThreshold_m2ps2 = 0;
   bool splitImpulse = true;
   bool sleep = false;  ///< Bullet's default deactivation (else DISABLE_DEACTIVATION on every body)
+};
+
+/// Tumble solver configuration for one run; the defaults are WorldSettings'.
+struct TumbleConfig {
+  int substeps = 0;           ///< 0: WorldSettings' default
+  int iterations = 0;         ///< solve iterations per substep; 0: default
+  double tolerance = -1;      ///< WorldSettings::solverTolerance; < 0: default
+  bool sleep = false;
+  std::string jointSolver = "impulse";  ///< "impulse" or "lagrange"
+};
+
+/// ODE configuration for one run (Debian's libode, double precision).
+/// dWorldStep factorises each island's constraint matrix (a direct solve: no
+/// iterations); dWorldQuickStep runs `iterations` SOR sweeps. Either is
+/// called `substeps` times per dt, with collision each time.
+struct OdeConfig {
+  bool quickStep = true;
+  int iterations = 20;  ///< dWorldQuickStep only (ODE's default is 20)
+  int substeps = 1;
 };
 
 /// Sleeping is off by default in both engines: with it, the median step of a
 /// settled scene times an idle world and the two engines' sleep policies
 /// (Tumble 0.5 s, Bullet 2 s) instead of their solvers. --sleep turns each
 /// engine's default sleeping on.
-/// jointSolver: "impulse" (default) or "lagrange".
-RunResult runTumble(const SceneSpec& scene, int steps, double dt, bool sleep,
-                    const std::string& jointSolver = "impulse");
+RunResult runTumble(const SceneSpec& scene, int steps, double dt, const TumbleConfig& config);
 RunResult runBullet(const SceneSpec& scene, int steps, double dt, const BulletConfig& config);
+RunResult runOde(const SceneSpec& scene, int steps, double dt, const OdeConfig& config);
+/// Version of the linked ODE ("0.16.2"), from its configuration string.
+std::string odeVersion();
 /// "float" or "double": how the linked Bullet stores btScalar.
 const char* bulletPrecision();
 

@@ -288,7 +288,7 @@ numerics::StabilityCase hangingChainCase(const JointSolverCase& f) {
 numerics::StabilityCase heavyOnRagdollCase() {
   numerics::StabilityCase c;
   c.name = "heavy_box_on_ragdoll";
-  c.description = "a 500 kg box dropped from 1 m onto a 75 kg rag-doll lying on the ground (joints A); "
+  c.description = "a 500 kg box dropped from 1 m onto a 75 kg rag-doll lying on the ground (Lagrange joint solver); "
                   "drifting past 5 cm of joint error";
   c.dts_s = {1.0 / 30, 1.0 / 60, 1.0 / 120};
   c.methods = {kWorldMethod};
@@ -635,7 +635,7 @@ std::vector<numerics::PrecisionProblem> rigidBodyPrecisionProblems() {
                                     "m", 1, 1.0 / 480, 1.0 / 30,
                                     [f](numerics::Method, double dt) { return chainDrift(f, dt); }));
   problems.push_back(worldProblem("ragdoll_drop",
-                                  "the default 75 kg human dropped head first from 1 m, 2 s (joints A); error = "
+                                  "the default 75 kg human dropped head first from 1 m, 2 s (Lagrange joint solver); error = "
                                   "largest joint anchor separation",
                                   "m", 2, 1.0 / 480, 1.0 / 30,
                                   [](numerics::Method, double dt) { return ragdollDropDrift(dt); }));

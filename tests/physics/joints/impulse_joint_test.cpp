@@ -201,7 +201,7 @@ Drop dropRagdoll(JointSolverKind kind) {
   World world;
   JointSettings s;
   s.solver = kind;
-  s.projectPositions = false;  // what the scenario host uses for A
+  s.projectPositions = false;  // as app::Scene sets it for scenario joints
   JointSystem joints(world, s);
   BodyDef ground;
   ground.type = BodyType::Static;
