@@ -60,7 +60,6 @@ int main(int argc, char** argv) {
     const int code = cli.exit(e);
     return code == 0 ? 0 : 1;
   }
-  const std::string self = ownBinDir() + "/tumble-sweep";
   if (*execCmd) {
     auto sweep = readSweepFolder(dir);
     if (!sweep) return fail(sweep.error());
@@ -77,7 +76,7 @@ int main(int argc, char** argv) {
   if (*runCmd) {
     auto sweep = readSweepFolder(dir);
     if (!sweep) return fail(sweep.error());
-    return runLocal(*sweep, jobsAtOnce, self);
+    return runLocal(*sweep, jobsAtOnce, ownBinDir() + "/tumble");
   }
   if (*collectCmd) {
     auto sweep = readSweepFolder(dir);
@@ -106,5 +105,5 @@ int main(int argc, char** argv) {
                 shellQuote(sweep->dir).c_str(), shellQuote(sweep->dir).c_str(), shellQuote(sweep->dir).c_str());
     return 0;
   }
-  return runLocal(*sweep, jobsAtOnce, self);
+  return runLocal(*sweep, jobsAtOnce, ownBinDir() + "/tumble");
 }

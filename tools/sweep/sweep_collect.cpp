@@ -93,9 +93,7 @@ std::vector<ResultRow> gatherRows(const SweepFolder& sweep) {
     row.scenario = job["scenario"].get<std::string>();
     row.log = "runs/" + row.id + "/log.txt";
     for (const std::string& k : sweep.keys) row.keyValues.push_back(keyValue(job, k));
-    json status = json::object();
-    if (auto text = readTextFile(sweep.dir + "/runs/" + row.id + "/status.json"); text)
-      status = json::parse(text.value(), nullptr, false);
+    const json status = jobStatus(sweep, i);
     if (status.is_object() && status.contains("exit") && status["exit"].is_number())
       row.exitText = std::to_string(status["exit"].get<int>());
     json report;
@@ -107,11 +105,10 @@ std::vector<ResultRow> gatherRows(const SweepFolder& sweep) {
       row.status = !report.value("script_errors", json::array()).empty() ? "script_error"
                    : expectationFailed                                    ? "expectation_failed"
                                                                           : "passed";
-      row.reason = status.is_object() ? status.value("reason", std::string()) : std::string();
-      if (row.status != "passed" && row.reason.empty()) row.reason = row.status;  // ran elsewhere without status
-    } else if (status.is_object() && status.contains("reason")) {
+      row.reason = reportReason(report);
+    } else if (status.is_object()) {
       row.status = "failed";
-      row.reason = status["reason"].get<std::string>();
+      row.reason = status.value("reason", std::string());
     } else {
       row.status = "not_run";
       row.log.clear();

@@ -105,7 +105,8 @@ std::string utcNow() {
   return buf;
 }
 
-// The reason a finished run did not pass, from its report.
+}  // namespace
+
 std::string reportReason(const json& r) {
   std::string reason;
   if (r.contains("script_errors") && !r["script_errors"].empty()) {
@@ -118,6 +119,8 @@ std::string reportReason(const json& r) {
   }
   return reason;
 }
+
+namespace {
 
 // The last non-empty line of a log (why a run could not start).
 std::string lastLogLine(const std::string& path) {
@@ -273,6 +276,30 @@ bool execJob(const SweepFolder& sweep, std::size_t index, const std::string& tum
   return finished;
 }
 
+json jobStatus(const SweepFolder& sweep, std::size_t index) {
+  const std::string id = sweep.jobs[index]["id"].get<std::string>();
+  const std::string runDir = sweep.dir + "/runs/" + id;
+  if (auto text = readTextFile(runDir + "/status.json"); text) {
+    json st = json::parse(text.value(), nullptr, false);
+    if (st.is_object()) return st;
+  }
+  // A local run through GNU parallel leaves the shell's exit status in
+  // runs/<id>/exit (128 + N: killed by signal N).
+  auto text = readTextFile(runDir + "/exit");
+  if (!text) return nullptr;
+  const int code = std::atoi(text.value().c_str());
+  json st = {{"id", id}, {"exit", nullptr}, {"signal", nullptr}};
+  if (code > 128) st["signal"] = code - 128;
+  else st["exit"] = code;
+  if (jobFinished(sweep, index)) {
+    st["reason"] = reportReason(json::parse(readTextFile(sweep.dir + "/" + sweep.jobs[index]["report"].get<std::string>()).value(), nullptr, false));
+  } else {
+    st["reason"] = code > 128 ? "killed by signal " + std::to_string(code - 128) + " (" + strsignal(code - 128) + ")"
+                              : "exit " + std::to_string(code) + " without a report: " + lastLogLine(runDir + "/log.txt");
+  }
+  return st;
+}
+
 std::string outcomeSummary(const SweepFolder& sweep, int* exitStatus) {
   int passed = 0, expectation = 0, script = 0, failed = 0, notRun = 0;
   for (std::size_t i = 0; i < sweep.jobs.size(); ++i) {
@@ -283,7 +310,7 @@ std::string outcomeSummary(const SweepFolder& sweep, int* exitStatus) {
       if (!r["script_errors"].empty()) ++script;
       else if (!reportReason(r).empty()) ++expectation;
       else ++passed;
-    } else if (fs::exists(sweep.dir + "/runs/" + id + "/status.json")) {
+    } else if (!jobStatus(sweep, i).is_null()) {
       ++failed;
     } else {
       ++notRun;
@@ -296,11 +323,25 @@ std::string outcomeSummary(const SweepFolder& sweep, int* exitStatus) {
   return buf;
 }
 
-int runLocal(const SweepFolder& sweep, int jobsAtOnce, const std::string& sweepBinary) {
+int runLocal(const SweepFolder& sweep, int jobsAtOnce, const std::string& tumbleBinary) {
+  // One shell command a job, run in the sweep folder: its output appended
+  // to runs/<id>/log.txt (earlier attempts stay above it), its exit status
+  // in runs/<id>/exit. No wrapper process per job: a short run costs about
+  // as much as starting a process, so a wrapper would double the overhead.
   std::string pending;
   std::size_t todo = 0;
-  for (std::size_t i = 0; i < sweep.jobs.size(); ++i)
-    if (!jobFinished(sweep, i)) pending += std::to_string(i) + "\n", ++todo;
+  for (std::size_t i = 0; i < sweep.jobs.size(); ++i) {
+    if (jobFinished(sweep, i)) continue;
+    const json& job = sweep.jobs[i];
+    const std::string run = "runs/" + job["id"].get<std::string>();
+    std::string command = shellQuote(tumbleBinary);
+    const auto argv = job["argv"].get<std::vector<std::string>>();
+    for (std::size_t a = 1; a < argv.size(); ++a) command += " " + shellQuote(argv[a]);
+    pending += "cd " + shellQuote(sweep.dir) + " && mkdir -p " + run + " && rm -f " + run + "/exit && echo " +
+               shellQuote("== " + command) + " >> " + run + "/log.txt && " + command + " >> " + run +
+               "/log.txt 2>&1; s=$?; echo $s > " + run + "/exit; exit $s\n";
+    ++todo;
+  }
   const std::size_t done = sweep.jobs.size() - todo;
   if (todo == 0) {
     std::printf("sweep %s: all %zu jobs finished already (nothing to run)\n", sweep.name.c_str(), sweep.jobs.size());
@@ -317,13 +358,13 @@ int runLocal(const SweepFolder& sweep, int jobsAtOnce, const std::string& sweepB
       std::fprintf(stderr, "sweep: GNU parallel is not installed (Debian: apt-get install parallel; tools/tumble installs it)\n");
       return 1;
     }
-    // --joblog +FILE appends, so earlier attempts stay on record.
     // The progress bar and ETA on a terminal; in a log (CI, nohup) they
     // would be thousands of redrawn lines, and the joblog has the record.
+    // --joblog +FILE appends, so earlier attempts stay on record.
     const bool terminal = isatty(2) != 0;
-    std::string cmd = std::string("parallel --will-cite ") + (terminal ? "--bar --eta " : "") + "--joblog +" + shellQuote(sweep.dir + "/joblog.txt") +
-                      " -j " + (jobsAtOnce > 0 ? std::to_string(jobsAtOnce) : std::string("100%")) + " " +
-                      shellQuote(sweepBinary) + " exec " + shellQuote(sweep.dir) + " --index {} :::: " + shellQuote(list);
+    std::string cmd = std::string("parallel --will-cite ") + (terminal ? "--bar --eta " : "") + "--joblog +" +
+                      shellQuote(sweep.dir + "/joblog.txt") + " -j " +
+                      (jobsAtOnce > 0 ? std::to_string(jobsAtOnce) : std::string("100%")) + " :::: " + shellQuote(list);
     (void)std::system(cmd.c_str());
   }
   int status = 0;

@@ -57,7 +57,15 @@ std::pair<std::size_t, std::size_t> chunkRange(const SweepFolder& sweep, std::si
 /// (0: one per core), a progress bar and ETA, and DIR/joblog.txt. Returns
 /// the exit status: 0 every job passed, 2 every job ran but some failed an
 /// expectation or had a script error, 1 some jobs left no report.
-int runLocal(const SweepFolder& sweep, int jobsAtOnce, const std::string& sweepBinary);
+int runLocal(const SweepFolder& sweep, int jobsAtOnce, const std::string& tumbleBinary);
+
+/// The job's exit status, signal and reason (why it did not pass; empty
+/// when it passed), from runs/<id>/status.json (exec) or runs/<id>/exit
+/// (a local run); null when it has not run.
+nlohmann::json jobStatus(const SweepFolder& sweep, std::size_t index);
+/// Why a finished run did not pass, from its report: the first script error
+/// (file, line, message) or the failed expectations with their values.
+std::string reportReason(const nlohmann::json& report);
 
 /// Counts of finished runs by outcome (for the messages after a run).
 std::string outcomeSummary(const SweepFolder& sweep, int* exitStatus);

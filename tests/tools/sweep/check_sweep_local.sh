@@ -43,7 +43,7 @@ expect_in "16 jobs: 4 passed, 4 failed an expectation, 8 had a script error, 0 f
 expect_in "tumble run sweeptest:drop --seed 1 --integrator symplectic_euler --set explode=false --set height=1 --mods $src/mods --report runs/0000" sweep-drops/jobs.txt "job line"
 expect_in "#SBATCH --array=0-" sweep-drops/slurm.sh "slurm script"
 expect_in "completionMode: Indexed" sweep-drops/k8s-job.yaml "kubernetes manifest"
-runs() { grep -c "tumble-sweep exec" sweep-drops/joblog.txt; }
+runs() { grep -c "tumble run sweeptest" sweep-drops/joblog.txt; }
 [ "$(runs)" = 16 ] || fail "GNU parallel's joblog has the 16 runs"
 grep -q "asked to fail with explode = true" sweep-drops/runs/000008/log.txt || fail "a script error's log is kept"
 
