@@ -164,7 +164,10 @@ Status writeSweepFolder(const SweepSpec& spec, const std::vector<Job>& jobs, con
   std::string lines;
   for (const Job& job : jobs) {
     std::string line;
-    for (const std::string& a : job.argv) line += (line.empty() ? "" : " ") + shellQuote(a);
+    for (const std::string& a : job.argv) {
+      if (!line.empty()) line += ' ';
+      line += shellQuote(a);
+    }
     lines += line + "\n";
   }
   const std::string binDir = options.binDir.empty() ? ownBinDir() : options.binDir;
@@ -229,7 +232,10 @@ bool execJob(const SweepFolder& sweep, std::size_t index, const std::string& tum
   std::vector<std::string> argv = job["argv"].get<std::vector<std::string>>();
   argv[0] = tumbleBinary;
   std::string shown;
-  for (const json& a : job["argv"]) shown += (shown.empty() ? "" : " ") + shellQuote(a.get<std::string>());
+  for (const json& a : job["argv"]) {
+    if (!shown.empty()) shown += ' ';
+    shown += shellQuote(a.get<std::string>());
+  }
   {
     std::ofstream log(logPath, std::ios::app);
     log << "== " << utcNow() << " in " << sweep.dir << ": " << shown << "\n";
@@ -336,8 +342,17 @@ int runLocal(const SweepFolder& sweep, int jobsAtOnce, const std::string& tumble
     const std::string run = "runs/" + job["id"].get<std::string>();
     std::string command = shellQuote(tumbleBinary);
     const auto argv = job["argv"].get<std::vector<std::string>>();
-    for (std::size_t a = 1; a < argv.size(); ++a) command += " " + shellQuote(argv[a]);
-    pending += "cd " + shellQuote(sweep.dir) + " && mkdir -p " + run + " && rm -f " + run + "/exit && echo " +
+    for (std::size_t a = 1; a < argv.size(); ++a) {
+      command += ' ';
+      command += shellQuote(argv[a]);
+    }
+    // The folder is made and a stale exit status removed here, so the line
+    // runs no program but tumble (mkdir and rm would be two more processes
+    // a job).
+    std::error_code ec;
+    fs::create_directories(sweep.dir + "/" + run, ec);
+    fs::remove(sweep.dir + "/" + run + "/exit", ec);
+    pending += "cd " + shellQuote(sweep.dir) + " && echo " +
                shellQuote("== " + command) + " >> " + run + "/log.txt && " + command + " >> " + run +
                "/log.txt 2>&1; s=$?; echo $s > " + run + "/exit; exit $s\n";
     ++todo;

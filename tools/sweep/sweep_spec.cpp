@@ -27,6 +27,12 @@ using nlohmann::json;
 namespace tumble::tools::sweep {
 
 std::string numberText(double v) {
+  // Whole numbers as such ("20", not "2e+01"); others the shortest text.
+  if (v == std::floor(v) && std::fabs(v) < 1e15) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f", v);
+    return text;
+  }
   for (int precision = 1; precision <= 17; ++precision) {
     char text[64];
     std::snprintf(text, sizeof text, "%.*g", precision, v);

@@ -3,13 +3,11 @@
 -- seed). 5 x 4 x 3 = 60 runs of 20 s.
 --   tools/tumble sweep tools/sweep/examples/drive_tuning.lua --run
 --   tools/tumble sweep collect sweep-drive_tuning
-local grips = {}
-for g = 0.6, 1.41, 0.2 do grips[#grips + 1] = g end  -- 0.6 .. 1.4
 return {
   name = "drive_tuning",
   scenarios = {"base:drive"},
   seconds = 20,
-  grid = {grip = grips, spring_rate = {0.75, 1, 1.5, 2}},
+  grid = {grip = {0.6, 0.8, 1, 1.2, 1.4}, spring_rate = {0.75, 1, 1.5, 2}},
   seeds = {1, 2, 3},
   collect = {"wall_seconds.total", "error.energy_rel_drift_max", "error.penetration_max_m",
              "expectations.distance driven (m)", "expectations.stayed upright (lowest chassis up.y)"},
