@@ -88,7 +88,9 @@ std::string k8sManifest(const std::string& name, std::size_t jobs, int chunk, st
   y += "spec:\n  completionMode: Indexed\n";
   y += "  completions: " + std::to_string(tasks) + "\n";
   y += "  parallelism: " + std::to_string(parallelism) + "\n";
-  y += "  backoffLimitPerIndex: 2\n  backoffLimit: " + std::to_string(2 * tasks) + "\n";
+  // A failed index is retried (up to twice per index on average); a retry
+  // skips the runs that finished.
+  y += "  backoffLimit: " + std::to_string(2 * tasks) + "\n";
   y += "  template:\n    spec:\n      restartPolicy: Never\n      containers:\n";
   y += "        - name: runs\n          image: " + o.image + "\n";
   y += "          command: [\"sh\", \"-c\", \"exec tumble-sweep exec /sweep --chunk \\\"$JOB_COMPLETION_INDEX\\\"\"]\n";
