@@ -97,7 +97,7 @@ return {
   end,
 
   on_update = function(ctx, dt)
-    if not car then return end
+    if not (pilot or player) then return end  -- on_start stopped early (its error is in the report)
     if pilot then pilot:update(dt) else player:update(dt) end
     effects:update(dt)
     local p = car:position()
