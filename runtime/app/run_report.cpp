@@ -1,6 +1,7 @@
 #include "app/run_report.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "app/scene.h"
 #include "app/scene_models.h"
@@ -92,6 +93,21 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
     else if (tn.kind == script::Tunable::Kind::Bool) tunables[tn.name] = tn.value() != 0;
     else tunables[tn.name] = tn.valueText();
   }
+  // Scenario parameters: each declared one with the value this run used
+  // (--set or its default), typed as declared; a scenario that declares none
+  // lists the --set values it was given, as text.
+  json params = json::object();
+  if (const script::ParamDecls& decls = host.declaredParams()) {
+    for (const script::ParamDecl& d : *decls) {
+      auto given = host.options().params.find(d.name);
+      const std::string& text = given != host.options().params.end() ? given->second : d.defaultText;
+      if (d.type == script::ParamDecl::Type::Number) params[d.name] = std::strtod(text.c_str(), nullptr);
+      else if (d.type == script::ParamDecl::Type::Boolean) params[d.name] = text == "true";
+      else params[d.name] = text;
+    }
+  } else {
+    for (const auto& [name, text] : host.options().params) params[name] = text;
+  }
   // What the static meshes' object trees saved (all zero without meshes).
   const physics::MeshStats& mesh = world.meshStats();
   const json meshCollision = {{"pairs", mesh.pairs},
@@ -140,6 +156,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"expectations", expectations},
       {"script_errors", errors},
       {"game", game},
+      {"params", params},
       {"tunables", tunables},
       {"mesh_collision", meshCollision},
       {"state_hash", std::string(hash)},

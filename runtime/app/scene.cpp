@@ -65,7 +65,17 @@ std::unique_ptr<input::InputSystem> loadInput(const script::ModRegistry& registr
 
 }  // namespace
 
-Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
+Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) { return build(options, false); }
+
+Result<script::ParamDecls> Scene::declaredParams(const SceneOptions& options) {
+  SceneOptions bare = options;
+  bare.sets.clear();  // the declaration, not a run: no --set, no terrain
+  auto scene = build(bare, true);
+  if (!scene) return makeError(scene.error());
+  return (*scene)->host().declaredParams();
+}
+
+Result<std::unique_ptr<Scene>> Scene::build(const SceneOptions& options, bool scriptOnly) {
   auto ref = script::parseScenarioRef(options.scenarioRef);
   if (!ref) return makeError(ref.error());
   if (!(options.dt_s > 0 && options.dt_s <= 1)) return makeError("--dt must be a time step in (0, 1] seconds");
@@ -132,6 +142,11 @@ Result<std::unique_ptr<Scene>> Scene::create(const SceneOptions& options) {
   auto host = script::ScenarioHost::load(*mod, ref->second, *scene, so);
   if (!host) return makeError(host.error());
   scene->m_host = std::move(host.value());
+  if (scriptOnly) return scene;
+  // A scenario that declares its parameters takes no other plain --set.
+  if (const script::ParamDecls& decls = scene->m_host->declaredParams())
+    for (const auto& [key, value] : so.params)
+      if (Status st = script::checkParamValue(*decls, options.scenarioRef, key, value); !st) return makeError(st.error());
   // The scenario's joint_solver field, unless the command line chose.
   if (!forcedJointSolver && scene->m_host->jointSolverRequest())
     scene->setJointSolver(*scene->m_host->jointSolverRequest());

@@ -65,6 +65,10 @@ const std::vector<std::string>& rigidBodyIntegrators();
 class Scene final : public script::SceneSystems {
  public:
   static Result<std::unique_ptr<Scene>> create(const SceneOptions& options);
+  /// The parameters the scenario declares (its `params` field; nothing when
+  /// it has none), read by loading the scenario file without running it:
+  /// no terrain, no on_start. Tools check --set names against it.
+  static Result<script::ParamDecls> declaredParams(const SceneOptions& options);
   ~Scene();
 
   physics::World& world() override { return *m_world; }
@@ -157,6 +161,9 @@ class Scene final : public script::SceneSystems {
   ModelCache& models() const { return *m_models; }
 
  private:
+  /// create(), or with scriptOnly just the world and the loaded scenario
+  /// file (declaredParams()).
+  static Result<std::unique_ptr<Scene>> build(const SceneOptions& options, bool scriptOnly);
   SceneOptions m_options;
   std::string m_modName, m_scenarioName;
   std::unique_ptr<ModelCache> m_models;     ///< before m_host: the host's modelBounds uses it

@@ -1,5 +1,6 @@
 // The scenario's global functions that are not a module: print, expect,
 // param and hud_text (each documented at its binding).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -76,17 +77,39 @@ int luaExpect(lua_State* L) {
   return 1;
 }
 
+// Pushes the declared default of `name` as index 2 (replacing a nil), so
+// param(name) converts to the declared type.
+void pushDeclaredDefault(lua_State* L, const ScenarioHost& host, const std::string& name) {
+  const ParamDecls& decls = host.declaredParams();
+  if (!decls || !lua_isnoneornil(L, 2)) return;
+  auto it = std::find_if(decls->begin(), decls->end(), [&](const ParamDecl& d) { return d.name == name; });
+  if (it == decls->end()) {
+    std::string known;
+    for (const ParamDecl& d : *decls) known += (known.empty() ? "" : ", ") + d.name;
+    throw LuaArgError("param(\"" + name + "\"): not in the scenario's params table (declared: " +
+                      (known.empty() ? "none" : known) + "); declare it there or pass a default");
+  }
+  lua_settop(L, 1);
+  switch (it->type) {
+    case ParamDecl::Type::Number: lua_pushnumber(L, std::strtod(it->defaultText.c_str(), nullptr)); break;
+    case ParamDecl::Type::Boolean: lua_pushboolean(L, it->defaultText == "true"); break;
+    default: lua_pushstring(L, it->defaultText.c_str());
+  }
+}
+
 /// @function param
 /// A scenario parameter from the command line (`--set name=value`),
 /// converted to the type of the default; the default when not given.
+/// Without a default, the one the scenario's `params` table declares.
 /// @param name string parameter name
-/// @param default any returned when absent; its type (number, boolean, string) decides the conversion
+/// @param default any? returned when absent; its type (number, boolean, string) decides the conversion; may be left out when the scenario declares the parameter in `params`
 /// @return any the value
 /// @example local count = param("count", 10)  -- tumble run mymod:rain --set count=50
 int luaParam(lua_State* L) {
   ScenarioHost* host = ScenarioHost::from(L);
   if (lua_type(L, 1) != LUA_TSTRING) throw LuaArgError("param: argument 1 must be the parameter's name");
   std::string name = lua_tostring(L, 1);
+  pushDeclaredDefault(L, *host, name);
   auto it = host->options().params.find(name);
   if (it == host->options().params.end()) {
     lua_settop(L, 2);

@@ -50,6 +50,7 @@
 #include "script/lua_vm.h"
 #include "script/mods.h"
 #include "script/presentation.h"
+#include "script/scenario_params.h"
 #include "script/scene_systems.h"
 #include "script/script_error.h"
 #include "script/timers.h"
@@ -157,6 +158,9 @@ class ScenarioHost {
   /// The scenario's `joint_solver` field, if it has one (the app decides:
   /// --set physics.joint_solver wins).
   std::optional<physics::JointSolverKind> jointSolverRequest() const { return m_jointSolverRequest; }
+  /// The scenario's `params = {...}` field (scenario_params.h): the
+  /// parameters it reads, or nothing when it does not declare them.
+  const ParamDecls& declaredParams() const { return m_params; }
   const std::vector<ScriptError>& errors() const { return m_errors; }
   const std::vector<Expectation>& expectations() const { return m_expectations; }
   /// Lines scripts asked to show on the HUD (hud_text), latest frame.
@@ -236,6 +240,7 @@ class ScenarioHost {
   int m_terrainBuildRef = 0;  ///< registry ref of terrain.build, 0 = none
   std::string m_integratorRequest;
   std::optional<physics::JointSolverKind> m_jointSolverRequest;
+  ParamDecls m_params;
   int m_envRef = 0, m_scenarioRef = 0, m_ctxRef = 0;
   int m_requireCacheRef = 0;  ///< require's loaded-modules table
   int m_reloadCount = 0;

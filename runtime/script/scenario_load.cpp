@@ -21,6 +21,7 @@ namespace tumble::script {
 /// @field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
 /// @field joint_solver string "lagrange" (default: Lagrange multipliers solved with the joints' sparse factor each substep) or "impulse" (impulses solved together with the contacts); --set physics.joint_solver=... overrides it
 /// @field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
+/// @field params table<string, ParamDeclaration>? the parameters the scenario reads with param(); when present, --set NAME=VALUE must name one of them with a value of its default's type (checked before the run starts), param(NAME) without a default returns the declared one, and the run report lists each with the value used
 /// @field on_start fun(ctx: Ctx) called once before the first step
 /// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 /// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
@@ -107,6 +108,9 @@ Status ScenarioHost::adoptScenarioTable(bool first) {
     m_jointSolverRequest = kind;
   }
   lua_pop(L, 1);
+  auto params = readParamDecls(L, -1, where);
+  if (!params) return fail(1, params.error());
+  m_params = std::move(params.value());
   lua_getfield(L, -1, "integrator");
   if (lua_type(L, -1) == LUA_TSTRING) m_integratorRequest = lua_tostring(L, -1);
   else if (!lua_isnil(L, -1))

@@ -748,6 +748,7 @@ function Vehicle:remove() end
 ---@field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
 ---@field joint_solver string "lagrange" (default: Lagrange multipliers solved with the joints' sparse factor each substep) or "impulse" (impulses solved together with the contacts); --set physics.joint_solver=... overrides it
 ---@field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
+---@field params table<string, ParamDeclaration>? the parameters the scenario reads with param(); when present, --set NAME=VALUE must name one of them with a value of its default's type (checked before the run starts), param(NAME) without a default returns the declared one, and the run report lists each with the value used
 ---@field on_start fun(ctx: Ctx) called once before the first step
 ---@field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 ---@field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
@@ -761,6 +762,12 @@ function Vehicle:remove() end
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
 ---@field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
+
+---One entry of a scenario's `params` table: `params = {speed = {default = 16, unit = "m/s", description = "..."}}`.
+---@class ParamDeclaration
+---@field default number|boolean|string the value when --set does not give one; its type is the parameter's type
+---@field unit string? the unit of a number, e.g. "m/s" (leave out for counts and ratios)
+---@field description string? what the parameter changes, for designers and sweeps
 
 ---What mods/<mod>/vehicles/<name>.lua returns (docs/vehicles.md explains
 ---each field). Every field is optional; a misspelt one is an error.
@@ -1674,12 +1681,13 @@ function expect(name, value, limits) end
 
 ---A scenario parameter from the command line (`--set name=value`),
 ---converted to the type of the default; the default when not given.
+---Without a default, the one the scenario's `params` table declares.
 ---
 ---```lua
 ---local count = param("count", 10)  -- tumble run mymod:rain --set count=50
 ---```
 ---@param name string parameter name
----@param default any returned when absent; its type (number, boolean, string) decides the conversion
+---@param default any? returned when absent; its type (number, boolean, string) decides the conversion; may be left out when the scenario declares the parameter in `params`
 ---@return any # the value
 function param(name, default) end
 

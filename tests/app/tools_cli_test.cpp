@@ -17,7 +17,7 @@ TEST(ToolsCli, HelpListsTheToolsBesideTheBinary) {
   for (const char* command : {"play", "run", "check", "list"})
     EXPECT_NE(r.output.find(command), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Tools (programs beside this one"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("meshgen, report, terrain"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("meshgen, report, sweep, terrain"), std::string::npos) << r.output;
 }
 
 TEST(ToolsCli, AToolGetsTheRestOfTheCommandLineAndItsExitStatusIsTumbles) {
@@ -60,7 +60,7 @@ TEST(ToolsCli, AnUnknownCommandNamesTheCommandsAndTools) {
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("'nosuchcommand' is not a command"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("play, run, check, list"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("meshgen, report, terrain"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("meshgen, report, sweep, terrain"), std::string::npos) << r.output;
   // A path is never taken for a tool name.
   EXPECT_EQ(runTumble("../bin/tumble --help").exitCode, 1);
 }

@@ -18,10 +18,38 @@ local function ground(x, z)
   return h
 end
 
+-- Scales the tyre curves' friction by grip and each axle's spring rate k by
+-- spring_rate (k from the suspension frequency f is m (2 pi f)^2, so f
+-- scales by sqrt(spring_rate)). At 1 and 1 the car is left as defined.
+local function tune_grip_and_springs(car, grip, spring_rate)
+  if grip == 1 and spring_rate == 1 then return end
+  local def = car:definition()
+  local changes = {tyre = {}, axles = {}}
+  for _, curve in ipairs({"longitudinal", "lateral"}) do
+    changes.tyre[curve] = {}
+    for i, point in ipairs(def.tyre[curve]) do changes.tyre[curve][i] = {point[1], point[2] * grip} end
+  end
+  for i, axle in ipairs(def.axles) do
+    local s = axle.suspension
+    changes.axles[i] = {suspension = (s.stiffness or 0) > 0 and {stiffness = s.stiffness * spring_rate}
+                                      or {frequency = s.frequency * math.sqrt(spring_rate)}}
+  end
+  car:tune(changes)
+end
+
 return {
   title = "Drive: free roam on generated hills",
   duration = 40,
   terrain = {generate = 5, size = 513, height = 14},  -- gentle 513 x 513 m hills; --set terrain.* overrides
+  -- What --set NAME=VALUE may change (tumble sweep sweeps these).
+  params = {
+    rocks = {default = 40, description = "rocks and trees scattered off the route (a count)"},
+    car = {default = "base:hatchback", description = "the vehicle definition, MOD:NAME"},
+    autopilot = {default = 1, description = "1: the autopilot drives the waypoint loop; 0: drive.player hands the car to you"},
+    speed = {default = 16, unit = "m/s", description = "the autopilot's cruising speed"},
+    grip = {default = 1, description = "scales the tyre's friction curves (peak and sliding friction), a ratio"},
+    spring_rate = {default = 1, description = "scales every axle's suspension spring rate, a ratio"},
+  },
 
   on_start = function(ctx)
     local h0 = ground(0, 0)
@@ -34,7 +62,7 @@ return {
     -- default): a car hits a tree's trunk, not the air under its crown.
     local rng = random.new(ctx.seed)
     local M = "base:assets/models/"
-    for i = 1, param("rocks", 40) do
+    for i = 1, param("rocks") do
       local a, r = rng:float(0, 2 * math.pi), rng:float(10, 140)
       if math.abs(r - 60) > 12 then
         local x, z = math.cos(a) * r, math.sin(a) * r
@@ -50,15 +78,15 @@ return {
         end
       end
     end
-    local name = param("car", "base:hatchback")
-    car = vehicle.spawn(name, {position = {60, ground(60, 0), 0}, heading = 0})
+    car = vehicle.spawn(param("car"), {position = {60, ground(60, 0), 0}, heading = 0})
+    tune_grip_and_springs(car, param("grip"), param("spring_rate"))
     local waypoints = {}
     for i = 1, 12 do
       local a = i / 12 * 2 * math.pi
       waypoints[i] = {math.cos(a) * 60, math.sin(a) * 60}
     end
-    if param("autopilot", 1) ~= 0 then
-      pilot = drive.autopilot(car, {waypoints = waypoints, speed = param("speed", 16), loop = true, radius = 10})
+    if param("autopilot") ~= 0 then
+      pilot = drive.autopilot(car, {waypoints = waypoints, speed = param("speed"), loop = true, radius = 10})
     else
       player = drive.player(car)
     end
@@ -69,7 +97,7 @@ return {
   end,
 
   on_update = function(ctx, dt)
-    if not car then return end
+    if not (pilot or player) then return end  -- on_start stopped early (its error is in the report)
     if pilot then pilot:update(dt) else player:update(dt) end
     effects:update(dt)
     local p = car:position()
