@@ -76,8 +76,6 @@ void World::step(Real dt) {
   ConstraintSolver* joints = m_constraintSolver;  // the joint hook (constraint_solver.h), usually null
   if (joints) joints->prepare(*this, dt, substeps);
   for (int s = 0; s < substeps; ++s) substep(ss, joints);
-  contacts.applyRestitution(m_scratch->vel, ss);
-  m_externalImpulse += contacts.externalRestitutionImpulse();
   m_inStep = false;
   scatterVelocities();
   contacts.store(m_manifolds);
@@ -115,9 +113,12 @@ void World::substep(const SolverSettings& ss, ConstraintSolver* joints) {
   StepScratch& st = *m_scratch;
   ContactSolver& contacts = st.contacts;
   const Real tol2 = m_settings.solverTolerance * m_settings.solverTolerance;
+  // Separations now, for the solve and for the approach speeds.
+  contacts.updateSeparations(st.pose);
+  contacts.recordFreeVelocities(st.vel);
   integrateVelocities(ss.h);
   for (auto& [id, hook] : m_substepHooks) hook(*this, ss.h);
-  contacts.captureApproachSpeeds(st.vel);
+  contacts.captureApproachSpeeds(st.vel, ss.h);
   contacts.warmStart(st.vel);
   if (joints) joints->warmStart(st.vel.data(), m_bodies.data());
   // Rolling and split impulses are per substep (not warm started), so
@@ -125,7 +126,6 @@ void World::substep(const SolverSettings& ss, ConstraintSolver* joints) {
   contacts.resetSubstepImpulses();
   // Positions change only in integratePositions, so separations are
   // updated once per phase, not once per iteration.
-  if (m_settings.velocityIterations > 0) contacts.updateSeparations(st.pose);
   for (int it = 0; it < m_settings.velocityIterations; ++it) {
     const Real jr = joints ? joints->solve(st.vel.data(), m_bodies.data(), true) : Real(0);
     const Real r = contacts.solve(st.vel, st.pseudo, ss, true);
@@ -141,6 +141,9 @@ void World::substep(const SolverSettings& ss, ConstraintSolver* joints) {
   // Impulses from static, kinematic or sleeping bodies are external to the
   // moving set; between two moving bodies they cancel exactly.
   m_externalImpulse += contacts.externalImpulse();
+  // Newton's law for the points that first pushed in this substep, so each
+  // impact bounces in its own substep (two impacts in one step stay two).
+  m_externalImpulse += contacts.applyRestitution(st.vel, ss);
 }
 
 void World::scatterVelocities() {
@@ -158,7 +161,7 @@ void World::collectContactEvents() {
   // pushed this step.
   for (const Manifold& m : m_manifolds) {
     Real total = 0;
-    for (int i = 0; i < m.count; ++i) total += m.points[i].normalImpulse;
+    for (int i = 0; i < m.count; ++i) total += m.points[i].impactImpulse;
     if (!m.touchedBefore && total > 0) {
       ContactEvent e;
       e.a = idOf(m.a);

@@ -14,14 +14,14 @@
 -- conserved (frictionless, e = 1, no gravity), and every other ball ends at
 -- rest.
 --
--- How big a gap: the engine applies restitution once per 1/60 s step, after
--- the substeps; within the step of an impact the struck ball moves at the
--- shared inelastic speed v0/2. If it reaches the next ball in that same step
--- the two impacts merge into one inelastic event (measured at v0 = 2 m/s:
--- a 1 cm gap sends the last ball off at 0.90 m/s and loses 54% of the
--- energy; 1.5 cm, 1.55 m/s; 2 cm and more, exactly v0). So the default gap
--- is 0.6 v0 dt, just above the v0 dt / 2 the struck ball can cover in that
--- step: 2 cm at 2 m/s. `--set gap=0.01` shows the merged-impact failure.
+-- How big a gap: the engine applies restitution in the substep of each
+-- impact (1/480 s at the default 8 substeps), so impacts inside one 1/60 s
+-- step stay separate events as long as the struck ball does not reach the
+-- next one within about one substep: measured at v0 = 2 m/s, gaps of 2 cm,
+-- 1 cm and 5 mm send the last ball off at exactly v0; 3 mm merges two
+-- impacts (1.01 m/s, half the energy lost). Until 2026-11-25 restitution
+-- ran once per step and 1 cm already failed. The default gap, 0.6 v0 dt
+-- (2 cm at 2 m/s), dates from then; `--set gap=0.003` shows the limit.
 --
 --   tumble run base:cradle                     (one ball pulled back)
 --   tumble run base:cradle --set pulled=2      (two balls)

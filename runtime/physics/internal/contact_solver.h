@@ -64,8 +64,15 @@ struct ConstraintPoint {
   Real separation_m = 0;      ///< current separation (updated once per solve phase)
   Real pseudoImpulse = 0;     ///< split-impulse accumulator, per substep
   Real maxNormalImpulse = 0;  ///< largest single push this step (did it touch?)
-  Real relativeVelocity_mps = 0;  ///< approach speed when it first pushed (restitution)
-  Real restitutionImpulse = 0;    ///< change of normalImpulse made by the restitution passes
+  /// Normal velocity (m/s) before this substep's forces, while the point has
+  /// not pushed yet: with the velocity after them it gives the free relative
+  /// acceleration along the normal (restitution, see contact_solver.cpp).
+  Real freeVelocity0_mps = 0;
+  Real approachAcceleration_mps2 = 0;  ///< that acceleration, in the substep of impact
+  Real relativeVelocity_mps = 0;  ///< normal velocity at the instant of impact (< 0 approaching)
+  Real impactImpulse = 0;  ///< largest normal impulse of one substep this step, restitution included (events)
+  bool bounced = false;    ///< restitution applied this step (once per point per step)
+  bool bouncing = false;   ///< restitution being applied in this substep
   Real separation0_m = 0;         ///< separation at the start of the step
   // For separation updates.
   Vec3 rA, rB;
@@ -115,22 +122,26 @@ class ContactSolver {
   /// a single bit of the result.
   Real solve(std::vector<SolverVelocity>& vel, std::vector<SolverVelocity>& pseudo, const SolverSettings& s,
              bool useBias);
-  /// Newton's law needs each point's approach speed at impact: before each
-  /// substep's solve, points that have not pushed yet this step record their
-  /// normal velocity. Taken before any impulse of the substep, so a point
-  /// does not see what its neighbours did in the same sweep (that inflated
-  /// the bounce and gained energy in clumps of fast spheres).
-  void captureApproachSpeeds(const std::vector<SolverVelocity>& vel);
+  /// Newton's law needs each point's normal velocity at the instant of
+  /// impact. Before a substep's forces, points that have not pushed yet
+  /// this step record their normal velocity; after the forces (and before
+  /// any impulse of the substep, so a point does not see what its
+  /// neighbours did in the same sweep, which inflated bounces and gained
+  /// energy in clumps of fast spheres) captureApproachSpeeds turns it and
+  /// the separation into the velocity at contact (contact_solver.cpp).
+  void recordFreeVelocities(const std::vector<SolverVelocity>& vel);
+  void captureApproachSpeeds(const std::vector<SolverVelocity>& vel, Real h);
   /// Per substep: rolling and split impulses start from zero.
   void resetSubstepImpulses();
-  /// Newton's law after the substeps, iterated restitutionIterations times.
-  void applyRestitution(std::vector<SolverVelocity>& vel, const SolverSettings& s);
+  /// Newton's law at the end of the substep in which a point first pushed,
+  /// with Coulomb friction over the whole impact impulse; iterated
+  /// restitutionIterations times. Returns the impulse (N s) that non-moving
+  /// bodies gave the moving ones through it.
+  Eigen::Vector3d applyRestitution(std::vector<SolverVelocity>& vel, const SolverSettings& s);
   /// Impulse (N s) that non-moving bodies gave the moving ones in this
   /// substep: the accumulated impulses, summed once per substep (exact,
   /// since every impulse of a substep ends up in its accumulated value).
   Eigen::Vector3d externalImpulse() const;
-  /// Likewise for what the restitution passes added.
-  Eigen::Vector3d externalRestitutionImpulse() const;
   /// Accumulated impulses back to the manifolds (warm start, events).
   void store(std::vector<Manifold>& manifolds) const;
 

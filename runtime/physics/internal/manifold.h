@@ -15,6 +15,10 @@ struct ContactPoint {
   std::uint32_t id = 0;         ///< feature id, stable while the same features touch
   // Accumulated impulses (N s) of the last step, for warm starting and events.
   Real normalImpulse = 0, tangentImpulse[2] = {0, 0};
+  /// Largest normal impulse (N s) of one substep in the last step, the
+  /// restitution of an impact included (contact events). An impact's own
+  /// impulse is not warm started, so normalImpulse can be 0 after one.
+  Real impactImpulse = 0;
 };
 
 struct Manifold {
