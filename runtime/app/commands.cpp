@@ -1,13 +1,17 @@
 #include "app/commands.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "app/paths.h"
 #include "app/simulation_loop.h"
 #include "core/log.h"
+#include "core/file_util.h"
 #include "script/mod_bindings.h"
 #include "script/mods.h"
+#include "script/tunables.h"
 #include "script/vehicle_defs.h"
 
 namespace tumble::app {
@@ -44,8 +48,20 @@ Status finishSceneOptions(SceneOptions& scene, const std::string& ref, const Com
   return parseSets(sets, scene.sets);
 }
 
+// CLI11 reads "nan" and "inf" as numbers, and its range checks let NaN
+// through (every comparison with NaN is false): each number option also
+// gets this check.
+const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) return "expected a finite number, got " + text;
+      return {};
+    },
+    "FINITE");
+
 void addSceneOptions(CLI::App* cmd, SceneOptions& scene, std::vector<std::string>& sets) {
-  cmd->add_option("--dt", scene.dt_s, "fixed time step, s (default 1/60)")->check(CLI::PositiveNumber);
+  cmd->add_option("--dt", scene.dt_s, "fixed time step, s (default 1/60)")->check(kFinite)->check(CLI::PositiveNumber);
   cmd->add_option("--substeps", scene.substeps, "physics substeps per step (default: the world's, 8)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--integrator", scene.integrator, "rigid-body integrator: symplectic_euler (default), euler, heun, rk4, verlet, implicit_euler, implicit_midpoint, sdirk2; overrides the scenario's integrator field");
@@ -112,6 +128,11 @@ int checkModDir(const std::string& dir, const std::vector<std::string>& modDirs)
 
 }  // namespace
 
+void removeOrphanedUserTemporaries() {
+  removeOrphanedTemporaries(script::userConfigDir(), 1);  // bindings.json, tune/*.json
+  removeOrphanedTemporaries(script::savesDir(), 1);       // <mod>/*.json
+}
+
 void addCommands(CLI::App& cli, int* exitCode) {
   auto st = std::make_shared<CommandState>();
   cli.add_option("--mods", st->modDirs, "another folder to find mods in (repeatable)");
@@ -135,13 +156,13 @@ void addCommands(CLI::App& cli, int* exitCode) {
   CLI::App* run = cli.add_subcommand("run", "run a scenario headless and check its expectations");
   run->add_option("scenario", st->runScenarioRef, "MOD:SCENARIO")->required();
   run->add_option("--seconds", st->run.seconds, "simulated seconds (default: the scenario's duration)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFinite)->check(CLI::NonNegativeNumber);
   run->add_option("--steps", st->run.steps, "number of fixed steps (instead of --seconds)")
       ->check(CLI::NonNegativeNumber);
   run->add_option("--report", st->run.reportPath, "write the run report (JSON) here");
   run->add_option("--screenshot", st->run.screenshotPath, "render offscreen and save a PNG here");
   run->add_option("--at", st->run.screenshotAt_s, "simulated time of the screenshot, s (default: the end)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFinite)->check(CLI::NonNegativeNumber);
   run->add_option("--width", st->run.width, "screenshot width, px")->check(CLI::Range(64, 16384));
   run->add_option("--height", st->run.height, "screenshot height, px")->check(CLI::Range(64, 16384));
   addSceneOptions(run, st->run.scene, st->runSets);

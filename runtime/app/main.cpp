@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
                  joined(builtins).c_str(), joined(tumble::app::externalTools()).c_str());
     return 1;
   }
+  tumble::app::removeOrphanedUserTemporaries();
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

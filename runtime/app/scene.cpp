@@ -22,6 +22,7 @@
 #include "vehicle/vehicle_system.h"
 #if TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
+#include "terrain/height_map.h"
 #include "script/terrain_build.h"
 #endif
 
@@ -174,8 +175,10 @@ Result<std::unique_ptr<Scene>> Scene::build(const SceneOptions& options, bool sc
     if (auto it = terrainSettings.find("terrain.size"); it != terrainSettings.end()) {
       char* end = nullptr;
       size = std::strtod(it->second.c_str(), &end);
-      if (end == it->second.c_str() || *end != '\0' || size != std::floor(size))
-        return makeError("terrain.size=" + it->second + ": expected a whole number of samples per side");
+      if (end == it->second.c_str() || *end != '\0' || !std::isfinite(size) || size != std::floor(size) ||
+          size < 2 || size > terrain::kMaxHeightMapSide)
+        return makeError("terrain.size=" + it->second + ": expected a whole number of samples per side, 2 to " +
+                         std::to_string(terrain::kMaxHeightMapSide));
     }
     auto map = script::buildScenarioTerrain(*scene->m_host, int(size), int(size));
     if (!map) return makeError(map.error());

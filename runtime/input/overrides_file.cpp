@@ -45,6 +45,9 @@ Result<Overrides> loadOverrides(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     return makeError(path + ":" + std::to_string(lineOf(*text, e.byte ? e.byte - 1 : 0)) +
                      ": not valid JSON (" + e.what() + ")");
+  } catch (const nlohmann::json::exception& e) {  // 1e400: number overflow (out_of_range)
+    return makeError(path + ": not valid JSON: a number is out of range (" + e.what() +
+                     "); numbers must fit a double");
   }
   const std::string expected = "; expected {\"format\": \"tumble-bindings\", \"version\": 1, \"overrides\": "
                                "{\"ACTION\": [\"key:W\", ...]}}";

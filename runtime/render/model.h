@@ -106,7 +106,10 @@ struct ModelLoadOptions {
 /// unreadable texture is not an error: the material keeps its colour and a
 /// warning naming the texture goes to Model::warnings and the log. A file
 /// that is missing, truncated, not a model, or has no triangles is an error
-/// whose message starts with the path and says what is wrong.
+/// whose message starts with the path and says what is wrong. Every file the
+/// model refers to (an .obj's .mtl, textures, glTF buffers) must be a regular
+/// file inside the model's folder: paths such as "../../etc/passwd" in a
+/// material are not read (the texture counts as missing).
 Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const ModelLoadOptions& options = {});
 
 /// Recomputes toModel and every node's tight and covering bounds (the loader

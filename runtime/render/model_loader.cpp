@@ -7,6 +7,7 @@
 #include <stb_image.h>  // libstb provides the implementation
 
 #include <algorithm>
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
@@ -46,6 +47,41 @@ float srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
+// True if `path` (resolved, symlinks followed) lies inside `root` (resolved).
+bool isInside(const fs::path& root, const fs::path& path) {
+  std::error_code ec;
+  const fs::path r = fs::weakly_canonical(root, ec);
+  if (ec) return false;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  const fs::path rel = p.lexically_relative(r);
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+// The files assimp opens for a model (an .obj's .mtl, a .gltf's buffers)
+// must be regular files inside the model's root folder: a model from a mod
+// never reads "../../../../etc/passwd", a FIFO or /dev/zero.
+class ConfinedIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  explicit ConfinedIOSystem(fs::path root) : m_root(std::move(root)) {}
+  bool Exists(const char* file) const override { return allowed(file) && DefaultIOSystem::Exists(file); }
+  Assimp::IOStream* Open(const char* file, const char* mode = "rb") override {
+    if (!allowed(file)) {
+      log::warn(std::string("model file refers to \"") + file + "\", outside " + m_root.string() +
+                " or not a regular file; not read");
+      return nullptr;
+    }
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  bool allowed(const char* file) const {
+    std::error_code ec;
+    return file && isInside(m_root, file) && fs::is_regular_file(file, ec);
+  }
+  fs::path m_root;
+};
+
 // A texture path as stored in the file ("C:\\MAPS\\JEEP1.JPG", "tex/a.png")
 // found next to the model: exact relative path first, then the bare file
 // name matched case-insensitively in the model's folder.
@@ -54,10 +90,13 @@ std::optional<fs::path> findTextureFile(const fs::path& modelDir, std::string st
   if (stored.empty()) return std::nullopt;
   std::error_code ec;
   const fs::path direct = modelDir / stored;
-  if (fs::is_regular_file(direct, ec)) return direct;
+  // Only files inside the model's folder: "../../../../etc/passwd" is not
+  // looked for (its bare name is, next to the model, below).
+  if (isInside(modelDir, direct) && fs::is_regular_file(direct, ec)) return direct;
   const std::string name = lower(fs::path(stored).filename().string());
   for (const auto& entry : fs::directory_iterator(modelDir, ec)) {
-    if (entry.is_regular_file(ec) && lower(entry.path().filename().string()) == name) return entry.path();
+    if (entry.is_regular_file(ec) && lower(entry.path().filename().string()) == name && isInside(modelDir, entry.path()))
+      return entry.path();
   }
   return std::nullopt;
 }
@@ -252,6 +291,7 @@ Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const Mo
     return makeError(path + ": scale must be a positive number, got " + std::to_string(options.scale));
   }
   Assimp::Importer importer;
+  importer.SetIOHandler(new ConfinedIOSystem(fs::absolute(path).parent_path()));  // the importer owns it
   // Lines and points are dropped: models here are surfaces.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_LINE | aiPrimitiveType_POINT);
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |

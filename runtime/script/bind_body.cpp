@@ -45,13 +45,13 @@ int bodyOrientation(lua_State* L) {
   const Quat& q = worldOf(L).body(checkBody(L, 1)).orientation;
   lua_createtable(L, 0, 4);
   lua_pushnumber(L, q.w());
-  lua_setfield(L, -2, "w");
+  rawSetField(L, -2, "w");
   lua_pushnumber(L, q.x());
-  lua_setfield(L, -2, "x");
+  rawSetField(L, -2, "x");
   lua_pushnumber(L, q.y());
-  lua_setfield(L, -2, "y");
+  rawSetField(L, -2, "y");
   lua_pushnumber(L, q.z());
-  lua_setfield(L, -2, "z");
+  rawSetField(L, -2, "z");
   return 1;
 }
 /// @function Body:up
@@ -222,9 +222,9 @@ int bodyMaterial(lua_State* L) {
   const physics::Body& b = worldOf(L).body(checkBody(L, 1));
   lua_createtable(L, 0, 2);
   lua_pushnumber(L, b.friction);
-  lua_setfield(L, -2, "friction");
+  rawSetField(L, -2, "friction");
   lua_pushnumber(L, b.restitution);
-  lua_setfield(L, -2, "restitution");
+  rawSetField(L, -2, "restitution");
   return 1;
 }
 

@@ -51,25 +51,25 @@ int cameraSetMode(lua_State* L) {
     if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": options must be a table {target = body, ...}");
     checkFields(L, 2, fn, {"target", "offset", "look_at", "stiffness", "eye", "distance", "interior"});
     try {
-      if (lua_getfield(L, 2, "target") != LUA_TNIL) r.target = checkBody(L, -1);
+      if (rawGetField(L, 2, "target") != LUA_TNIL) r.target = checkBody(L, -1);
       lua_pop(L, 1);
       Vec3 v;
       if (optVec3Field(L, 2, "offset", &v)) r.offset_m = v;
       if (optVec3Field(L, 2, "look_at", &v)) r.lookAt_m = v;
       if (optVec3Field(L, 2, "eye", &v)) r.eye_m = v;
-      if (lua_getfield(L, 2, "stiffness") != LUA_TNIL) {
+      if (rawGetField(L, 2, "stiffness") != LUA_TNIL) {
         const double k = checkNumber(L, -1, "option 'stiffness'");
         if (!(k > 0)) throw LuaArgError("option 'stiffness' must be > 0 (1/s)");
         r.stiffness_per_s = Real(k);
       }
       lua_pop(L, 1);
-      if (lua_getfield(L, 2, "distance") != LUA_TNIL) {
+      if (rawGetField(L, 2, "distance") != LUA_TNIL) {
         const double d = checkNumber(L, -1, "option 'distance'");
         if (!(d > 0)) throw LuaArgError("option 'distance' must be > 0 m");
         r.distance_m = Real(d);
       }
       lua_pop(L, 1);
-      if (lua_getfield(L, 2, "interior") != LUA_TNIL) {
+      if (rawGetField(L, 2, "interior") != LUA_TNIL) {
         if (lua_type(L, -1) != LUA_TSTRING) throw LuaArgError("option 'interior' must be a model path string");
         auto file = resolveModFile(lua_tostring(L, -1), host->mod(), host->options().modDirs);
         if (!file) throw LuaArgError("option 'interior': " + file.error());

@@ -284,13 +284,13 @@ int dStats(lua_State* L) {
   const physics::DeformableStats& s = checkDeformable(L, 1).stats();
   lua_createtable(L, 0, 4);
   lua_pushinteger(L, s.cgIterationsMax);
-  lua_setfield(L, -2, "cg_iterations_max");
+  rawSetField(L, -2, "cg_iterations_max");
   lua_pushinteger(L, s.cgFailures);
-  lua_setfield(L, -2, "cg_failures");
+  rawSetField(L, -2, "cg_failures");
   lua_pushinteger(L, s.nanEvents);
-  lua_setfield(L, -2, "nan_events");
+  rawSetField(L, -2, "nan_events");
   lua_pushinteger(L, s.steps);
-  lua_setfield(L, -2, "steps");
+  rawSetField(L, -2, "steps");
   return 1;
 }
 

@@ -11,13 +11,7 @@ namespace tumble::script {
 
 namespace {
 
-std::string textArg(lua_State* L, int idx) {
-  std::size_t len = 0;
-  const char* s = luaL_tolstring(L, idx, &len);  // never raises for plain values
-  std::string text(s, len);
-  lua_pop(L, 1);
-  return text;
-}
+std::string textArg(lua_State* L, int idx) { return toDisplayString(L, idx); }
 
 /// @function game.message
 /// Shows a message to the player for a while.

@@ -133,13 +133,13 @@ int inputActions(lua_State* L) {
     const input::ActionDef& a = in.action(i);
     lua_createtable(L, 0, 4);
     lua_pushstring(L, a.name.c_str());
-    lua_setfield(L, -2, "name");
+    rawSetField(L, -2, "name");
     lua_pushstring(L, a.type == input::ActionType::Axis ? "axis" : "button");
-    lua_setfield(L, -2, "type");
+    rawSetField(L, -2, "type");
     lua_pushstring(L, a.context.c_str());
-    lua_setfield(L, -2, "context");
+    rawSetField(L, -2, "context");
     lua_pushstring(L, (a.label.empty() ? a.name : a.label).c_str());
-    lua_setfield(L, -2, "label");
+    rawSetField(L, -2, "label");
     lua_rawseti(L, -2, i + 1);
   }
   return 1;

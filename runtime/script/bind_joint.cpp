@@ -43,7 +43,7 @@ void pushJoint(lua_State* L, physics::JointId id) {
 }
 
 physics::BodyId bodyField(lua_State* L, int t, const char* key, bool required) {
-  lua_getfield(L, t, key);
+  rawGetField(L, t, key);
   physics::BodyId id;
   if (lua_isnil(L, -1)) {
     lua_pop(L, 1);
@@ -116,8 +116,8 @@ int worldJoint(lua_State* L) {
     if (!(axis.norm() > 0)) throw LuaArgError("field 'axis' must not be zero");
     if (a == b) throw LuaArgError("fields 'a' and 'b' must be different bodies");
     d = physics::makeJointDef(host.world(), jt, a, b, anchor, axis);
-    lua_getfield(L, 1, "lower_angle");
-    lua_getfield(L, 1, "upper_angle");
+    rawGetField(L, 1, "lower_angle");
+    rawGetField(L, 1, "upper_angle");
     d.enableLimit = !lua_isnil(L, -1) || !lua_isnil(L, -2);
     lua_pop(L, 2);
     d.lowerAngle_rad = Real(optNumberField(L, 1, "lower_angle", -M_PI / 2));
@@ -322,7 +322,7 @@ const luaL_Reg kMethods[] = {
 void openJointBindings(lua_State* L, int envIndex) {
   registerType(L, {kJointMeta, kMethods, jointToString, jointEq});
   // Into the `world` table made by openWorldBindings.
-  lua_getfield(L, envIndex, "world");
+  rawGetField(L, envIndex, "world");
   registerFunctions(L, -1, kWorldJoint);
   lua_pop(L, 1);
 }

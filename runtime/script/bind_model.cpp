@@ -30,7 +30,7 @@ Quat readRotation(lua_State* L, int t) {
 // scale = 2 or scale = {1, 2, 1}; every factor finite and > 0.
 Vec3 readScale(lua_State* L, int t) {
   Vec3 scale = Vec3::Ones();
-  if (lua_getfield(L, t, "scale") == LUA_TNUMBER) {
+  if (rawGetField(L, t, "scale") == LUA_TNUMBER) {
     scale = Vec3::Constant(Real(lua_tonumber(L, -1)));
     lua_pop(L, 1);
   } else {
@@ -178,6 +178,7 @@ int worldAddStaticModel(lua_State* L) {
     d.position_m = s.position_m;  // the body frame is the model's frame, placed
     d.orientation = s.rotation;
     d.friction = friction;
+    host->countBodiesCreated(1, fn);
     auto body = host->world().createBody(d);
     if (!body) throw LuaArgError(std::string(fn) + ": " + body.error());
     s.body = *body;
@@ -192,6 +193,7 @@ int worldAddStaticModel(lua_State* L) {
     d.friction = friction;
     // A flat model (a sign, a decal) still gets a box with some thickness.
     d.shape = physics::Shape::box(half.cwiseMax(Vec3::Constant(Real(0.005))));
+    host->countBodiesCreated(1, fn);
     auto body = host->world().createBody(d);
     if (!body) throw LuaArgError(std::string(fn) + ": " + body.error());
     s.body = *body;
@@ -246,18 +248,18 @@ int worldModelMassProperties(lua_State* L) {
   if (!p.valid) throw LuaArgError(std::string(fn) + ": " + file + " encloses no volume");
   lua_createtable(L, 0, 4);
   lua_pushnumber(L, p.mass_kg);
-  lua_setfield(L, -2, "mass");
+  rawSetField(L, -2, "mass");
   lua_pushnumber(L, p.volume_m3);
-  lua_setfield(L, -2, "volume");
+  rawSetField(L, -2, "volume");
   pushVec3(L, p.centreOfMass_m);
-  lua_setfield(L, -2, "center");
+  rawSetField(L, -2, "center");
   lua_createtable(L, 0, 6);
   const Mat3& I = p.inertia_kgm2;
   for (auto [name, r, c] : {std::tuple{"xx", 0, 0}, {"yy", 1, 1}, {"zz", 2, 2}, {"xy", 0, 1}, {"yz", 1, 2}, {"zx", 2, 0}}) {
     lua_pushnumber(L, I(r, c));
-    lua_setfield(L, -2, name);
+    rawSetField(L, -2, name);
   }
-  lua_setfield(L, -2, "inertia");
+  rawSetField(L, -2, "inertia");
   return 1;
 }
 
@@ -277,11 +279,11 @@ const luaL_Reg kWorldModel[] = {
 void openModelBindings(lua_State* L, int envIndex) {
   // Body methods: added to the Body metatable's method table.
   luaL_getmetatable(L, kBodyMeta);
-  lua_getfield(L, -1, "__index");
+  rawGetField(L, -1, "__index");
   registerFunctions(L, -1, kBodyModelMethods);
   lua_pop(L, 2);
   // world.add_static_model, world.model_mass_properties: into the env's world table.
-  lua_getfield(L, envIndex, "world");
+  rawGetField(L, envIndex, "world");
   registerFunctions(L, -1, kWorldModel);
   lua_pop(L, 1);
 }

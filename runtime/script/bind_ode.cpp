@@ -171,7 +171,7 @@ OdeObject& checkOde(lua_State* L, int idx) {
 }
 
 int optFunctionRef(lua_State* L, const char* key, bool required) {
-  const int type = lua_getfield(L, 1, key);
+  const int type = rawGetField(L, 1, key);
   if (type == LUA_TNIL && !required) {
     lua_pop(L, 1);
     return LUA_NOREF;
@@ -205,7 +205,7 @@ int odeSystem(lua_State* L) {
                       "return {y[2], -y[1]} end}");
   lua_settop(L, 1);
   checkFields(L, 1, "ode.system", {"state", "derivative", "jacobian", "energy", "method", "time"});
-  if (lua_getfield(L, 1, "state") != LUA_TTABLE) throw LuaArgError("ode.system: field 'state' must be a table of numbers");
+  if (rawGetField(L, 1, "state") != LUA_TTABLE) throw LuaArgError("ode.system: field 'state' must be a table of numbers");
   const int dim = int(lua_rawlen(L, -1));
   if (dim < 1 || dim > 10000) throw LuaArgError("ode.system: field 'state' must hold 1..10000 numbers");
   Eigen::VectorXd y(dim);
@@ -351,17 +351,17 @@ int odeStats(lua_State* L) {
   OdeObject& o = checkOde(L, 1);
   lua_createtable(L, 0, 6);
   lua_pushinteger(L, o.steps);
-  lua_setfield(L, -2, "steps");
+  rawSetField(L, -2, "steps");
   lua_pushinteger(L, o.f.derivativeCalls);
-  lua_setfield(L, -2, "derivative_calls");
+  rawSetField(L, -2, "derivative_calls");
   lua_pushinteger(L, o.f.jacobianCalls);
-  lua_setfield(L, -2, "jacobian_calls");
+  rawSetField(L, -2, "jacobian_calls");
   lua_pushinteger(L, o.newtonFailures);
-  lua_setfield(L, -2, "newton_failures");
+  rawSetField(L, -2, "newton_failures");
   lua_pushnumber(L, o.f.luaSeconds);
-  lua_setfield(L, -2, "lua_seconds");
+  rawSetField(L, -2, "lua_seconds");
   lua_pushstring(L, numerics::methodName(o.method));
-  lua_setfield(L, -2, "method");
+  rawSetField(L, -2, "method");
   return 1;
 }
 

@@ -43,7 +43,7 @@ int partField(lua_State* L, int t, const char* key, const physics::RagdollDesc& 
 /// The description table's parts = {...} and joints = {...} (see spawn_ragdoll).
 physics::RagdollDesc readDescription(lua_State* L, int t) {
   physics::RagdollDesc d;
-  if (lua_getfield(L, t, "parts") != LUA_TTABLE) throw LuaArgError("field 'parts' must be a list of part tables");
+  if (rawGetField(L, t, "parts") != LUA_TTABLE) throw LuaArgError("field 'parts' must be a list of part tables");
   const int partsIdx = lua_gettop(L);
   const int nParts = int(lua_rawlen(L, partsIdx));
   if (nParts == 0) throw LuaArgError("field 'parts' must list at least one part");
@@ -86,7 +86,7 @@ physics::RagdollDesc readDescription(lua_State* L, int t) {
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
-  if (lua_getfield(L, t, "joints") != LUA_TTABLE) throw LuaArgError("field 'joints' must be a list of joint tables ({} for none)");
+  if (rawGetField(L, t, "joints") != LUA_TTABLE) throw LuaArgError("field 'joints' must be a list of joint tables ({} for none)");
   const int jointsIdx = lua_gettop(L);
   const int nJoints = int(lua_rawlen(L, jointsIdx));
   for (int k = 1; k <= nJoints; ++k) {
@@ -214,12 +214,12 @@ int spawnRagdoll(lua_State* L) {
     q = rotationField(L, 1);
     const Real scale = Real(optNumberField(L, 1, "scale", 1));
     if (!(scale > Real(0.01) && scale < 100)) throw LuaArgError("field 'scale' must be in (0.01, 100)");
-    lua_getfield(L, 1, "parts");
+    rawGetField(L, 1, "parts");
     const bool described = !lua_isnil(L, -1);
     lua_pop(L, 1);
     if (described) {
       for (const char* key : {"height", "mass"}) {
-        lua_getfield(L, 1, key);
+        rawGetField(L, 1, key);
         const bool given = !lua_isnil(L, -1);
         lua_pop(L, 1);
         if (given) throw LuaArgError(std::string("field '") + key + "' is for the default human; with 'parts' give each part's size and mass");
@@ -236,12 +236,13 @@ int spawnRagdoll(lua_State* L) {
   } catch (const LuaArgError& e) {
     throw LuaArgError(std::string(fn) + ": " + e.what());
   }
+  host.countBodiesCreated(desc.parts.empty() ? 11 : desc.parts.size(), fn);  // the default doll has 11 parts
   auto r = physics::buildRagdoll(host.world(), host.scene().joints(), desc, position, q);
   if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
   lua_createtable(L, 0, int(desc.parts.size()));
   for (std::size_t i = 0; i < desc.parts.size(); ++i) {
     pushBody(L, r.value().bodies[i]);
-    lua_setfield(L, -2, desc.parts[i].name.c_str());
+    rawSetField(L, -2, desc.parts[i].name.c_str());
   }
   return 1;
 }

@@ -237,7 +237,7 @@ void openRandomBindings(lua_State* L, int envIndex) {
 
   lua_createtable(L, 0, 6);
   lua_pushcfunction(L, guarded<randomNew>);
-  lua_setfield(L, -2, "new");
+  rawSetField(L, -2, "new");
   pushRandom(L, ScenarioHost::from(L)->nextRandomSeed());  // the scenario's generator
   const std::pair<const char*, lua_CFunction> shared[] = {
       {"float", onDefault<guarded<randomFloat>>},   {"int", onDefault<guarded<randomInt>>},
@@ -247,10 +247,10 @@ void openRandomBindings(lua_State* L, int envIndex) {
   for (const auto& [name, fn] : shared) {
     lua_pushvalue(L, -1);
     lua_pushcclosure(L, fn, 1);
-    lua_setfield(L, -3, name);
+    rawSetField(L, -3, name);
   }
   lua_pop(L, 1);
-  lua_setfield(L, envIndex, "random");
+  rawSetField(L, envIndex, "random");
 }
 
 }  // namespace tumble::script

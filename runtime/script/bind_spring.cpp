@@ -33,11 +33,11 @@ int worldSpring(lua_State* L) {
   lua_settop(L, 1);
   checkFields(L, 1, fn, {"a", "b", "anchor", "stiffness", "damping", "rest_length"});
   physics::SpringDef def;
-  lua_getfield(L, 1, "a");
+  rawGetField(L, 1, "a");
   if (!testBody(L, -1, &def.a)) throw LuaArgError("world.spring: field 'a' must be a Body");
   def.a = checkBody(L, -1);
   lua_pop(L, 1);
-  lua_getfield(L, 1, "b");
+  rawGetField(L, 1, "b");
   if (!lua_isnil(L, -1)) {
     if (!testBody(L, -1, &def.b)) throw LuaArgError("world.spring: field 'b' must be a Body");
     def.b = checkBody(L, -1);
@@ -47,14 +47,14 @@ int worldSpring(lua_State* L) {
     const bool hasAnchor = optVec3Field(L, 1, "anchor", &def.anchor_m);
     if (def.b.isNull() && !hasAnchor) throw LuaArgError("give 'b' (a Body) or 'anchor' ({x, y, z}, m)");
     if (!def.b.isNull() && hasAnchor) throw LuaArgError("give 'b' or 'anchor', not both");
-    lua_getfield(L, 1, "stiffness");
+    rawGetField(L, 1, "stiffness");
     const bool hasK = !lua_isnil(L, -1);
     lua_pop(L, 1);
     if (!hasK) throw LuaArgError("field 'stiffness' is required (N/m)");
     def.stiffness_Npm = Real(optNumberField(L, 1, "stiffness", 0));
     def.damping_Nspm = Real(optNumberField(L, 1, "damping", 0));
     def.restLength_m = Real(optNumberField(L, 1, "rest_length", -1));
-    lua_getfield(L, 1, "rest_length");
+    rawGetField(L, 1, "rest_length");
     const bool hasRest = !lua_isnil(L, -1);
     lua_pop(L, 1);
     if (hasRest && def.restLength_m < 0) throw LuaArgError("field 'rest_length' must be >= 0 (m)");
@@ -82,14 +82,14 @@ int worldRemoveSpring(lua_State* L) {
 }  // namespace
 
 void openSpringBindings(lua_State* L, int envIndex) {
-  if (lua_getfield(L, envIndex, "world") != LUA_TTABLE) {
+  if (rawGetField(L, envIndex, "world") != LUA_TTABLE) {
     lua_pop(L, 1);
     return;
   }
   lua_pushcfunction(L, guarded<worldSpring>);
-  lua_setfield(L, -2, "spring");
+  rawSetField(L, -2, "spring");
   lua_pushcfunction(L, guarded<worldRemoveSpring>);
-  lua_setfield(L, -2, "remove_spring");
+  rawSetField(L, -2, "remove_spring");
   lua_pop(L, 1);
 }
 

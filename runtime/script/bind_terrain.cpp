@@ -68,7 +68,7 @@ double fractionField(lua_State* L, int idx, const char* key, double fallback, do
 
 /// {x, z} as fractions of the map -> sample coordinates.
 void pointField(lua_State* L, int idx, const char* key, const terrain::HeightMap& m, double* x, double* z) {
-  lua_getfield(L, idx, key);
+  rawGetField(L, idx, key);
   if (!lua_istable(L, -1)) {
     lua_pop(L, 1);
     throw LuaArgError(std::string(key) + " must be {x, z}, fractions of the map (0..1)");
@@ -150,6 +150,16 @@ int mapFill(lua_State* L) {
   return 0;
 }
 
+// Filters run in C++, outside the instruction count: each charges its work
+// to the callback's instruction budget first (one unit per sample it
+// touches per pass, about what a Lua instruction costs), so a loop of
+// filters is stopped like a loop of Lua.
+void chargeFilter(lua_State* L, double samples, const char* fn) {
+  if (ScenarioHost* host = ScenarioHost::from(L)) host->chargeWork(L, samples, fn);
+}
+
+double samplesOf(const terrain::HeightMap& m) { return double(m.width()) * double(m.height()); }
+
 /// @function HeightMap:plasma
 /// Replaces the map with a plasma fractal (diamond-square), normalised to the full range.
 /// @param p table {seed = integer, roughness = number (0.01..1; 0.3 rolling, 0.5 natural, 0.7 craggy)}
@@ -160,6 +170,7 @@ int mapPlasma(lua_State* L) {
   terrain::PlasmaParams p;
   p.seed = seedField(L, 2);
   p.roughness = fractionField(L, 2, "roughness", 0.5, 0.01, 1);
+  chargeFilter(L, samplesOf(m), "map:plasma");
   m = terrain::generatePlasma(m.width(), m.height(), p);
   return 0;
 }
@@ -176,6 +187,7 @@ int mapBump(lua_State* L) {
   terrain::PlasmaParams p;
   p.seed = seedField(L, 2);
   p.roughness = fractionField(L, 2, "roughness", 0.5, 0.01, 1);
+  chargeFilter(L, samplesOf(m), "map:bump");
   terrain::addPlasmaRegion(m, int(std::lround(x * (m.width() - 1))), int(std::lround(z * (m.height() - 1))),
                            std::max(2, int(std::lround(w * m.width()))), std::max(2, int(std::lround(d * m.height()))),
                            amp * 65535.0, p);
@@ -195,18 +207,22 @@ int mapRidge(lua_State* L) {
   r.halfWidth = std::max(1.0, fractionField(L, 2, "width", 0.05, 0, 1) * (m.width() - 1));
   r.jaggedness = fractionField(L, 2, "jaggedness", 0.2, 0, 1);
   r.seed = seedField(L, 2);
+  chargeFilter(L, samplesOf(m), "map:ridge");
   terrain::addRidge(m, r);
   return 0;
 }
 
 /// @function HeightMap:smooth
 /// Smooths with the 3 x 3 binomial kernel.
+/// Like every filter, its work (one unit per sample per pass) counts
+/// against the callback's instruction budget.
 /// @param passes? integer 1..64 (default 1)
 int mapSmooth(lua_State* L) {
   terrain::HeightMap& m = checkMap(L, 1);
   const double passes = lua_isnoneornil(L, 2) ? 1 : checkNumber(L, 2, "passes");
   if (passes != std::floor(passes) || passes < 1 || passes > 64)
     throw LuaArgError("passes must be a whole number from 1 to 64");
+  chargeFilter(L, samplesOf(m) * passes, "map:smooth");
   m = terrain::smooth(m, int(passes));
   return 0;
 }
@@ -218,6 +234,7 @@ int mapSharpen(lua_State* L) {
   terrain::HeightMap& m = checkMap(L, 1);
   const double amount = lua_isnoneornil(L, 2) ? 0.5 : checkNumber(L, 2, "amount");
   if (!std::isfinite(amount) || amount < 0 || amount > 4) throw LuaArgError("amount must be a number from 0 to 4");
+  chargeFilter(L, samplesOf(m), "map:sharpen");
   m = terrain::sharpen(m, amount);
   return 0;
 }
@@ -228,7 +245,7 @@ int mapSharpen(lua_State* L) {
 int mapConvolve(lua_State* L) {
   terrain::HeightMap& m = checkMap(L, 1);
   requireTable(L, 2, "map:convolve{0, 1, 0, 1, 4, 1, 0, 1, 0}");
-  const lua_Integer n = luaL_len(L, 2);
+  const lua_Integer n = rawLength(L, 2);
   std::vector<double> weights;
   for (lua_Integer i = 1; i <= n; ++i) {
     lua_rawgeti(L, 2, i);
@@ -245,6 +262,7 @@ int mapConvolve(lua_State* L) {
   const int size = int(std::lround(std::sqrt(double(weights.size()))));
   auto kernel = terrain::makeKernel(size, weights, "weights");
   if (!kernel) throw LuaArgError(kernel.error());
+  chargeFilter(L, samplesOf(m) * double(weights.size()), "map:convolve");
   m = terrain::convolve(m, kernel.value());
   return 0;
 }
@@ -259,6 +277,7 @@ int mapResample(lua_State* L) {
   if (auto st = terrain::checkHeightMapSize(int(w), int(h), "resample"); w != std::floor(w) || h != std::floor(h) || !st)
     throw LuaArgError("resample: width and height must be whole numbers from " +
                       std::to_string(terrain::kMinHeightMapSide) + " to " + std::to_string(terrain::kMaxHeightMapSide));
+  chargeFilter(L, w * h * 16, "map:resample");  // 4 x 4 samples per output sample
   m = terrain::resampleBicubic(m, int(w), int(h));
   return 0;
 }
@@ -278,6 +297,7 @@ int mapImport(lua_State* L) {
     throw LuaArgError("import: \"" + rel + "\" leaves the mod's folder; paths stay inside it");
   auto loaded = terrain::loadHeightMapPng(path.string());
   if (!loaded) throw LuaArgError("import: " + loaded.error());
+  chargeFilter(L, samplesOf(loaded.value()), "map:import");
   m = std::move(loaded.value());
   return 0;
 }

@@ -37,6 +37,9 @@ int add(lua_State* L, const char* fn, bool repeat) {
     throw LuaArgError(std::string(fn) + ": argument 2 must be a function, got " + luaL_typename(L, 2));
   lua_settop(L, 2);
   ScenarioHost* host = ScenarioHost::from(L);
+  if (host->timers().pendingCount() >= TimerQueue::kMaxPending)
+    throw LuaArgError(std::string(fn) + ": " + std::to_string(TimerQueue::kMaxPending) +
+                      " timers are already waiting (the limit); cancel some or use one timer.every");
   std::uint32_t id = host->timers().add(host->now_s(), seconds, repeat ? seconds : 0);  // pops the function
   auto* ref = static_cast<TimerRef*>(lua_newuserdatauv(L, sizeof(TimerRef), 0));
   ref->id = id;

@@ -27,7 +27,7 @@ std::uint32_t checkTrigger(lua_State* L, int idx) {
 }
 
 int optFunctionField(lua_State* L, int t, const char* key, const char* fn) {
-  int type = lua_getfield(L, t, key);
+  int type = rawGetField(L, t, key);
   if (type == LUA_TNIL) {
     lua_pop(L, 1);
     return 0;

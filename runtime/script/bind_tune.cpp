@@ -126,9 +126,9 @@ int tuneChoice(lua_State* L) {
   t.name = name;
   t.kind = Tunable::Kind::Choice;
   t.description = optStringField(L, o, "description", "");
-  lua_getfield(L, o, "choices");
+  rawGetField(L, o, "choices");
   if (!lua_istable(L, -1)) throw LuaArgError(callName(L, fn) + ": choices must be a list of strings");
-  for (lua_Integer i = 1, n = luaL_len(L, -1); i <= n; ++i) {
+  for (lua_Integer i = 1, n = rawLength(L, -1); i <= n; ++i) {
     lua_rawgeti(L, -1, i);
     if (lua_type(L, -1) != LUA_TSTRING)
       throw LuaArgError(callName(L, fn) + ": choices[" + std::to_string(i) + "] must be a string");

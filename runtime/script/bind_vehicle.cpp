@@ -112,6 +112,7 @@ int vehicleSpawn(lua_State* L) {
     throw LuaArgError("vehicle.spawn: the second argument must be a table {position = {x, y, z}, heading = rad}");
   }
   const vehicle::VehicleDef& def = definition(L, name);
+  ScenarioHost::from(L)->countBodiesCreated(1, "vehicle.spawn");
   auto id = systemOf(L).spawn(def, position, Real(heading), name);
   if (!id) throw LuaArgError("vehicle.spawn: " + id.error());
   auto* ref = static_cast<VehicleRef*>(lua_newuserdatauv(L, sizeof(VehicleRef), 0));
@@ -221,15 +222,15 @@ int vControls(lua_State* L) {
   const vehicle::VehicleControls& c = systemOf(L).controls(checkVehicle(L, 1));
   lua_createtable(L, 0, 5);
   lua_pushnumber(L, c.throttle);
-  lua_setfield(L, -2, "throttle");
+  rawSetField(L, -2, "throttle");
   lua_pushnumber(L, c.brake);
-  lua_setfield(L, -2, "brake");
+  rawSetField(L, -2, "brake");
   lua_pushnumber(L, c.steer);
-  lua_setfield(L, -2, "steer");
+  rawSetField(L, -2, "steer");
   lua_pushnumber(L, c.handbrake);
-  lua_setfield(L, -2, "handbrake");
+  rawSetField(L, -2, "handbrake");
   lua_pushinteger(L, c.gear);
-  lua_setfield(L, -2, "gear");
+  rawSetField(L, -2, "gear");
   return 1;
 }
 
@@ -290,23 +291,23 @@ int vTelemetry(lua_State* L) {
   const vehicle::VehicleTelemetry& t = s.telemetry(id);
   lua_createtable(L, 0, 7);
   lua_pushnumber(L, t.speed_mps);
-  lua_setfield(L, -2, "speed");
+  rawSetField(L, -2, "speed");
   lua_pushnumber(L, t.rpm);
-  lua_setfield(L, -2, "rpm");
+  rawSetField(L, -2, "rpm");
   lua_pushinteger(L, t.gear);
-  lua_setfield(L, -2, "gear");
+  rawSetField(L, -2, "gear");
   lua_pushboolean(L, t.shifting);
-  lua_setfield(L, -2, "shifting");
+  rawSetField(L, -2, "shifting");
   lua_pushnumber(L, t.engineTorque_Nm);
-  lua_setfield(L, -2, "engine_torque");
+  rawSetField(L, -2, "engine_torque");
   lua_pushnumber(L, t.driveTorque_Nm);
-  lua_setfield(L, -2, "drive_torque");
+  rawSetField(L, -2, "drive_torque");
   lua_createtable(L, s.wheelCount(id), 0);
   for (int i = 0; i < s.wheelCount(id); ++i) {
     const vehicle::WheelTelemetry& w = s.wheel(id, i);
     lua_createtable(L, 0, 14);
     lua_pushboolean(L, w.contact);
-    lua_setfield(L, -2, "contact");
+    rawSetField(L, -2, "contact");
     const std::pair<const char*, Real> numbers[] = {
         {"load", w.load_N},       {"slip_ratio", w.slipRatio},         {"slip_angle", w.slipAngle_rad},
         {"slip_speed", w.slipSpeed_mps}, {"surface_friction", w.surfaceFriction},
@@ -316,13 +317,13 @@ int vTelemetry(lua_State* L) {
         {"static_length", w.staticLength_m}, {"radius", w.radius_m}};
     for (const auto& [k, v] : numbers) {
       lua_pushnumber(L, v);
-      lua_setfield(L, -2, k);
+      rawSetField(L, -2, k);
     }
     pushVec3(L, w.hub_m);
-    lua_setfield(L, -2, "position");
+    rawSetField(L, -2, "position");
     lua_seti(L, -2, i + 1);
   }
-  lua_setfield(L, -2, "wheels");
+  rawSetField(L, -2, "wheels");
   return 1;
 }
 
@@ -389,7 +390,7 @@ void mergeInto(lua_State* L, int dst, int src, int depth) {
     }
     if (!replace) {
       lua_pushvalue(L, -2);
-      lua_gettable(L, dst);
+      lua_rawget(L, dst);
       if (lua_istable(L, -1)) {
         mergeInto(L, lua_absindex(L, -1), lua_absindex(L, -2), depth + 1);
         lua_pop(L, 2);
@@ -399,7 +400,7 @@ void mergeInto(lua_State* L, int dst, int src, int depth) {
     }
     lua_pushvalue(L, -2);
     lua_insert(L, -2);
-    lua_settable(L, dst);  // pops key copy and value; the original key stays for lua_next
+    lua_rawset(L, dst);  // pops key copy and value; the original key stays for lua_next
   }
 }
 

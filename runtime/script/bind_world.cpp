@@ -52,7 +52,7 @@ physics::BodyDef readCommon(lua_State* L, int t, const char* fn) {
       Real angle = rv.norm();
       if (angle > 0) d.orientation = Quat(Eigen::AngleAxis<Real>(angle, rv / angle));
     }
-    if (lua_getfield(L, t, "orientation") == LUA_TTABLE) {
+    if (rawGetField(L, t, "orientation") == LUA_TTABLE) {
       Quat q(Real(optNumberField(L, -1, "w", 1)), Real(optNumberField(L, -1, "x", 0)),
              Real(optNumberField(L, -1, "y", 0)), Real(optNumberField(L, -1, "z", 0)));
       if (q.norm() < Real(1e-6)) throw LuaArgError("field 'orientation': quaternion must not be zero");
@@ -93,6 +93,7 @@ Eigen::Vector3f readColor(lua_State* L, int t, const char* fn, const Eigen::Vect
 }
 
 int create(lua_State* L, physics::BodyDef d, const char* fn, const Eigen::Vector3f& color) {
+  ScenarioHost::from(L)->countBodiesCreated(1, fn);
   auto r = worldOf(L).createBody(d);
   if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
   ScenarioHost::from(L)->presentation().setColor(*r, color);
@@ -225,11 +226,11 @@ int worldPlane(lua_State* L) {
 /// Points {{x, y, z}, ...} of field `key` of the table at t.
 std::vector<Vec3> readPoints(lua_State* L, int t, const char* key) {
   std::vector<Vec3> points;
-  if (lua_getfield(L, t, key) != LUA_TTABLE) {
+  if (rawGetField(L, t, key) != LUA_TTABLE) {
     lua_pop(L, 1);
     throw LuaArgError(std::string("field '") + key + "' must be a list of at least 4 points {{x, y, z}, ...}");
   }
-  const lua_Integer n = luaL_len(L, -1);
+  const lua_Integer n = rawLength(L, -1);
   for (lua_Integer i = 1; i <= n; ++i) {
     lua_rawgeti(L, -1, i);
     const std::string what = std::string("field '") + key + "', point " + std::to_string(i);
@@ -295,7 +296,7 @@ void placeBody(physics::BodyDef& d, const physics::ShapeFrame& frame) {
 }
 
 void refuseZeroMass(lua_State* L, const char* fn) {
-  if (lua_getfield(L, 1, "mass") != LUA_TNIL) {
+  if (rawGetField(L, 1, "mass") != LUA_TNIL) {
     const double m = lua_tonumber(L, -1);
     lua_pop(L, 1);
     if (!(m > 0)) throw LuaArgError(std::string(fn) + ": field 'mass' must be > 0 kg (leave it out to use density)");
@@ -364,10 +365,10 @@ int worldCompound(lua_State* L) {
   checkBodyFields(L, 1, "world.compound", {"children"});
   physics::BodyDef d = readCommon(L, 1, "world.compound");
   refuseZeroMass(L, "world.compound");
-  if (lua_getfield(L, 1, "children") != LUA_TTABLE)
+  if (rawGetField(L, 1, "children") != LUA_TTABLE)
     throw LuaArgError("world.compound: field 'children' must be a list of shapes {{shape = \"box\", ...}, ...}");
   std::vector<physics::CompoundChild> children;
-  const lua_Integer n = luaL_len(L, -1);
+  const lua_Integer n = rawLength(L, -1);
   for (lua_Integer i = 1; i <= n; ++i) {
     const std::string who = "world.compound: child " + std::to_string(i);
     if (lua_rawgeti(L, -1, i) != LUA_TTABLE) throw LuaArgError(who + ": expected a table {shape = \"box\", ...}");
@@ -463,7 +464,7 @@ int worldShapeCast(lua_State* L) {
     if (dir.norm() == 0) throw LuaArgError("field 'direction' must not be zero");
     maxd = optNumberField(L, 1, "max_distance", maxd);
     if (maxd < 0) throw LuaArgError("field 'max_distance' must be >= 0 m");
-    if (lua_getfield(L, 1, "ignore") != LUA_TNIL && !testBody(L, -1, &ignore))
+    if (rawGetField(L, 1, "ignore") != LUA_TNIL && !testBody(L, -1, &ignore))
       throw LuaArgError(std::string("field 'ignore' must be a Body, got ") + luaL_typename(L, -1));
     lua_pop(L, 1);
   } catch (const LuaArgError& e) {
@@ -477,14 +478,14 @@ int worldShapeCast(lua_State* L) {
   lua_createtable(L, 0, 4);
   if (!hit.body.isNull()) {
     pushBody(L, hit.body);
-    lua_setfield(L, -2, "body");
+    rawSetField(L, -2, "body");
   }
   lua_pushnumber(L, hit.distance_m);
-  lua_setfield(L, -2, "distance");
+  rawSetField(L, -2, "distance");
   pushVec3(L, hit.point_m);
-  lua_setfield(L, -2, "point");
+  rawSetField(L, -2, "point");
   pushVec3(L, hit.normal);
-  lua_setfield(L, -2, "normal");
+  rawSetField(L, -2, "normal");
   return 1;
 }
 
@@ -505,13 +506,13 @@ int worldGravity(lua_State* L) {
 void pushHit(lua_State* L, const physics::RayHit& hit) {
   lua_createtable(L, 0, 4);
   pushBody(L, hit.body);
-  lua_setfield(L, -2, "body");
+  rawSetField(L, -2, "body");
   lua_pushnumber(L, hit.distance_m);
-  lua_setfield(L, -2, "distance");
+  rawSetField(L, -2, "distance");
   pushVec3(L, hit.point_m);
-  lua_setfield(L, -2, "point");
+  rawSetField(L, -2, "point");
   pushVec3(L, hit.normal);
-  lua_setfield(L, -2, "normal");
+  rawSetField(L, -2, "normal");
 }
 
 /// @class RayHit

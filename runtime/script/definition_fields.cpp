@@ -167,7 +167,7 @@ bool getRaw(lua_State* L, const char* key) {
 
 void pop(lua_State* L) { lua_pop(L, 1); }
 void newTable(lua_State* L) { lua_newtable(L); }
-void setField(lua_State* L, const char* key) { lua_setfield(L, -2, key); }
+void setField(lua_State* L, const char* key) { rawSetField(L, -2, key); }
 void setIndex(lua_State* L, int i) { lua_rawseti(L, -2, i); }
 
 int listLength(lua_State* L, const std::string& path, const char* form) {

@@ -1,4 +1,5 @@
 #include "script/emitter_cache.h"
+#include "script/internal/raw_access.h"
 
 #include <cctype>
 #include <filesystem>
@@ -70,7 +71,7 @@ Result<particles::EmitterDef> EmitterCache::definition(const std::string& ref, i
   const std::string path = (fs::path(mod->dir) / "emitters" / (name + ".lua")).string();
   const std::string file = "emitters/" + name + ".lua";
   lua_rawgeti(L, LUA_REGISTRYINDEX, m_tablesRef);
-  if (lua_getfield(L, -1, key.c_str()) != LUA_TTABLE) {
+  if (rawGetField(L, -1, key.c_str()) != LUA_TTABLE) {
     lua_pop(L, 1);
     std::string error;
     int line = 0;
@@ -79,7 +80,7 @@ Result<particles::EmitterDef> EmitterCache::definition(const std::string& ref, i
       return makeError("mod " + mod->name + ": " + file + (line > 0 ? ":" + std::to_string(line) : "") + ": " + error);
     }
     lua_pushvalue(L, -1);
-    lua_setfield(L, -3, key.c_str());
+    rawSetField(L, -3, key.c_str());
   }
   // The file's fields, then the overrides on top, into a fresh table.
   lua_newtable(L);
@@ -90,7 +91,7 @@ Result<particles::EmitterDef> EmitterCache::definition(const std::string& ref, i
     while (lua_next(L, from) != 0) {
       lua_pushvalue(L, -2);
       lua_insert(L, -2);
-      lua_settable(L, -4);
+      lua_rawset(L, -4);
     }
   }
   particles::EmitterDef def;
@@ -120,7 +121,7 @@ void EmitterCache::rememberSource(particles::EmitterId id, const std::string& re
     while (lua_next(L, overridesIdx) != 0) {
       lua_pushvalue(L, -2);
       lua_insert(L, -2);
-      lua_settable(L, -4);
+      lua_rawset(L, -4);
     }
     source.overridesRef = luaL_ref(L, LUA_REGISTRYINDEX);
   }

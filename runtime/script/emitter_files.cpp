@@ -1,3 +1,4 @@
+#include "script/sandbox.h"
 #include "script/emitter_files.h"
 
 #include <algorithm>
@@ -47,7 +48,7 @@ class Reader {
 
   // Pushes the field; false (nothing pushed) when absent.
   bool get(const char* key) {
-    if (lua_getfield(m_L, m_t, key) == LUA_TNIL) {
+    if (rawGetField(m_L, m_t, key) == LUA_TNIL) {
       lua_pop(m_L, 1);
       return false;
     }
@@ -106,7 +107,7 @@ class Reader {
     for (int i = 0; i < 3; ++i) {
       if (lua_rawgeti(m_L, idx, i + 1) == LUA_TNIL) {
         lua_pop(m_L, 1);
-        lua_getfield(m_L, idx, names[i]);
+        rawGetField(m_L, idx, names[i]);
       }
       double c;
       bool ok = toNumber(-1, &c);
@@ -157,9 +158,9 @@ class Reader {
       double t = -1;
       bool ok = lua_istable(m_L, -1);
       if (ok) {
-        lua_getfield(m_L, -1, "time");
+        rawGetField(m_L, -1, "time");
         ok = toNumber(-1, &t);
-        lua_getfield(m_L, -2, "count");
+        rawGetField(m_L, -2, "count");
         ok = ok && lua_isinteger(m_L, -1);
         if (ok) b.count = int(std::clamp<lua_Integer>(lua_tointeger(m_L, -1), -1, 1 << 30));
         lua_pop(m_L, 2);
@@ -310,7 +311,7 @@ void readEmitterTable(lua_State* L, int idx, EmitterDef& d, std::vector<std::str
   r.number("stretch", &d.stretch_s, "seconds >= 0 (streak length = speed x stretch; 0: round)");
   r.choice<BlendMode>("blend", &d.blend, {{"alpha", BlendMode::Alpha}, {"additive", BlendMode::Additive}});
   r.choice<SimSpace>("space", &d.space, {{"world", SimSpace::World}, {"local", SimSpace::Local}});
-  if (lua_getfield(L, lua_absindex(L, idx), "description"), !lua_isnil(L, -1) && lua_type(L, -1) != LUA_TSTRING)
+  if (rawGetField(L, lua_absindex(L, idx), "description"), !lua_isnil(L, -1) && lua_type(L, -1) != LUA_TSTRING)
     problems.push_back("field 'description': expected a string");
   lua_pop(L, 1);
   // Ranges and consistency, once the types are right.
@@ -321,17 +322,15 @@ void readEmitterTable(lua_State* L, int idx, EmitterDef& d, std::vector<std::str
 bool runEmitterChunk(LuaVm& vm, const std::string& path, const std::string& modName, std::string* error, int* line) {
   lua_State* L = vm.state();
   *line = 0;
-  if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
+  if (LuaVm::loadFile(L, std::string(path.c_str())) != LUA_OK) {
     ScriptError e = LuaVm::parseError(modName, lua_tostring(L, -1), "");
     lua_pop(L, 1);
     *error = e.message;
     *line = e.line;
     return false;
   }
-  // A data chunk: `math` and nothing else (no world, no io).
-  lua_newtable(L);
-  lua_getglobal(L, "math");
-  lua_setfield(L, -2, "math");
+  // A data chunk: its own copies of math, string and table; no world, no io.
+  pushDataEnvironment(L);  // private math, string and table: data, no world
   lua_setupvalue(L, -2, 1);
   ScriptError err;
   if (!vm.call(0, 1, modName, fs::path(path).filename().string(), "top level", &err)) {

@@ -22,11 +22,8 @@ int luaPrint(lua_State* L) {
   std::string line;
   int n = lua_gettop(L);
   for (int i = 1; i <= n; ++i) {
-    std::size_t len = 0;
-    const char* s = luaL_tolstring(L, i, &len);
     if (i > 1) line += '\t';
-    line.append(s, len);
-    lua_pop(L, 1);
+    line += toDisplayString(L, i);
   }
   log::info("mod " + (host ? host->mod().name : std::string("?")) + ": " + line);
   return 0;
@@ -56,10 +53,10 @@ int luaExpect(lua_State* L) {
                       luaL_typename(L, 2));
   }
   if (lua_istable(L, 3)) {
-    lua_getfield(L, 3, "min");
+    rawGetField(L, 3, "min");
     if (lua_type(L, -1) == LUA_TNUMBER) e.min = lua_tonumber(L, -1);
     lua_pop(L, 1);
-    lua_getfield(L, 3, "max");
+    rawGetField(L, 3, "max");
     if (lua_type(L, -1) == LUA_TNUMBER) e.max = lua_tonumber(L, -1);
     lua_pop(L, 1);
   } else if (!lua_isnoneornil(L, 3)) {
@@ -140,10 +137,7 @@ int luaParam(lua_State* L) {
 int luaHudText(lua_State* L) {
   std::vector<std::string> lines;
   for (int i = 1; i <= lua_gettop(L); ++i) {
-    std::size_t len = 0;
-    const char* s = luaL_tolstring(L, i, &len);
-    lines.emplace_back(s, len);
-    lua_pop(L, 1);
+    lines.push_back(toDisplayString(L, i));
   }
   ScenarioHost::from(L)->setHudText(std::move(lines));
   return 0;

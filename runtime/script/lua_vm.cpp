@@ -1,10 +1,12 @@
 #include "script/lua_vm.h"
+#include "script/internal/raw_access.h"
 
 #include "core/assert.h"
+#include "core/file_util.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
-#include <regex>
 
 extern "C" {
 #include <lauxlib.h>
@@ -17,6 +19,7 @@ namespace tumble::script {
 namespace {
 constexpr int kHookEvery = 1000;  // instructions between hook calls
 const char kVmKey = 0;           // registry key: the LuaVm owning a state
+const char kStoppedThreadsKey = 0;  // registry key: weak set of coroutines the budget stopped
 
 int messageHandler(lua_State* L) {
   // Keep the message; add the traceback as a second value via a table.
@@ -30,9 +33,9 @@ int messageHandler(lua_State* L) {
   }
   lua_newtable(L);
   lua_pushstring(L, msg);
-  lua_setfield(L, -2, "message");
+  rawSetField(L, -2, "message");
   luaL_traceback(L, L, nullptr, 1);
-  lua_setfield(L, -2, "traceback");
+  rawSetField(L, -2, "traceback");
   return 1;
 }
 }  // namespace
@@ -41,7 +44,14 @@ std::string ScriptError::summary() const {
   std::string s = "mod " + mod + ": ";
   // Budget errors name the callback instead of a line: "mod X: scenarios/y.lua:
   // on_update exceeded N instructions ..." (the line is in the message).
-  if (!file.empty()) s += file + (line > 0 && !limit ? ":" + std::to_string(line) : std::string()) + ": ";
+  if (!file.empty()) {
+    s += file;
+    if (line > 0 && !limit) {
+      s += ':';
+      s += std::to_string(line);
+    }
+    s += ": ";
+  }
   return s + message;
 }
 
@@ -58,7 +68,7 @@ LuaVm::LuaVm(const VmLimits& limits) : m_limits(limits) {
   // change what s:upper() means.
   lua_getglobal(m_L, "string");
   lua_pushnil(m_L);
-  lua_setfield(m_L, -2, "dump");
+  rawSetField(m_L, -2, "dump");
   lua_newtable(m_L);
   lua_pushnil(m_L);
   while (lua_next(m_L, -3) != 0) {
@@ -69,12 +79,18 @@ LuaVm::LuaVm(const VmLimits& limits) : m_limits(limits) {
   lua_pushliteral(m_L, "");
   if (lua_getmetatable(m_L, -1)) {
     lua_pushvalue(m_L, -3);
-    lua_setfield(m_L, -2, "__index");
+    rawSetField(m_L, -2, "__index");
     lua_pushboolean(m_L, 0);
-    lua_setfield(m_L, -2, "__metatable");
+    rawSetField(m_L, -2, "__metatable");
     lua_pop(m_L, 1);
   }
   lua_pop(m_L, 3);
+  lua_newtable(m_L);  // weak-keyed set of coroutines stopped by the budget
+  lua_newtable(m_L);
+  lua_pushliteral(m_L, "k");
+  lua_setfield(m_L, -2, "__mode");
+  lua_setmetatable(m_L, -2);
+  lua_rawsetp(m_L, LUA_REGISTRYINDEX, &kStoppedThreadsKey);
   lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, kHookEvery);
 }
 
@@ -114,10 +130,25 @@ void LuaVm::countHook(lua_State* L, lua_Debug* ar) {
       vm->m_budgetLine = ar->currentline;
       vm->m_budgetSource = ar->source ? ar->source : "";
     }
-    // From now on raise at every instruction of this thread: a pcall in the
-    // script catches the error, and the very next instruction raises again,
-    // so the stop reaches the top however the loop is wrapped.
-    lua_sethook(L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
+  }
+  // From now on raise at every instruction, in this thread and in the main
+  // one (a coroutine stopped here hands control back to its resumer, which
+  // would otherwise run another kHookEvery instructions per caught error): a
+  // pcall in the script catches the error, and the very next instruction
+  // raises again, so the stop reaches the top however the loop is wrapped.
+  lua_sethook(L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
+  if (L != vm->m_L) {
+    lua_sethook(vm->m_L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
+    // Lua leaves hooks off in a coroutine that died by an error raised in a
+    // hook, so its <close> handlers would run unbounded under
+    // coroutine.close; remember it (weakly) and the sandbox's close refuses.
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &kStoppedThreadsKey);
+    if (lua_istable(L, -1)) {
+      lua_pushthread(L);
+      lua_pushboolean(L, 1);
+      lua_rawset(L, -3);
+    }
+    lua_pop(L, 1);
   }
   // No C++ object with a destructor lives in this frame, so lua_error may
   // longjmp from here. The message has no position: LuaVm::call names the
@@ -125,6 +156,37 @@ void LuaVm::countHook(lua_State* L, lua_Debug* ar) {
   lua_pushfstring(L, "exceeded %I instructions (runaway loop?); the call was stopped",
                   lua_Integer(vm->m_limits.instructionsPerCall));
   lua_error(L);
+}
+
+bool LuaVm::charge(lua_State* L, std::uint64_t instructions) {
+  if (m_callDepth == 0) return true;  // not inside a budgeted call
+  if (!m_budgetHit && instructions <= m_limits.instructionsPerCall - std::min(m_instructions, m_limits.instructionsPerCall)) {
+    m_instructions += instructions;
+    return true;
+  }
+  if (!m_budgetHit) {
+    m_budgetHit = true;
+    lua_Debug ar;
+    if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar)) {
+      m_budgetLine = ar.currentline;
+      m_budgetSource = ar.source ? ar.source : "";
+    }
+  }
+  lua_sethook(L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
+  lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
+  return false;
+}
+
+bool LuaVm::wasStoppedByBudget(lua_State* thread) {
+  lua_rawgetp(thread, LUA_REGISTRYINDEX, &kStoppedThreadsKey);
+  bool stopped = false;
+  if (lua_istable(thread, -1)) {
+    lua_pushthread(thread);
+    stopped = lua_rawget(thread, -2) != LUA_TNIL;
+    lua_pop(thread, 1);
+  }
+  lua_pop(thread, 1);
+  return stopped;
 }
 
 namespace {
@@ -142,6 +204,17 @@ std::string modRelative(const std::string& mod, std::string path) {
   return pos == std::string::npos ? path : path.substr(pos + marker.size());
 }
 
+// Error messages and tracebacks go to the log, the HUD and the report; a
+// script can raise a string of any length (error(string.rep("x", 1e6))), so
+// they are cut to a readable size, saying how much was cut.
+constexpr std::size_t kMaxMessageChars = 2000;
+std::string clip(std::string text) {
+  if (text.size() <= kMaxMessageChars) return text;
+  const std::size_t cut = text.size() - kMaxMessageChars;
+  text.resize(kMaxMessageChars);
+  return text + "... (" + std::to_string(cut) + " more characters)";
+}
+
 bool endsWith(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
@@ -153,22 +226,33 @@ bool LuaVm::call(int nargs, int nresults, const std::string& mod, const std::str
   lua_pushcfunction(m_L, messageHandler);
   lua_insert(m_L, base);
   ++m_calls;
-  m_instructions = 0;
-  m_budgetHit = false;
-  m_budgetLine = 0;
-  m_budgetSource.clear();
+  // A call made from inside a running one (an emitter file loaded by
+  // particles.spawn, a vehicle file by vehicle.spawn) runs on the outer
+  // call's budget: only the outermost call starts a fresh count.
+  const bool outermost = m_callDepth == 0;
+  if (outermost) {
+    ++m_outerCalls;
+    m_instructions = 0;
+    m_budgetHit = false;
+    m_budgetLine = 0;
+    m_budgetSource.clear();
+  }
+  ++m_callDepth;
   int status = lua_pcall(m_L, nargs, nresults, base);
+  --m_callDepth;
   lua_remove(m_L, base);
   bool budgetHit = m_budgetHit;
-  m_budgetHit = false;
-  if (budgetHit) lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, kHookEvery);
+  if (outermost) {
+    m_budgetHit = false;
+    if (budgetHit) lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, kHookEvery);
+  }
   if (status == LUA_OK) return true;
   std::string message, traceback;
   if (lua_istable(m_L, -1)) {
-    lua_getfield(m_L, -1, "message");
+    rawGetField(m_L, -1, "message");
     message = lua_tostring(m_L, -1) ? lua_tostring(m_L, -1) : "";
     lua_pop(m_L, 1);
-    lua_getfield(m_L, -1, "traceback");
+    rawGetField(m_L, -1, "traceback");
     traceback = lua_tostring(m_L, -1) ? lua_tostring(m_L, -1) : "";
     lua_pop(m_L, 1);
   } else if (lua_isstring(m_L, -1)) {
@@ -178,6 +262,8 @@ bool LuaVm::call(int nargs, int nresults, const std::string& mod, const std::str
   }
   lua_pop(m_L, 1);
   if (!error) return false;
+  message = clip(std::move(message));
+  traceback = clip(std::move(traceback));
   const std::string what = callback.empty() ? std::string("the call") : callback;
   // A memory error the script caught and raised again arrives as a string.
   bool memory = status == LUA_ERRMEM || endsWith(message, "not enough memory");
@@ -207,23 +293,37 @@ bool LuaVm::call(int nargs, int nresults, const std::string& mod, const std::str
   return false;
 }
 
+int LuaVm::loadFile(lua_State* L, const std::string& path) {
+  auto text = readTextFile(path, std::size_t(16) << 20);
+  if (!text) {
+    lua_pushstring(L, text.error().c_str());
+    return LUA_ERRFILE;
+  }
+  return luaL_loadbufferx(L, text->data(), text->size(), ("@" + path).c_str(), "t");
+}
+
 ScriptError LuaVm::parseError(const std::string& mod, const std::string& message, const std::string& traceback) {
   ScriptError e;
   e.mod = mod;
   e.traceback = traceback;
   e.message = message;
-  // "path/to/mods/base/scenarios/drop.lua:12: text"
-  static const std::regex re(R"(^([^\n:]+\.lua):(\d+): ([\s\S]*)$)");
-  std::smatch m;
-  if (std::regex_match(message, m, re)) {
-    std::string path = m[1];
-    e.line = std::stoi(m[2]);
-    e.message = m[3];
-    // Report the path inside the mod: after "/<mod>/" when present.
-    std::string marker = "/" + mod + "/";
-    auto pos = path.rfind(marker);
-    e.file = pos == std::string::npos ? path : path.substr(pos + marker.size());
-  }
+  // "path/to/mods/base/scenarios/drop.lua:12: text", read by hand: the
+  // message is the script's own text (error("...") of any length), and a
+  // regular expression engine recurses per character.
+  const std::size_t colon = message.find(':');
+  if (colon == std::string::npos || colon < 5 || message.compare(colon - 4, 4, ".lua") != 0 ||
+      message.find('\n') < colon)
+    return e;
+  std::size_t digits = colon + 1;
+  while (digits < message.size() && digits - colon <= 9 && message[digits] >= '0' && message[digits] <= '9') ++digits;
+  if (digits == colon + 1 || message.compare(digits, 2, ": ") != 0) return e;
+  const std::string path = message.substr(0, colon);
+  e.line = std::stoi(message.substr(colon + 1, digits - colon - 1));
+  e.message = message.substr(digits + 2);
+  // Report the path inside the mod: after "/<mod>/" when present.
+  std::string marker = "/" + mod + "/";
+  auto pos = path.rfind(marker);
+  e.file = pos == std::string::npos ? path : path.substr(pos + marker.size());
   return e;
 }
 

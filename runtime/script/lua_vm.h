@@ -34,6 +34,9 @@ class LuaVm {
   std::size_t memoryUsed() const { return m_used; }
   /// Protected calls made so far (tests use it to prove a frame made none).
   std::uint64_t callCount() const { return m_calls; }
+  /// Serial number of the outermost protected call running or last run
+  /// (calls nested in it share it): per-callback budgets key on it.
+  std::uint64_t outerCallSerial() const { return m_outerCalls; }
 
   /// Calls the function below nargs arguments on the stack, protected and
   /// under the instruction budget. On error fills *error and returns false.
@@ -48,8 +51,24 @@ class LuaVm {
     return call(nargs, nresults, mod, std::string(), what, error);
   }
 
+  /// Compiles a Lua source file (text only) and pushes the chunk, as
+  /// luaL_loadfilex does, but reads the file with core's bounded reader:
+  /// a FIFO, device or folder, or a file over 16 MiB, is an error pushed as
+  /// the message (LUA_ERRFILE), never a read that blocks or never ends.
+  static int loadFile(lua_State* L, const std::string& path);
+
   /// Turns a Lua error message plus traceback into a ScriptError. Chunk
   /// names are "@<mod dir>/<file>"; the mod-relative file is reported.
+  /// Counts `instructions` of work a binding does in C++ on the running
+  /// call's behalf (a terrain filter, ...) against its instruction budget.
+  /// Returns false, and marks the budget as hit so the script stops at its
+  /// next instruction, if that work does not fit in what is left.
+  bool charge(lua_State* L, std::uint64_t instructions);
+
+  /// True if the instruction budget stopped `thread` (a coroutine): Lua
+  /// leaves hooks off in it, so its <close> handlers must not run.
+  static bool wasStoppedByBudget(lua_State* thread);
+
   static ScriptError parseError(const std::string& mod, const std::string& message, const std::string& traceback);
 
  private:
@@ -61,6 +80,8 @@ class LuaVm {
   std::size_t m_used = 0;
   std::uint64_t m_instructions = 0;
   std::uint64_t m_calls = 0;
+  std::uint64_t m_outerCalls = 0;
+  int m_callDepth = 0;  ///< protected calls running (nested ones share the budget)
   /// Set once the running call exceeded its instruction budget; from then on
   /// every hook tick raises again, so a script cannot pcall its way past it.
   bool m_budgetHit = false;

@@ -1,10 +1,10 @@
+#include "script/sandbox.h"
 #include "script/mod_bindings.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
-#include <regex>
 
 #include "core/file_util.h"
 #include "script/internal/lua_util.h"
@@ -33,12 +33,12 @@ class Reader {
       return;
     }
     checkFields(-1, kTopFields, "");
-    lua_getfield(m_L, -1, "contexts");
+    rawGetField(m_L, -1, "contexts");
     if (!lua_istable(m_L, -1)) {
       problem(0, "contexts: expected a table of contexts, e.g. contexts = {vehicle = {priority = 10, actions = {...}}}");
     } else {
       for (const std::string& name : inFileOrder(sortedKeys(-1, "contexts"), 1)) {
-        lua_getfield(m_L, -1, name.c_str());
+        rawGetField(m_L, -1, name.c_str());
         context(name, out);
         lua_pop(m_L, 1);
       }
@@ -126,9 +126,24 @@ class Reader {
     }
   }
 
+  // An identifier, or two joined by one dot ("vehicle.throttle"); checked
+  // by hand, not with a regular expression over the mod's text.
   bool validName(const std::string& name) const {
-    static const std::regex re(R"(^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)?$)");
-    return std::regex_match(name, re);
+    if (name.size() > 128) return false;
+    int dots = 0;
+    bool atStart = true;
+    for (char c : name) {
+      const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+      if (c == '.') {
+        if (atStart || ++dots > 1) return false;
+        atStart = true;
+      } else if (letter || (!atStart && c >= '0' && c <= '9')) {
+        atStart = false;
+      } else {
+        return false;
+      }
+    }
+    return !atStart;
   }
 
   void context(const std::string& name, input::BindingSet& out) {
@@ -145,23 +160,23 @@ class Reader {
     checkFields(-1, kContextFields, where);
     input::ContextDef c;
     c.name = name;
-    lua_getfield(m_L, -1, "priority");
+    rawGetField(m_L, -1, "priority");
     if (lua_isinteger(m_L, -1)) c.priority = int(lua_tointeger(m_L, -1));
     else if (!lua_isnil(m_L, -1))
       problem(lineOf("priority", line), where + ".priority: expected an integer (higher wins a shared key)");
     lua_pop(m_L, 1);
-    lua_getfield(m_L, -1, "enabled");
+    rawGetField(m_L, -1, "enabled");
     if (lua_isboolean(m_L, -1)) c.enabled = lua_toboolean(m_L, -1);
     else if (!lua_isnil(m_L, -1)) problem(lineOf("enabled", line), where + ".enabled: expected true or false");
     lua_pop(m_L, 1);
     out.contexts.push_back(c);
-    lua_getfield(m_L, -1, "actions");
+    rawGetField(m_L, -1, "actions");
     if (!lua_istable(m_L, -1)) {
       problem(line, where + ".actions: expected a table of actions, e.g. actions = {jump = {type = \"button\", "
                             "bindings = {\"key:Space\", \"pad:a\"}}}");
     } else {
       for (const std::string& a : inFileOrder(sortedKeys(-1, where + ".actions"), line)) {
-        lua_getfield(m_L, -1, a.c_str());
+        rawGetField(m_L, -1, a.c_str());
         action(a, name, out);
         lua_pop(m_L, 1);
       }
@@ -173,7 +188,7 @@ class Reader {
   bool modifiers(input::Modifiers& m, const std::string& where, int line) {
     bool ok = true;
     auto number = [&](const char* key, double* out, double lo, double hi, const char* what) {
-      lua_getfield(m_L, -1, key);
+      rawGetField(m_L, -1, key);
       if (lua_type(m_L, -1) == LUA_TNUMBER) {
         double v = lua_tonumber(m_L, -1);
         if (v >= lo && v <= hi) *out = v;
@@ -186,7 +201,7 @@ class Reader {
     number("dead_zone", &m.deadZone, 0, 0.95, "a fraction of travel in 0..0.95");
     number("curve", &m.curve, 0.2, 5, "a response exponent in 0.2..5");
     number("scale", &m.scale, -1e6, 1e6, "a finite factor");
-    lua_getfield(m_L, -1, "invert");
+    rawGetField(m_L, -1, "invert");
     if (lua_isboolean(m_L, -1)) m.invert = lua_toboolean(m_L, -1);
     else if (!lua_isnil(m_L, -1)) ok = false, problem(line, where + ".invert: expected true or false");
     lua_pop(m_L, 1);
@@ -210,7 +225,7 @@ class Reader {
     a.name = name;
     a.context = ctx;
     a.mod = m_mod.name;
-    lua_getfield(m_L, -1, "type");
+    rawGetField(m_L, -1, "type");
     std::string type = lua_type(m_L, -1) == LUA_TSTRING ? lua_tostring(m_L, -1) : "";
     lua_pop(m_L, 1);
     if (type == "axis") a.type = input::ActionType::Axis;
@@ -219,12 +234,12 @@ class Reader {
                         (type.empty() ? std::string() : ", got \"" + type + "\""));
       return;
     }
-    lua_getfield(m_L, -1, "label");
+    rawGetField(m_L, -1, "label");
     if (lua_type(m_L, -1) == LUA_TSTRING) a.label = lua_tostring(m_L, -1);
     else if (!lua_isnil(m_L, -1)) problem(line, where + ".label: expected a string");
     lua_pop(m_L, 1);
     modifiers(a.modifiers, where, line);
-    lua_getfield(m_L, -1, "bindings");
+    rawGetField(m_L, -1, "bindings");
     if (!lua_istable(m_L, -1)) {
       if (!lua_isnil(m_L, -1)) problem(line, where + ".bindings: expected a list like {\"key:W\", \"pad:a\"}");
     } else {
@@ -299,7 +314,7 @@ ModBindings loadModBindings(const ModInfo& mod) {
     out.problems.push_back({path.string(), e.line, e.message, mod.name});
     return out;
   }
-  lua_newtable(L);  // empty _ENV: bindings are data
+  pushDataEnvironment(L);  // private math, string and table: data, no world
   lua_setupvalue(L, -2, 1);
   ScriptError err;
   if (!vm.call(0, 1, mod.name, "bindings.lua", "top level", &err)) {

@@ -1,4 +1,5 @@
 #include "script/mods.h"
+#include "script/internal/raw_access.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -6,8 +7,9 @@
 #include <functional>
 #include <map>
 #include <set>
-#include <regex>
+#include <cstring>
 
+#include "core/text.h"
 #include "script/emitter_files.h"
 #include "script/lua_vm.h"
 #include "script/mod_bindings.h"
@@ -27,10 +29,14 @@ std::string ModProblem::text() const {
 
 namespace {
 
-bool isSemver(const std::string& v) {
-  static const std::regex re(R"(^\d+\.\d+(\.\d+)?([-+][0-9A-Za-z.-]+)?$)");
-  return std::regex_match(v, re);
-}
+// Versions, dependencies and references are parsed by hand, never with a
+// regular expression: std::regex recurses per character, and a manifest's
+// text can be any length.
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
+bool isAlnum(char c) { return isDigit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+bool isIdentifierChar(char c) { return isAlnum(c) || c == '.' || c == '-'; }  // semver's [0-9A-Za-z.-]
+bool isNameChar(char c) { return isAlnum(c) || c == '_' || c == '-'; }         // mod and scenario names
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
 struct Semver {
   long long part[3] = {0, 0, 0};
@@ -38,15 +44,51 @@ struct Semver {
   std::vector<std::string> pre;  ///< pre-release identifiers
 };
 
+// Reads "1", "1.2" or "1.2.3" from text at *i (each number at most 9
+// digits); returns false when no number starts there.
+bool readVersionNumbers(const std::string& text, std::size_t* i, Semver* v) {
+  for (int p = 0; p < 3; ++p) {
+    if (p > 0) {
+      if (*i + 1 >= text.size() || text[*i] != '.' || !isDigit(text[*i + 1])) break;
+      ++*i;
+    }
+    const std::size_t start = *i;
+    while (*i < text.size() && isDigit(text[*i])) ++*i;
+    if (*i == start || *i - start > 9) return false;
+    v->part[p] = std::stoll(text.substr(start, *i - start));
+    v->parts = p + 1;
+  }
+  return true;
+}
+
+// A run of semver identifier characters at *i, at least one.
+bool readIdentifiers(const std::string& text, std::size_t* i, std::string* out) {
+  const std::size_t start = *i;
+  while (*i < text.size() && isIdentifierChar(text[*i])) ++*i;
+  if (out) *out = text.substr(start, *i - start);
+  return *i > start;
+}
+
+// A manifest's version: "1.2", "1.2.3", optionally "-pre" or "+build".
+bool isSemver(const std::string& v) {
+  Semver parsed;
+  std::size_t i = 0;
+  if (!readVersionNumbers(v, &i, &parsed) || parsed.parts < 2) return false;
+  if (i == v.size()) return true;
+  if (v[i] != '-' && v[i] != '+') return false;
+  ++i;
+  return readIdentifiers(v, &i, nullptr) && i == v.size();
+}
+
+// "1", "1.2", "1.2.3", with optional "-pre.release" and "+build".
 bool parseSemver(const std::string& text, Semver* out) {
-  static const std::regex re(R"(^(\d+)(?:\.(\d+))?(?:\.(\d+))?(?:-([0-9A-Za-z.-]+))?(?:\+[0-9A-Za-z.-]+)?$)");
-  std::smatch m;
-  if (!std::regex_match(text, m, re) || m[1].length() > 9 || m[2].length() > 9 || m[3].length() > 9) return false;
   Semver v;
-  for (int i = 0; i < 3; ++i)
-    if (m[i + 1].matched) v.part[i] = std::stoll(m[i + 1]), v.parts = i + 1;
-  if (m[4].matched) {
-    std::string pre = m[4];
+  std::size_t i = 0;
+  if (!readVersionNumbers(text, &i, &v)) return false;
+  if (i < text.size() && text[i] == '-') {
+    ++i;
+    std::string pre;
+    if (!readIdentifiers(text, &i, &pre)) return false;
     std::size_t start = 0;
     while (start <= pre.size()) {
       std::size_t dot = pre.find('.', start);
@@ -55,8 +97,20 @@ bool parseSemver(const std::string& text, Semver* out) {
       start = dot + 1;
     }
   }
+  if (i < text.size() && text[i] == '+') {
+    ++i;
+    if (!readIdentifiers(text, &i, nullptr)) return false;
+  }
+  if (i != text.size()) return false;
   *out = v;
   return true;
+}
+
+std::string trimmed(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && isSpace(s[b])) ++b;
+  while (e > b && isSpace(s[e - 1])) --e;
+  return s.substr(b, e - b);
 }
 
 bool isNumber(const std::string& s) {
@@ -120,29 +174,61 @@ bool satisfies(const std::string& version, const std::vector<VersionConstraint>&
   return true;
 }
 
+namespace {
+
+// One constraint: an operator and a version, "  >= 1.2 ".
+bool parseConstraint(const std::string& piece, VersionConstraint* out) {
+  const std::string p = trimmed(piece);
+  std::size_t i = 0;
+  for (const char* op : {">=", "<=", "==", "=", ">", "<", "^", "~"}) {
+    if (p.compare(0, std::strlen(op), op) == 0) {
+      out->op = op;
+      i = std::strlen(op);
+      break;
+    }
+  }
+  if (i == 0) return false;
+  while (i < p.size() && isSpace(p[i])) ++i;
+  if (i >= p.size() || !isDigit(p[i])) return false;
+  for (std::size_t j = i; j < p.size(); ++j)
+    if (!isIdentifierChar(p[j]) && p[j] != '+') return false;
+  out->version = p.substr(i);
+  return true;
+}
+
+}  // namespace
+
 Result<ModDependency> parseDependency(const std::string& text) {
-  static const std::regex whole(R"(^\s*([A-Za-z0-9_\-]+)\s*(\?)?\s*(.*?)\s*(\?)?\s*$)");
-  static const std::regex one(R"(^\s*(>=|<=|==|=|>|<|\^|~)\s*([0-9][0-9A-Za-z.\-+]*)\s*$)");
-  const std::string form = "dependency \"" + text +
+  const std::string form = "dependency \"" + clipped(text) +
                            "\" is not of the form \"name\", \"name >= 1.0\" or \"name?\" (optional); operators: "
                            ">=, >, <=, <, =, ^, ~; several constraints are separated by commas";
-  std::smatch m;
-  if (!std::regex_match(text, m, whole)) return makeError(form);
+  if (text.size() > kMaxDependencyChars)
+    return makeError("dependency \"" + clipped(text) + "\" is longer than " + std::to_string(kMaxDependencyChars) +
+                     " characters");
+  // name, an optional '?', the constraints, an optional '?' at the end.
+  std::string rest = trimmed(text);
+  std::size_t i = 0;
+  while (i < rest.size() && isNameChar(rest[i])) ++i;
+  if (i == 0) return makeError(form);
   ModDependency dep;
-  dep.name = m[1];
-  dep.optional = m[2].matched || m[4].matched;
+  dep.name = rest.substr(0, i);
   dep.text = text;
-  std::string rest = m[3];
+  while (i < rest.size() && isSpace(rest[i])) ++i;
+  if (i < rest.size() && rest[i] == '?') dep.optional = true, ++i;
+  rest = trimmed(rest.substr(i));
+  if (!rest.empty() && rest.back() == '?') dep.optional = true, rest = trimmed(rest.substr(0, rest.size() - 1));
   std::size_t start = 0;
   while (!rest.empty() && start <= rest.size()) {
     std::size_t comma = rest.find(',', start);
     std::string piece = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    std::smatch c;
-    if (!std::regex_match(piece, c, one)) return makeError(form);
+    VersionConstraint c;
+    if (!parseConstraint(piece, &c)) return makeError(form);
     Semver v;
-    if (!parseSemver(c[2], &v))
-      return makeError("dependency \"" + text + "\": \"" + std::string(c[2]) + "\" is not a version like 1, 1.2 or 1.2.3");
-    dep.constraints.push_back({c[1] == "==" ? std::string("=") : std::string(c[1]), c[2]});
+    if (!parseSemver(c.version, &v))
+      return makeError("dependency \"" + clipped(text) + "\": \"" + clipped(c.version) +
+                       "\" is not a version like 1, 1.2 or 1.2.3");
+    if (c.op == "==") c.op = "=";
+    dep.constraints.push_back(c);
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -184,7 +270,7 @@ bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>
   limits.instructionsPerCall = 1'000'000;
   LuaVm vm(limits);
   lua_State* L = vm.state();
-  if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
+  if (LuaVm::loadFile(L, std::string(path.c_str())) != LUA_OK) {
     ScriptError e = LuaVm::parseError(fs::path(dir).filename().string(), lua_tostring(L, -1), "");
     problem(e.line, e.message);
     return false;
@@ -200,24 +286,29 @@ bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>
     problem(0, "must return a table {name = ..., version = ..., title = ..., api = ...}");
     return false;
   }
-  auto str = [&](const char* key, bool required) -> std::string {
-    lua_getfield(L, -1, key);
+  auto str = [&](const char* key, bool required, std::size_t maxChars) -> std::string {
+    rawGetField(L, -1, key);
     std::string v;
     if (lua_type(L, -1) == LUA_TSTRING) v = lua_tostring(L, -1);
     else if (!lua_isnil(L, -1) || required)
       problem(0, std::string("field '") + key + "' must be a string" + (required ? " (required)" : ""));
     lua_pop(L, 1);
+    if (v.size() > maxChars) {
+      problem(0, std::string("field '") + key + "' is " + std::to_string(v.size()) + " characters long; at most " +
+                     std::to_string(maxChars) + " are allowed (\"" + clipped(v) + "\")");
+      v.clear();
+    }
     return v;
   };
-  info.name = str("name", true);
-  info.version = str("version", true);
-  info.title = str("title", false);
-  lua_getfield(L, -1, "api");
+  info.name = str("name", true, kMaxModNameChars);
+  info.version = str("version", true, kMaxVersionChars);
+  info.title = str("title", false, kMaxTitleChars);
+  rawGetField(L, -1, "api");
   if (lua_isinteger(L, -1)) info.api = int(lua_tointeger(L, -1));
   else problem(0, "field 'api' must be an integer (the Lua API version, now " + std::to_string(kApiVersion) + ")");
   lua_pop(L, 1);
   if (!info.version.empty() && !isSemver(info.version))
-    problem(0, "field 'version' must be semver like \"1.2.0\", got \"" + info.version + "\"");
+    problem(0, "field 'version' must be semver like \"1.2.0\", got \"" + clipped(info.version) + "\"");
   if (info.api > kApiVersion)
     problem(lineOf(path, "api"), "field 'api' is " + std::to_string(info.api) + " but this Tumble provides API " +
                                      std::to_string(kApiVersion) + "; update Tumble or lower 'api'");
@@ -225,17 +316,21 @@ bool readManifest(const std::string& dir, ModInfo& info, std::vector<ModProblem>
     problem(lineOf(path, "api"), "field 'api' is " + std::to_string(info.api) + "; API versions start at 1 (now " +
                                      std::to_string(kApiVersion) + ")");
   if (!info.name.empty() && info.name != folder)
-    problem(0, "field 'name' is \"" + info.name + "\" but the folder is \"" + folder + "\"; they must match");
-  lua_getfield(L, -1, "depends");
+    problem(0, "field 'name' is \"" + clipped(info.name) + "\" but the folder is \"" + clipped(folder) + "\"; they must match");
+  rawGetField(L, -1, "depends");
   if (lua_istable(L, -1)) {
-    lua_Integer n = luaL_len(L, -1);
+    lua_Integer n = rawLength(L, -1);
+    if (n > 64) {
+      problem(lineOf(path, "depends"), "field 'depends' lists " + std::to_string(n) + " mods; at most 64 are allowed");
+      n = 0;
+    }
     for (lua_Integer i = 1; i <= n; ++i) {
       lua_rawgeti(L, -1, i);
       if (lua_type(L, -1) == LUA_TSTRING) {
         std::string text = lua_tostring(L, -1);
         auto dep = parseDependency(text);
         if (dep) info.depends.push_back(*dep);
-        else problem(lineOf(path, text), "field 'depends': " + dep.error());
+        else problem(text.size() <= kMaxDependencyChars ? lineOf(path, text) : 0, "field 'depends': " + dep.error());
       } else {
         problem(0, "field 'depends' must be a list of strings like \"base >= 1.0\"");
       }
@@ -417,6 +512,49 @@ std::vector<ModInfo> resolve(const std::vector<ModInfo>& mods, std::vector<ModPr
 
 namespace {
 
+// A call or field with a literal string argument found in a line of Lua:
+// `particles.spawn ( "fire"`, `mesh = "x.obj"`. Found by a plain scan (no
+// regular expression over a mod's text).
+struct LiteralCallForm {
+  const char* prefix;                    ///< "particles."
+  std::vector<const char*> names;        ///< "spawn", "burst"
+  char separator;                        ///< '(' for a call, '=' for a field
+  bool wordStart;                        ///< the name may not follow a letter, digit or '_'
+};
+struct LiteralCall {
+  std::size_t at;
+  std::string what, argument;
+};
+
+std::vector<LiteralCall> findLiteralCalls(const std::string& line, const LiteralCallForm& form) {
+  std::vector<LiteralCall> calls;
+  auto skipSpace = [&](std::size_t i) {
+    while (i < line.size() && isSpace(line[i])) ++i;
+    return i;
+  };
+  for (const char* name : form.names) {
+    const std::string needle = std::string(form.prefix) + name;
+    for (std::size_t pos = line.find(needle); pos != std::string::npos; pos = line.find(needle, pos + 1)) {
+      if (form.wordStart && pos > 0 && (isAlnum(line[pos - 1]) || line[pos - 1] == '_')) continue;
+      std::size_t i = skipSpace(pos + needle.size());
+      if (i >= line.size() || line[i] != form.separator) continue;
+      i = skipSpace(i + 1);
+      if (i >= line.size() || line[i] != '"') continue;
+      const std::size_t end = line.find('"', i + 1);
+      if (end == std::string::npos || end == i + 1) continue;
+      calls.push_back({pos, name, line.substr(i + 1, end - i - 1)});
+    }
+  }
+  std::sort(calls.begin(), calls.end(), [](const LiteralCall& a, const LiteralCall& b) { return a.at < b.at; });
+  return calls;
+}
+
+const LiteralCallForm kEmitterCalls{"particles.", {"spawn", "burst"}, '(', false};
+const LiteralCallForm kVehicleCalls{"vehicle.", {"spawn", "definition"}, '(', false};
+const LiteralCallForm kActionCalls{"input.", {"value", "pressed", "released", "down", "inject"}, '(', false};
+const LiteralCallForm kAssetCalls{"", {"set_model", "add_static_model", "model_mass_properties", "import"}, '(', false};
+const LiteralCallForm kAssetFields{"", {"interior", "mesh", "heightmap"}, '=', true};
+
 // References by literal name in a mod's Lua files, checked statically: the
 // emitter, vehicle, input action or asset file must exist. Names built at
 // run time are not seen (the run then reports them). Comment lines are
@@ -478,36 +616,29 @@ void checkReferences(const ModInfo& self, const std::vector<fs::path>& files, co
     }
     return true;
   };
-  static const std::regex emitterRe(R"re(particles\.(spawn|burst)\s*\(\s*"([^"]+)")re");
-  static const std::regex vehicleRe(R"re(vehicle\.(spawn|definition)\s*\(\s*"([^"]+)")re");
-  static const std::regex actionRe(R"re(input\.(value|pressed|released|down|inject)\s*\(\s*"([^"]+)")re");
-  static const std::regex assetCallRe(
-      R"re((set_model|add_static_model|model_mass_properties|import)\s*\(\s*"([^"]+)")re");
-  static const std::regex assetFieldRe(R"re(\b(interior|mesh|heightmap)\s*=\s*"([^"]+)")re");
   for (const fs::path& file : files) {
     std::ifstream in(file);
     std::string line;
     for (int n = 1; std::getline(in, line); ++n) {
       const auto first = line.find_first_not_of(" \t");
       if (first == std::string::npos || line.compare(first, 2, "--") == 0) continue;
-      auto scan = [&](const std::regex& re, auto&& check) {
-        for (auto it = std::sregex_iterator(line.begin(), line.end(), re); it != std::sregex_iterator(); ++it) {
-          const std::string what = (*it)[1], name = (*it)[2];
+      auto scan = [&](const LiteralCallForm& form, auto&& check) {
+        for (const LiteralCall& call : findLiteralCalls(line, form)) {
           std::string why;
-          if (!check(what, name, &why)) problems.push_back({file.string(), n, why, self.name});
+          if (!check(call.what, call.argument, &why)) problems.push_back({file.string(), n, why, self.name});
         }
       };
-      scan(emitterRe, [&](const std::string& fn, const std::string& ref, std::string* why) {
+      scan(kEmitterCalls, [&](const std::string& fn, const std::string& ref, std::string* why) {
         if (definitionExists(ref, "emitters", why)) return true;
         *why = "particles." + fn + "(\"" + ref + "\"): no such emitter: " + *why;
         return false;
       });
-      scan(vehicleRe, [&](const std::string& fn, const std::string& ref, std::string* why) {
+      scan(kVehicleCalls, [&](const std::string& fn, const std::string& ref, std::string* why) {
         if (definitionExists(ref, "vehicles", why)) return true;
         *why = "vehicle." + fn + "(\"" + ref + "\"): no such vehicle: " + *why;
         return false;
       });
-      scan(actionRe, [&](const std::string& fn, const std::string& name, std::string* why) {
+      scan(kActionCalls, [&](const std::string& fn, const std::string& name, std::string* why) {
         if (actions.findAction(name)) return true;
         std::string known;
         for (const input::ActionDef& a : actions.actions) known += (known.empty() ? "" : ", ") + a.name;
@@ -520,8 +651,8 @@ void checkReferences(const ModInfo& self, const std::vector<fs::path>& files, co
         *why = fn + " \"" + ref + "\": " + *why;
         return false;
       };
-      scan(assetCallRe, asset);
-      scan(assetFieldRe, asset);
+      scan(kAssetCalls, asset);
+      scan(kAssetFields, asset);
     }
   }
 }
@@ -578,7 +709,7 @@ std::vector<ModProblem> checkMod(const std::string& dir, const std::vector<std::
     if (file.filename() == "mod.lua" && file.parent_path() == fs::path(dir)) continue;
     LuaVm vm(VmLimits{8u << 20, 1'000'000});
     lua_State* L = vm.state();
-    if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) {
+    if (LuaVm::loadFile(L, std::string(file.c_str())) != LUA_OK) {
       ScriptError e = LuaVm::parseError(info.name, lua_tostring(L, -1), "");
       problems.push_back({file.string(), e.line, e.message, info.name});
     } else if (file.parent_path().lexically_normal() == (fs::path(dir) / "emitters").lexically_normal()) {
@@ -626,12 +757,18 @@ std::vector<std::string> ModRegistry::listLua(const ModInfo& mod, const std::str
 }
 
 Result<std::pair<std::string, std::string>> parseScenarioRef(const std::string& ref) {
-  static const std::regex re(R"(^(?:([A-Za-z0-9_\-]+):)?([A-Za-z0-9_\-]+)$)");
-  std::smatch m;
-  if (!std::regex_match(ref, m, re))
-    return makeError("scenario \"" + ref + "\" is not of the form MOD:SCENARIO (for example base:drop)");
-  std::string mod = m[1].matched ? std::string(m[1]) : std::string("base");
-  return std::make_pair(mod, std::string(m[2]));
+  // [MOD:]SCENARIO, each a run of letters, digits, '_' and '-'.
+  const std::size_t colon = ref.find(':');
+  const std::string mod = colon == std::string::npos ? std::string("base") : ref.substr(0, colon);
+  const std::string name = colon == std::string::npos ? ref : ref.substr(colon + 1);
+  // Both become file names: bounded, so no path is too long for the system.
+  auto valid = [](const std::string& s) {
+    return !s.empty() && s.size() <= kMaxModNameChars && std::all_of(s.begin(), s.end(), isNameChar);
+  };
+  if (!valid(mod) || !valid(name))
+    return makeError("scenario \"" + clipped(ref) + "\" is not of the form MOD:SCENARIO (for example base:drop; each name at most " +
+                     std::to_string(kMaxModNameChars) + " letters, digits, '_' or '-')");
+  return std::make_pair(mod, name);
 }
 
 }  // namespace tumble::script

@@ -17,6 +17,7 @@
 // but if present its version must match. Mods load in dependency order, ties
 // by name; a mod with a missing or mismatched dependency, or in a cycle, is
 // not loaded and each reason is a problem naming mod.lua and the line.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,12 @@
 namespace tumble::script {
 
 constexpr int kApiVersion = 1;
+/// Longest manifest strings accepted (longer ones are a problem of that mod,
+/// which is then not loaded; every other mod still loads).
+constexpr std::size_t kMaxModNameChars = 64;
+constexpr std::size_t kMaxVersionChars = 64;
+constexpr std::size_t kMaxTitleChars = 200;
+constexpr std::size_t kMaxDependencyChars = 200;
 
 struct VersionConstraint {
   std::string op;       ///< ">=", ">", "<=", "<", "=", "^" or "~"

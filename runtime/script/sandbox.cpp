@@ -7,6 +7,7 @@
 #include <initializer_list>
 
 #include "script/internal/lua_util.h"
+#include "script/lua_vm.h"
 
 extern "C" {
 #include <lauxlib.h>
@@ -25,8 +26,8 @@ void copyLibrary(lua_State* L, const char* lib, std::initializer_list<const char
   lua_getglobal(L, lib);
   lua_createtable(L, 0, int(names.size()));
   for (const char* n : names) {
-    lua_getfield(L, -2, n);
-    lua_setfield(L, -2, n);
+    rawGetField(L, -2, n);
+    rawSetField(L, -2, n);
   }
   lua_remove(L, -2);
 }
@@ -131,6 +132,28 @@ return function(f, handler, ...)
 end
 )lua";
 
+/// @function coroutine.close
+/// The standard coroutine.close, except for a coroutine the instruction
+/// budget stopped: Lua runs such a coroutine's pending <close> handlers with
+/// the budget's hook off, so they are not run; the call returns false and
+/// says why.
+/// @param co thread
+/// @return boolean true when the coroutine was closed cleanly
+/// @return any? the error object, or the reason the handlers were not run
+int sandboxCoroutineClose(lua_State* L) {
+  lua_State* co = lua_tothread(L, 1);
+  if (co && LuaVm::wasStoppedByBudget(co)) {
+    lua_pushboolean(L, 0);
+    lua_pushliteral(L, "coroutine.close: the instruction budget stopped this coroutine; its <close> handlers "
+                       "are not run");
+    return 2;
+  }
+  lua_pushvalue(L, lua_upvalueindex(1));  // the real coroutine.close
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
 // Globals a mod might reach for but must not have, each with the reason and
 // what to use instead. Reading one raises the message; other missing globals
 // read as nil, as in plain Lua.
@@ -184,12 +207,12 @@ void guardTable(lua_State* L, int idx, const Forbidden* begin, const Forbidden* 
   lua_createtable(L, 0, int(end - begin));
   for (const Forbidden* f = begin; f != end; ++f) {
     lua_pushstring(L, f->message);
-    lua_setfield(L, -2, f->name);
+    rawSetField(L, -2, f->name);
   }
   lua_pushcclosure(L, forbiddenIndex, 1);
-  lua_setfield(L, -2, "__index");
+  rawSetField(L, -2, "__index");
   lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
+  rawSetField(L, -2, "__metatable");
   lua_setmetatable(L, idx);
 }
 
@@ -227,7 +250,7 @@ int sandboxRequire(lua_State* L) {
   std::string name = lua_tostring(L, 1);
   if (!isModuleName(name))
     throw LuaArgError("require: \"" + name + "\" is not a module name like \"tumble.vec\" or \"lib.util\"");
-  lua_getfield(L, lua_upvalueindex(1), name.c_str());  // loaded cache
+  rawGetField(L, lua_upvalueindex(1), name.c_str());  // loaded cache
   if (lua_touserdata(L, -1) == &kLoadingKey)
     throw LuaArgError("require: \"" + name + "\" requires itself (a circular require); move the shared part "
                       "into a third module");
@@ -238,10 +261,18 @@ int sandboxRequire(lua_State* L) {
   rel += ".lua";
   fs::path path = name.rfind("tumble.", 0) == 0 ? fs::path(lua_tostring(L, lua_upvalueindex(4))) / rel
                                                  : fs::path(lua_tostring(L, lua_upvalueindex(3))) / rel;
-  if (!fs::exists(path))
+  std::error_code ec;
+  if (!fs::exists(path, ec))
     throw LuaArgError("require: module \"" + name + "\" not found (looked for " + path.string() +
                       "); C modules are not allowed in mods");
-  if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
+  // The file itself must stay inside its folder: a symbolic link in the mod
+  // pointing at /etc/passwd is not followed out.
+  const fs::path root = fs::weakly_canonical(name.rfind("tumble.", 0) == 0 ? fs::path(lua_tostring(L, lua_upvalueindex(4)))
+                                                                            : fs::path(lua_tostring(L, lua_upvalueindex(3))), ec);
+  const fs::path inside = fs::weakly_canonical(path, ec).lexically_relative(root);
+  if (ec || inside.empty() || *inside.begin() == "..")
+    throw LuaArgError("require: module \"" + name + "\" (" + path.string() + ") leads outside the mod's folder");
+  if (LuaVm::loadFile(L, std::string(path.c_str())) != LUA_OK) {
     std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "cannot load module";
     lua_pop(L, 1);
     throw LuaArgError(msg);
@@ -249,13 +280,13 @@ int sandboxRequire(lua_State* L) {
   lua_pushvalue(L, lua_upvalueindex(2));  // env
   lua_setupvalue(L, -2, 1);
   lua_pushlightuserdata(L, const_cast<char*>(&kLoadingKey));
-  lua_setfield(L, lua_upvalueindex(1), name.c_str());
+  rawSetField(L, lua_upvalueindex(1), name.c_str());
   lua_pushstring(L, name.c_str());
   if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
     std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in module " + name;
     lua_pop(L, 1);
     lua_pushnil(L);
-    lua_setfield(L, lua_upvalueindex(1), name.c_str());
+    rawSetField(L, lua_upvalueindex(1), name.c_str());
     throw LuaArgError(msg);
   }
   if (lua_isnil(L, -1)) {
@@ -263,7 +294,7 @@ int sandboxRequire(lua_State* L) {
     lua_pushboolean(L, 1);
   }
   lua_pushvalue(L, -1);
-  lua_setfield(L, lua_upvalueindex(1), name.c_str());
+  rawSetField(L, lua_upvalueindex(1), name.c_str());
   return 1;
 }
 
@@ -273,7 +304,7 @@ int sandboxRequire(lua_State* L) {
 void pushSandboxEnvironment(lua_State* L, const SandboxPaths& paths, std::uint64_t seed, int* requireCacheRef) {
   // Deterministic random numbers: math.random is seeded with the run's seed.
   lua_getglobal(L, "math");
-  lua_getfield(L, -1, "randomseed");
+  rawGetField(L, -1, "randomseed");
   lua_pushinteger(L, lua_Integer(seed));
   lua_call(L, 1, 0);
   lua_pop(L, 1);
@@ -283,40 +314,43 @@ void pushSandboxEnvironment(lua_State* L, const SandboxPaths& paths, std::uint64
   for (const char* name : {"assert", "error", "ipairs", "next", "pairs", "pcall", "rawequal", "rawget", "rawlen",
                            "rawset", "select", "tonumber", "tostring", "type", "getmetatable", "_VERSION"}) {
     lua_getglobal(L, name);
-    lua_setfield(L, env, name);
+    rawSetField(L, env, name);
   }
   copyLibrary(L, "math", {"abs", "acos", "asin", "atan", "ceil", "cos", "deg", "exp", "floor", "fmod", "huge", "log",
                           "max", "maxinteger", "min", "mininteger", "modf", "pi", "rad", "random", "randomseed",
                           "sin", "sqrt", "tan", "tointeger", "type", "ult"});
-  lua_setfield(L, env, "math");
+  rawSetField(L, env, "math");
   copyLibrary(L, "string", {"byte", "char", "find", "format", "gmatch", "gsub", "len", "lower", "match", "pack",
                             "packsize", "rep", "reverse", "sub", "unpack", "upper"});
   guardTable(L, -1, std::begin(kForbiddenString), std::end(kForbiddenString));
-  lua_setfield(L, env, "string");
+  rawSetField(L, env, "string");
   copyLibrary(L, "table", {"concat", "insert", "move", "pack", "remove", "sort", "unpack"});
-  lua_setfield(L, env, "table");
+  rawSetField(L, env, "table");
   copyLibrary(L, "utf8", {"char", "charpattern", "codes", "codepoint", "len", "offset"});
-  lua_setfield(L, env, "utf8");
+  rawSetField(L, env, "utf8");
   copyLibrary(L, "coroutine", {"close", "create", "isyieldable", "resume", "running", "status", "wrap", "yield"});
-  lua_setfield(L, env, "coroutine");
+  rawGetField(L, -1, "close");
+  lua_pushcclosure(L, sandboxCoroutineClose, 1);
+  rawSetField(L, -2, "close");
+  rawSetField(L, env, "coroutine");
   copyLibrary(L, "os", {"clock", "time", "date", "difftime"});
   guardTable(L, -1, std::begin(kForbiddenOs), std::end(kForbiddenOs));
-  lua_setfield(L, env, "os");
+  rawSetField(L, env, "os");
   lua_getglobal(L, "setmetatable");
   lua_pushcclosure(L, sandboxSetMetatable, 1);
-  lua_setfield(L, env, "setmetatable");
+  rawSetField(L, env, "setmetatable");
   luaL_loadbufferx(L, kXpcallSource, sizeof kXpcallSource - 1, "=[sandbox xpcall]", "t");
   lua_getglobal(L, "pcall");
   lua_getglobal(L, "type");
   lua_getglobal(L, "error");
   lua_call(L, 3, 1);
-  lua_setfield(L, env, "xpcall");
+  rawSetField(L, env, "xpcall");
   lua_pushcfunction(L, sandboxCollectGarbage);
-  lua_setfield(L, env, "collectgarbage");
+  rawSetField(L, env, "collectgarbage");
   lua_pushvalue(L, env);
   lua_getglobal(L, "load");
   lua_pushcclosure(L, sandboxLoad, 2);
-  lua_setfield(L, env, "load");
+  rawSetField(L, env, "load");
   lua_newtable(L);  // require cache
   lua_pushvalue(L, -1);
   *requireCacheRef = luaL_ref(L, LUA_REGISTRYINDEX);
@@ -324,9 +358,26 @@ void pushSandboxEnvironment(lua_State* L, const SandboxPaths& paths, std::uint64
   lua_pushstring(L, paths.modDir.c_str());
   lua_pushstring(L, paths.scriptsDir.c_str());
   lua_pushcclosure(L, guarded<sandboxRequire>, 4);
-  lua_setfield(L, env, "require");
+  rawSetField(L, env, "require");
   lua_pushvalue(L, env);
-  lua_setfield(L, env, "_G");
+  rawSetField(L, env, "_G");
+}
+
+void pushDataEnvironment(lua_State* L) {
+  lua_newtable(L);
+  copyLibrary(L, "math", {"abs", "acos", "asin", "atan", "ceil", "cos", "deg", "exp", "floor", "fmod", "huge", "log",
+                          "max", "maxinteger", "min", "mininteger", "modf", "pi", "rad", "sin", "sqrt", "tan",
+                          "tointeger", "type", "ult"});
+  rawSetField(L, -2, "math");
+  copyLibrary(L, "string", {"byte", "char", "find", "format", "gmatch", "gsub", "len", "lower", "match", "rep",
+                            "reverse", "sub", "upper"});
+  rawSetField(L, -2, "string");
+  copyLibrary(L, "table", {"concat", "insert", "move", "pack", "remove", "sort", "unpack"});
+  rawSetField(L, -2, "table");
+  for (const char* name : {"ipairs", "pairs", "select", "tonumber", "tostring", "type", "error", "assert"}) {
+    lua_getglobal(L, name);
+    rawSetField(L, -2, name);
+  }
 }
 
 void guardEnvironment(lua_State* L, int idx) {

@@ -28,6 +28,13 @@ struct SandboxPaths {
 /// guardEnvironment.
 void pushSandboxEnvironment(lua_State* L, const SandboxPaths& paths, std::uint64_t seed, int* requireCacheRef);
 
+/// Pushes a fresh environment for a data file (emitter, vehicle, bindings):
+/// private copies of math (without random), string and table, and the pure
+/// base functions (pairs, ipairs, select, tonumber, tostring, type, error,
+/// assert). Each file gets its own copies, so a file that changes
+/// math.sin changes it for itself only, never for another file or mod.
+void pushDataEnvironment(lua_State* L);
+
 /// Makes reading a forbidden global from the environment at idx raise its
 /// message (call once the environment is complete).
 void guardEnvironment(lua_State* L, int idx);

@@ -1,5 +1,6 @@
 #include "script/scenario_host.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -25,6 +26,26 @@ ScenarioHost* ScenarioHost::from(lua_State* L) {
   auto* host = static_cast<ScenarioHost*>(lua_touserdata(L, -1));
   lua_pop(L, 1);
   return host;
+}
+
+void ScenarioHost::countBodiesCreated(std::size_t n, const char* fn) {
+  if (m_bodyCountCall != m_vm.outerCallSerial()) {
+    m_bodyCountCall = m_vm.outerCallSerial();
+    m_bodiesThisCall = 0;
+  }
+  if (m_bodiesThisCall + n > kMaxBodiesPerCallback)
+    throw LuaArgError(std::string(fn) + ": this callback already created " + std::to_string(m_bodiesThisCall) +
+                      " bodies; one callback may create at most " + std::to_string(kMaxBodiesPerCallback) +
+                      " (the per-callback body limit); create the rest in later steps");
+  m_bodiesThisCall += n;
+}
+
+void ScenarioHost::chargeWork(lua_State* L, double units, const char* fn) {
+  const double n = std::ceil(std::max(units, 0.0));
+  if (n < 1.8e19 && m_vm.charge(L, std::uint64_t(n))) return;
+  throw LuaArgError(std::string(fn) + ": " + std::to_string(std::uint64_t(std::min(n, 1.8e19))) +
+                    " units of work (one per sample per pass) do not fit in what is left of the callback's budget of " +
+                    std::to_string(m_vm.limits().instructionsPerCall) + " instructions; use a smaller map or fewer passes");
 }
 
 ScenarioHost::ScenarioHost(const ModInfo& mod, SceneSystems& scene, const ScenarioOptions& options)
@@ -81,7 +102,7 @@ void ScenarioHost::buildEnvironment() {
 
   lua_newtable(L);  // ctx, with ctx.state kept across reloads
   lua_newtable(L);
-  lua_setfield(L, -2, "state");
+  rawSetField(L, -2, "state");
   m_ctxRef = luaL_ref(L, LUA_REGISTRYINDEX);
 }
 
@@ -105,13 +126,13 @@ void ScenarioHost::pushCtx(double time_s, double dt_s, std::int64_t step) {
   m_now_s = time_s;
   lua_rawgeti(L, LUA_REGISTRYINDEX, m_ctxRef);
   lua_pushnumber(L, time_s);
-  lua_setfield(L, -2, "time");
+  rawSetField(L, -2, "time");
   lua_pushnumber(L, dt_s);
-  lua_setfield(L, -2, "dt");
+  rawSetField(L, -2, "dt");
   lua_pushinteger(L, step);
-  lua_setfield(L, -2, "step");
+  rawSetField(L, -2, "step");
   lua_pushinteger(L, lua_Integer(m_options.seed));
-  lua_setfield(L, -2, "seed");
+  rawSetField(L, -2, "seed");
 }
 
 bool ScenarioHost::callTerrainBuild(const std::function<void(lua_State*)>& pushArg, ScriptError* err) {
@@ -133,7 +154,7 @@ bool ScenarioHost::callLifecycle(const char* name, int nargs, bool* paused, int*
   // Stack: ctx [, args...]
   lua_State* L = m_vm.state();
   lua_rawgeti(L, LUA_REGISTRYINDEX, m_scenarioRef);
-  lua_getfield(L, -1, name);
+  rawGetField(L, -1, name);
   lua_remove(L, -2);
   if (!lua_isfunction(L, -1)) {
     lua_pop(L, 1 + nargs);

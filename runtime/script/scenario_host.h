@@ -197,6 +197,18 @@ class ScenarioHost {
   std::uint64_t luaCallCount() const { return m_vm.callCount(); }
 
   static constexpr std::size_t kMaxMessages = 64;
+  /// Bodies one callback (on_start, on_update, a timer, ...) may create:
+  /// creating bodies is work done in C++, outside the instruction budget, so
+  /// it has a budget of its own. 10 000 is 2.5 times the largest scene the
+  /// project builds in one callback (a forest of 4000 models).
+  static constexpr std::size_t kMaxBodiesPerCallback = 10000;
+  /// Called by every binding that creates bodies, before it does; throws
+  /// (naming `fn` and the limit) past kMaxBodiesPerCallback.
+  void countBodiesCreated(std::size_t n, const char* fn);
+  /// Counts work a binding does in C++ (one unit per sample per pass of a
+  /// terrain filter, ...) against the running callback's instruction
+  /// budget; throws, naming `fn` and the budget, if it does not fit.
+  void chargeWork(lua_State* L, double units, const char* fn);
 
   // Used by the bindings (bind_*.cpp, globals.cpp).
   void addExpectation(Expectation e) { m_expectations.push_back(std::move(e)); }
@@ -230,6 +242,8 @@ class ScenarioHost {
   void runTriggers();
 
   LuaVm m_vm;
+  std::uint64_t m_bodyCountCall = 0;  ///< outermost call the count below belongs to
+  std::size_t m_bodiesThisCall = 0;
   ModInfo m_mod;
   SceneSystems& m_scene;
   ScenarioOptions m_options;

@@ -5,6 +5,8 @@
 
 #include "core/log.h"
 #include "script/scenario_host.h"
+#include "script/internal/raw_access.h"
+#include "script/lua_vm.h"
 
 extern "C" {
 #include <lauxlib.h>
@@ -57,7 +59,7 @@ Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, con
 bool ScenarioHost::runScenarioFile(ScriptError* err) {
   lua_State* L = m_vm.state();
   const std::string path = (fs::path(m_mod.dir) / m_file).string();
-  if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) {
+  if (LuaVm::loadFile(L, std::string(path.c_str())) != LUA_OK) {
     *err = LuaVm::parseError(m_mod.name, lua_tostring(L, -1), "");
     if (err->file.empty()) err->file = m_file;
     lua_pop(L, 1);
@@ -90,17 +92,17 @@ Status ScenarioHost::adoptScenarioTable(bool first) {
     m_duration_s = duration;
     return makeError(std::move(message));
   };
-  lua_getfield(L, -1, "title");
+  rawGetField(L, -1, "title");
   m_title = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : m_defaultTitle;
   lua_pop(L, 1);
-  lua_getfield(L, -1, "duration");
+  rawGetField(L, -1, "duration");
   if (lua_type(L, -1) == LUA_TNUMBER && lua_tonumber(L, -1) > 0) m_duration_s = lua_tonumber(L, -1);
   else if (!lua_isnil(L, -1)) {
     return fail(2, where + ": field 'duration' must be a number of seconds > 0");
   }
   lua_pop(L, 1);
   // joint_solver = "lagrange" | "impulse"; --set physics.joint_solver wins.
-  lua_getfield(L, -1, "joint_solver");
+  rawGetField(L, -1, "joint_solver");
   if (!lua_isnil(L, -1)) {
     physics::JointSolverKind kind;
     if (lua_type(L, -1) != LUA_TSTRING || !physics::parseJointSolver(lua_tostring(L, -1), &kind))
@@ -111,13 +113,13 @@ Status ScenarioHost::adoptScenarioTable(bool first) {
   auto params = readParamDecls(L, -1, where);
   if (!params) return fail(1, params.error());
   m_params = std::move(params.value());
-  lua_getfield(L, -1, "integrator");
+  rawGetField(L, -1, "integrator");
   if (lua_type(L, -1) == LUA_TSTRING) m_integratorRequest = lua_tostring(L, -1);
   else if (!lua_isnil(L, -1))
     return fail(2, where + ": field 'integrator' must be a string such as \"rk4\" (see tumble run --help)");
   lua_pop(L, 1);
   // terrain = {generate = 7, size = 1025, ...} or {heightmap = "assets/map.png"}
-  lua_getfield(L, -1, "terrain");
+  rawGetField(L, -1, "terrain");
   if (!first) {
     // A terrain is built once, before on_start; a reload keeps it.
   } else if (lua_istable(L, -1)) {
@@ -156,7 +158,7 @@ Status ScenarioHost::adoptScenarioTable(bool first) {
   lua_pop(L, 1);
   bool hasUpdate = false, hasContact = false;
   for (const char* cb : {"on_start", "on_update", "on_finish", "on_reload", "on_contact"}) {
-    lua_getfield(L, -1, cb);
+    rawGetField(L, -1, cb);
     bool bad = !lua_isnil(L, -1) && !lua_isfunction(L, -1);
     if (std::strcmp(cb, "on_update") == 0) hasUpdate = lua_isfunction(L, -1);
     if (std::strcmp(cb, "on_contact") == 0) hasContact = lua_isfunction(L, -1);
@@ -200,7 +202,7 @@ Status ScenarioHost::reload(double time_s, std::int64_t step) {
   bool ok = runScenarioFile(&err);
   bool hasOnReload = false;
   if (ok) {
-    lua_getfield(L, -1, "on_reload");
+    rawGetField(L, -1, "on_reload");
     hasOnReload = lua_isfunction(L, -1);
     lua_pop(L, 1);
     if (Status st = adoptScenarioTable(false); !st) {
@@ -237,7 +239,7 @@ Status ScenarioHost::reload(double time_s, std::int64_t step) {
   Status result = Ok{};
   if (hasOnReload) {
     pushCtx(time_s, 0, step);
-    lua_getfield(L, -1, "state");
+    rawGetField(L, -1, "state");
     std::size_t before = m_errors.size();
     if (!callLifecycle("on_reload", 2, nullptr, nullptr) && m_errors.size() > before)
       result = makeError(m_errors.back().summary());

@@ -1,5 +1,7 @@
 #include "script/scenario_params.h"
 
+#include "script/internal/raw_access.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -43,7 +45,7 @@ std::string numberText(double v) {
 
 Result<ParamDecls> readParamDecls(lua_State* L, int tableIndex, const std::string& where) {
   tableIndex = lua_absindex(L, tableIndex);
-  lua_getfield(L, tableIndex, "params");
+  rawGetField(L, tableIndex, "params");
   if (lua_isnil(L, -1)) {
     lua_pop(L, 1);
     return ParamDecls{};
@@ -63,7 +65,7 @@ Result<ParamDecls> readParamDecls(lua_State* L, int tableIndex, const std::strin
     ParamDecl d;
     d.name = lua_tostring(L, -2);
     const std::string field = where + ": params." + d.name;
-    lua_getfield(L, -1, "default");
+    rawGetField(L, -1, "default");
     switch (lua_type(L, -1)) {
       case LUA_TNUMBER:
         d.type = ParamDecl::Type::Number;
@@ -83,7 +85,7 @@ Result<ParamDecls> readParamDecls(lua_State* L, int tableIndex, const std::strin
     }
     lua_pop(L, 1);
     for (auto [key, out] : {std::pair{"unit", &d.unit}, std::pair{"description", &d.description}}) {
-      lua_getfield(L, -1, key);
+      rawGetField(L, -1, key);
       if (lua_type(L, -1) == LUA_TSTRING) *out = lua_tostring(L, -1);
       else if (!lua_isnil(L, -1)) {
         lua_pop(L, 4);

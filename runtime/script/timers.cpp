@@ -69,7 +69,9 @@ void TimerQueue::clear() {
 
 void TimerQueue::fireDue(double time_s, const Fire& fire, const std::function<void()>& onGaveUp) {
   const std::uint64_t seqLimit = m_seq;  // timers made while firing wait for the next round
-  while (!m_heap.empty() && m_heap.front().due_s <= time_s + kTimeSlack_s && m_heap.front().seq < seqLimit) {
+  int fired = 0;
+  while (!m_heap.empty() && m_heap.front().due_s <= time_s + kTimeSlack_s && m_heap.front().seq < seqLimit &&
+         fired < kMaxFiredPerRound) {
     std::pop_heap(m_heap.begin(), m_heap.end(), later);
     Timer t = m_heap.back();
     m_heap.pop_back();
@@ -79,6 +81,7 @@ void TimerQueue::fireDue(double time_s, const Fire& fire, const std::function<vo
       continue;
     }
     lua_remove(m_L, -2);
+    ++fired;
     bool failed = false;
     bool again = fire(t.period_s > 0, &failed) && t.period_s > 0;
     if (!failed) {
@@ -92,6 +95,9 @@ void TimerQueue::fireDue(double time_s, const Fire& fire, const std::function<vo
       // Keep the phase (due += period) but fire at most once per round.
       t.due_s += t.period_s;
       if (t.due_s <= time_s + kTimeSlack_s) t.due_s = time_s + t.period_s;
+      // A period shorter than the slack (timer.every(1e-10, f)) would be
+      // due again at once: it waits for the next round, as new timers do.
+      if (t.due_s <= time_s + kTimeSlack_s) t.seq = m_seq++;
       m_heap.push_back(t);
       std::push_heap(m_heap.begin(), m_heap.end(), later);
     } else {

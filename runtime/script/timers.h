@@ -24,6 +24,12 @@ class TimerQueue {
   /// stop (timer.every returning false); `failed` says which.
   using Fire = std::function<bool(bool periodic, bool* failed)>;
   static constexpr int kMaxConsecutiveErrors = 3;
+  /// Timers waiting at once (timer.after / every past it raise an error).
+  static constexpr std::size_t kMaxPending = 10000;
+  /// Timers fired in one round (one step); the rest stay due for the next.
+  /// With timer.every firing at most once per round, this bounds the Lua
+  /// calls a step makes for timers whatever their periods.
+  static constexpr int kMaxFiredPerRound = 1000;
 
   explicit TimerQueue(lua_State* L);
   ~TimerQueue();
@@ -37,6 +43,8 @@ class TimerQueue {
   bool active(std::uint32_t id) const;
   /// Timers still to fire.
   std::size_t activeCount() const;
+  /// Heap entries (active timers plus cancelled ones not yet dropped): cheap.
+  std::size_t pendingCount() const { return m_heap.size(); }
   /// True if a timer is due at time_s (cheap: one comparison).
   bool anyDue(double time_s) const { return !m_heap.empty() && m_heap.front().due_s <= time_s + kTimeSlack_s; }
   /// Fires every timer due at time_s (see the header). `onGaveUp` is called

@@ -204,6 +204,9 @@ Status Tunables::loadOverrides(const std::string& path) {
     doc = nlohmann::json::parse(*text);
   } catch (const nlohmann::json::parse_error& e) {
     return makeError(path + ": not valid JSON (" + e.what() + ")" + expected + "; using the defaults");
+  } catch (const nlohmann::json::exception& e) {  // 1e400: number overflow (out_of_range)
+    return makeError(path + ": a number is out of range (" + e.what() + "); numbers must fit a double" + expected +
+                     "; using the defaults");
   }
   if (!doc.is_object() || !doc.contains("values") || !doc["values"].is_object())
     return makeError(path + ": no \"values\" object" + expected + "; using the defaults");

@@ -104,6 +104,10 @@ class Tunables {
 /// The folder for user settings: $TUMBLE_CONFIG_DIR, else
 /// $XDG_CONFIG_HOME/tumble, else ~/.config/tumble.
 std::string userConfigDir();
+/// Folder of the mods' save data (save.read / save.write), one subfolder per
+/// mod: $TUMBLE_SAVE_DIR, else $XDG_DATA_HOME/tumble/saves, else
+/// ~/.local/share/tumble/saves.
+std::string savesDir();
 /// <userConfigDir()>/tune/<mod>.json
 std::string tuneOverridesPath(const std::string& mod);
 

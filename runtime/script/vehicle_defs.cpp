@@ -1,3 +1,4 @@
+#include "script/sandbox.h"
 #include "script/vehicle_defs.h"
 
 #include <algorithm>
@@ -198,14 +199,12 @@ Result<VehicleDef> loadVehicleFile(const ModInfo& mod, const std::string& name) 
   limits.instructionsPerCall = 10'000'000;
   LuaVm vm(limits);
   lua_State* L = vm.state();
-  if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) {
+  if (LuaVm::loadFile(L, std::string(file.c_str())) != LUA_OK) {
     ScriptError e = LuaVm::parseError(mod.name, lua_tostring(L, -1), "");
     return makeError(e.summary());
   }
-  // A vehicle file is data: its environment has only math.
-  lua_newtable(L);
-  lua_getglobal(L, "math");
-  lua_setfield(L, -2, "math");
+  // A vehicle file is data: its own copies of math, string and table, no world.
+  pushDataEnvironment(L);  // private math, string and table: data, no world
   lua_setupvalue(L, -2, 1);
   ScriptError err;
   if (!vm.call(0, 1, mod.name, rel, "top level", &err)) return makeError(err.summary());

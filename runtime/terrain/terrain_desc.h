@@ -10,9 +10,9 @@
 //
 // Sidecar file: a height map "name.png" may have "name.png.json" next to it:
 //   {
-//     "spacing_m": 1.0,          // metres between neighbouring samples (> 0)
-//     "height_scale_m": 0.01,    // metres per unit of the 16-bit value (> 0)
-//     "base_height_m": 0.0,      // world Y of sample value 0
+//     "spacing_m": 1.0,          // metres between neighbouring samples (> 0, <= 1000)
+//     "height_scale_m": 0.01,    // metres per unit of the 16-bit value (> 0, <= 15)
+//     "base_height_m": 0.0,      // world Y of sample value 0 (within +-1e6 m, as the origins)
 //     "origin_x_m": 0.0,         // world X of sample column 0
 //     "origin_z_m": 0.0          // world Z of sample row 0
 //   }

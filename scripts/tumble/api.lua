@@ -1170,6 +1170,9 @@ save = {}
 function save.read(name) end
 
 ---Saves a table (strings, numbers, booleans, nested tables) atomically.
+---A table that contains itself is refused (a cycle), as is nesting deeper
+---than 32 levels. Each mod may keep at most 64 saves using 4 MB in all
+---(its quota); a write past it is an error that says so.
 ---
 ---```lua
 ---save.write("time_trial", {best_s = 61.4, car = "base:buggy"})
@@ -1224,6 +1227,8 @@ function HeightMap:bump(p) end
 function HeightMap:ridge(p) end
 
 ---Smooths with the 3 x 3 binomial kernel.
+---Like every filter, its work (one unit per sample per pass) counts
+---against the callback's instruction budget.
 ---@param passes? integer 1..64 (default 1)
 function HeightMap:smooth(passes) end
 

@@ -1,5 +1,7 @@
 // core: Result, atomic file writes, the state hasher, math helpers.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -52,6 +54,42 @@ TEST(FileUtil, FailuresNameTheFileAndKeepTheOldContents) {
   std::filesystem::create_directories(dir / "target");
   EXPECT_FALSE(writeFileAtomic((dir / "target").string(), std::string("x")).ok());
   EXPECT_TRUE(std::filesystem::is_directory(dir / "target"));
+}
+
+TEST(FileUtil, ReadsOnlyRegularFilesUpToTheirLimit) {
+  auto dir = tempDir("special");
+  const std::string fifo = (dir / "pipe").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // A FIFO would block until a writer came; /dev/zero would never end.
+  for (const std::string& path : {fifo, std::string("/dev/zero"), dir.string()}) {
+    auto r = readTextFile(path);
+    ASSERT_FALSE(r.ok()) << path;
+    EXPECT_NE(r.error().find("not a regular file"), std::string::npos) << r.error();
+    EXPECT_EQ(r.error().rfind(path, 0), 0u) << "the message starts with the file: " << r.error();
+  }
+  const std::string big = (dir / "big.txt").string();
+  std::ofstream(big) << std::string(1000, 'x');
+  EXPECT_TRUE(readTextFile(big, 1000).ok());
+  auto tooBig = readTextFile(big, 999);
+  ASSERT_FALSE(tooBig.ok());
+  EXPECT_NE(tooBig.error().find("larger than the 999 bytes"), std::string::npos) << tooBig.error();
+}
+
+TEST(FileUtil, OrphanedTemporariesOfDeadWritersAreRemoved) {
+  auto dir = tempDir("orphans");
+  std::filesystem::create_directories(dir / "mod");
+  // A writer killed mid-write leaves "<name>.tmp<pid>"; pid 2^22 + 1 is above
+  // Linux's largest pid, so no process has it.
+  const std::string dead = "save.json.tmp4194305";
+  const std::string alive = "save.json.tmp" + std::to_string(::getpid());
+  for (const std::string& name : {dead, alive, std::string("notes.tmp"), std::string("keep.json")})
+    std::ofstream(dir / "mod" / name) << "x";
+  EXPECT_EQ(removeOrphanedTemporaries(dir.string(), 0), 0u) << "depth 0 does not enter folders";
+  EXPECT_EQ(removeOrphanedTemporaries(dir.string(), 1), 1u);
+  EXPECT_FALSE(std::filesystem::exists(dir / "mod" / dead));
+  EXPECT_TRUE(std::filesystem::exists(dir / "mod" / alive)) << "a running writer keeps its file";
+  EXPECT_TRUE(std::filesystem::exists(dir / "mod" / "notes.tmp"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "mod" / "keep.json"));
 }
 
 TEST(Hasher, AnyBitChangesTheDigest) {

@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -73,7 +74,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"impulse", "lagrange"}));
   app.add_option("--steps", steps, "steps to run (default: 300 for boxes_3000, 600 otherwise)")
       ->check(CLI::Range(1, 1000000));
-  app.add_option("--dt", dt, "time step in seconds (default 1/60)")->check(CLI::PositiveNumber);
+  app.add_option("--dt", dt, "time step in seconds (default 1/60)")
+      ->check([](const std::string& text) -> std::string {
+        const double v = std::strtod(text.c_str(), nullptr);  // CLI11's PositiveNumber lets NaN through
+        return std::isfinite(v) && v > 0 ? std::string() : "expected a finite number > 0, got " + text;
+      });
   app.add_option("--report", reportPath, "write the JSON report to this file (atomically)");
   app.add_flag("--quick", quick, "smoke test: " + std::to_string(kQuickSteps) + " steps");
   app.add_option("--bullet-iterations", bulletIterations,

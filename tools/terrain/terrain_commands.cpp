@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -45,6 +46,17 @@ Status writeOutput(const HeightMap& map, const TerrainDesc& desc, bool withSidec
 }
 
 // "a,b[,c...]" -> exactly `count` finite numbers.
+// CLI11 reads "nan" and "inf" as numbers and its range checks let NaN through
+// (every comparison with NaN is false): every number option also gets this.
+const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) return "expected a finite number, got " + text;
+      return {};
+    },
+    "FINITE");
+
 Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t count, const std::string& option) {
   std::vector<double> values;
   std::stringstream ss(text);
@@ -95,7 +107,7 @@ void addGen(CLI::App& terrain, int& exitCode) {
   cmd->add_option("--height", o->height, "Samples along Z");
   cmd->add_option("--seed", o->seed, "Random seed; same seed, same bytes")->required();
   cmd->add_option("--roughness", o->roughness, "Amplitude kept per octave, (0, 1]; 0.5 natural, 0.7 craggy")
-      ->check(CLI::Range(0.01, 1.0));
+      ->check(CLI::Range(0.01, 1.0))->check(kFinite);
   cmd->add_option("--out", o->out, "Output PNG")->required();
   cmd->callback([o, &exitCode] {
     runCommand("gen", exitCode, [&]() -> Status {
@@ -131,7 +143,7 @@ void addSmoothSharpen(CLI::App& terrain, int& exitCode) {
   auto* sharpenCmd = terrain.add_subcommand("sharpen", "Sharpen with a Laplacian kernel");
   sharpenCmd->add_option("input", h->in, "Input height map PNG")->required();
   sharpenCmd->add_option("--out", h->out, "Output PNG")->required();
-  sharpenCmd->add_option("--amount", h->amount, "Strength, 0.5 moderate, 1 strong")->check(CLI::Range(0.0, 10.0));
+  sharpenCmd->add_option("--amount", h->amount, "Strength, 0.5 moderate, 1 strong")->check(CLI::Range(0.0, 10.0))->check(kFinite);
   sharpenCmd->callback([h, &exitCode] {
     runCommand("sharpen", exitCode, [&]() -> Status {
       auto in = loadInput(h->in);
@@ -216,11 +228,11 @@ void addRidgeCmd(CLI::App& terrain, int& exitCode) {
   cmd->add_option("--from", o->from, "Start X,Z in world metres")->required();
   cmd->add_option("--to", o->to, "End X,Z in world metres")->required();
   cmd->add_option("--height", o->height_m, "Crest height (or ditch depth) in metres, default 20")
-      ->check(CLI::Range(0.0, 1e5));
+      ->check(CLI::Range(0.0, 1e5))->check(kFinite);
   cmd->add_option("--width", o->width_m, "Half-width in metres from crest to foot, default 10")
-      ->check(CLI::Range(0.001, 1e6));
+      ->check(CLI::Range(0.001, 1e6))->check(kFinite);
   cmd->add_option("--jaggedness", o->jaggedness, "Sideways wander per segment length, 0 straight, default 0.2")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(CLI::Range(0.0, 1.0))->check(kFinite);
   cmd->add_option("--seed", o->seed, "Random seed for the wander");
   cmd->add_flag("--ditch", o->ditch, "Dig instead of raising");
   cmd->add_option("--out", o->out, "Output PNG")->required();
@@ -258,8 +270,8 @@ void addBump(CLI::App& terrain, int& exitCode) {
   auto* cmd = terrain.add_subcommand("bump", "Add plasma to a region, fading to nothing at its border");
   cmd->add_option("input", o->in, "Input height map PNG")->required();
   cmd->add_option("--region", o->region, "X,Z,W,H in world metres (corner and size)")->required();
-  cmd->add_option("--amplitude", o->amplitude_m, "Largest height added in metres (negative digs), default 20");
-  cmd->add_option("--roughness", o->roughness, "Amplitude kept per octave, (0, 1]")->check(CLI::Range(0.01, 1.0));
+  cmd->add_option("--amplitude", o->amplitude_m, "Largest height added in metres (negative digs), default 20")->check(kFinite);
+  cmd->add_option("--roughness", o->roughness, "Amplitude kept per octave, (0, 1]")->check(CLI::Range(0.01, 1.0))->check(kFinite);
   cmd->add_option("--seed", o->seed, "Random seed");
   cmd->add_option("--out", o->out, "Output PNG")->required();
   cmd->callback([o, &exitCode] {
@@ -310,9 +322,9 @@ void addPreview(CLI::App& terrain, int& exitCode) {
   cmd->add_option("--out", o->out, "Output RGB PNG")->required();
   cmd->add_option("--azimuth", o->azimuth_deg,
                   "Light direction in degrees, clockwise from -Z seen from above (315 = from -X,-Z)")
-      ->check(CLI::Range(-360.0, 360.0));
+      ->check(CLI::Range(-360.0, 360.0))->check(kFinite);
   cmd->add_option("--elevation", o->elevation_deg, "Light elevation above the horizon, degrees")
-      ->check(CLI::Range(0.0, 90.0));
+      ->check(CLI::Range(0.0, 90.0))->check(kFinite);
   cmd->add_flag("--grey", o->grey, "Grey shading without the elevation tint");
   cmd->callback([o, &exitCode] {
     runCommand("preview", exitCode, [&]() -> Status {
@@ -386,9 +398,9 @@ void addMaterials(CLI::App& terrain, int& exitCode) {
   cmd->add_flag("--island", o->island, "Paint sand at the shore, as the island style does");
   cmd->add_flag("--force", o->force, "Overwrite layer files that already exist");
   cmd->add_option("--spacing", o->spacing_m, "Metres between samples without a sidecar (as terrain.spacing)")
-      ->check(CLI::Range(0.01, 1000.0));
+      ->check(CLI::Range(0.01, 1000.0))->check(kFinite);
   cmd->add_option("--height", o->height_m, "Height range in metres without a sidecar (as terrain.height)")
-      ->check(CLI::Range(0.01, 10000.0));
+      ->check(CLI::Range(0.01, 10000.0))->check(kFinite);
   cmd->callback([o, &exitCode] {
     runCommand("materials", exitCode, [&]() -> Status {
       if (!o->force) {

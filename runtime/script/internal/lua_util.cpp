@@ -32,6 +32,30 @@ int raiseLuaError(lua_State* L, const char* message) {
   return lua_error(L);
 }
 
+namespace {
+int toStringProtected(lua_State* L) {
+  luaL_tolstring(L, 1, nullptr);
+  return 1;
+}
+}  // namespace
+
+std::string toDisplayString(lua_State* L, int idx) {
+  idx = lua_absindex(L, idx);
+  lua_pushcfunction(L, toStringProtected);
+  lua_pushvalue(L, idx);
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
+    std::string why = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "an error that is not a string";
+    lua_pop(L, 1);
+    if (why.size() > 200) why = why.substr(0, 200) + "...";
+    throw LuaArgError("converting a " + std::string(luaL_typename(L, idx)) + " to text: its __tostring failed: " + why);
+  }
+  std::size_t len = 0;
+  const char* s = lua_tolstring(L, -1, &len);
+  std::string text(s, len);
+  lua_pop(L, 1);
+  return text;
+}
+
 double checkNumber(lua_State* L, int idx, const char* what) {
   int isnum = 0;
   double v = lua_tonumberx(L, idx, &isnum);
@@ -50,7 +74,7 @@ Vec3 checkVec3(lua_State* L, int idx, const char* what) {
     int t = lua_rawgeti(L, idx, i + 1);
     if (t == LUA_TNIL) {
       lua_pop(L, 1);
-      t = lua_getfield(L, idx, names[i]);
+      t = rawGetField(L, idx, names[i]);
     }
     int isnum = 0;
     double c = lua_tonumberx(L, -1, &isnum);
@@ -58,12 +82,16 @@ Vec3 checkVec3(lua_State* L, int idx, const char* what) {
     if (!isnum || !std::isfinite(c))
       throw LuaArgError(std::string(what) + ": component " + names[i] + " must be a finite number");
     v[i] = Real(c);
+    // 1e300 is a finite double but inf as the world's float.
+    if (!std::isfinite(v[i]))
+      throw LuaArgError(std::string(what) + ": component " + names[i] + " must be a finite number the world can store (" +
+                        std::to_string(c) + " is beyond float's 3.4e38)");
   }
   return v;
 }
 
 double optNumberField(lua_State* L, int tableIdx, const char* key, double fallback) {
-  int t = lua_getfield(L, tableIdx, key);
+  int t = rawGetField(L, tableIdx, key);
   if (t == LUA_TNIL) {
     lua_pop(L, 1);
     return fallback;
@@ -78,7 +106,7 @@ double optNumberField(lua_State* L, int tableIdx, const char* key, double fallba
 }
 
 bool optBoolField(lua_State* L, int tableIdx, const char* key, bool fallback) {
-  int t = lua_getfield(L, tableIdx, key);
+  int t = rawGetField(L, tableIdx, key);
   if (t == LUA_TNIL) {
     lua_pop(L, 1);
     return fallback;
@@ -94,7 +122,7 @@ bool optBoolField(lua_State* L, int tableIdx, const char* key, bool fallback) {
 }
 
 std::string optStringField(lua_State* L, int tableIdx, const char* key, const std::string& fallback) {
-  int t = lua_getfield(L, tableIdx, key);
+  int t = rawGetField(L, tableIdx, key);
   if (t == LUA_TNIL) {
     lua_pop(L, 1);
     return fallback;
@@ -111,7 +139,7 @@ std::string optStringField(lua_State* L, int tableIdx, const char* key, const st
 
 bool optVec3Field(lua_State* L, int tableIdx, const char* key, Vec3* out) {
   tableIdx = lua_absindex(L, tableIdx);
-  int t = lua_getfield(L, tableIdx, key);
+  int t = rawGetField(L, tableIdx, key);
   if (t == LUA_TNIL) {
     lua_pop(L, 1);
     return false;
@@ -129,11 +157,11 @@ bool optVec3Field(lua_State* L, int tableIdx, const char* key, Vec3* out) {
 void pushVec3(lua_State* L, const Vec3& v) {
   lua_createtable(L, 0, 3);
   lua_pushnumber(L, v.x());
-  lua_setfield(L, -2, "x");
+  rawSetField(L, -2, "x");
   lua_pushnumber(L, v.y());
-  lua_setfield(L, -2, "y");
+  rawSetField(L, -2, "y");
   lua_pushnumber(L, v.z());
-  lua_setfield(L, -2, "z");
+  rawSetField(L, -2, "z");
 }
 
 namespace {
@@ -181,21 +209,21 @@ void registerType(lua_State* L, const BoundType& type) {
   luaL_newmetatable(L, type.metatable);
   lua_newtable(L);
   luaL_setfuncs(L, type.methods, 0);
-  lua_setfield(L, -2, "__index");
+  rawSetField(L, -2, "__index");
   if (type.toString) {
     lua_pushcfunction(L, type.toString);
-    lua_setfield(L, -2, "__tostring");
+    rawSetField(L, -2, "__tostring");
   }
   if (type.equals) {
     lua_pushcfunction(L, type.equals);
-    lua_setfield(L, -2, "__eq");
+    rawSetField(L, -2, "__eq");
   }
   if (type.collect) {
     lua_pushcfunction(L, type.collect);
-    lua_setfield(L, -2, "__gc");
+    rawSetField(L, -2, "__gc");
   }
   lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");  // scripts cannot swap the methods
+  rawSetField(L, -2, "__metatable");  // scripts cannot swap the methods
   lua_pop(L, 1);
 }
 
@@ -203,14 +231,14 @@ void registerModule(lua_State* L, int envIndex, const char* name, const luaL_Reg
   envIndex = lua_absindex(L, envIndex);
   lua_newtable(L);
   luaL_setfuncs(L, functions, 0);
-  lua_setfield(L, envIndex, name);
+  rawSetField(L, envIndex, name);
 }
 
 void registerFunctions(lua_State* L, int tableIndex, const luaL_Reg* functions) {
   tableIndex = lua_absindex(L, tableIndex);
   for (const luaL_Reg* f = functions; f->name; ++f) {
     lua_pushcfunction(L, f->func);
-    lua_setfield(L, tableIndex, f->name);
+    rawSetField(L, tableIndex, f->name);
   }
 }
 

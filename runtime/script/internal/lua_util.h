@@ -16,6 +16,7 @@ extern "C" {
 }
 
 #include "core/math.h"
+#include "script/internal/raw_access.h"
 
 namespace tumble::script {
 
@@ -72,6 +73,11 @@ void registerModule(lua_State* L, int envIndex, const char* name, const luaL_Reg
 /// Functions set as fields of the table at tableIndex (globals of the env,
 /// or functions added to an existing module).
 void registerFunctions(lua_State* L, int tableIndex, const luaL_Reg* functions);
+
+/// tostring(value) for messages and the HUD, with the value's __tostring run
+/// under lua_pcall: a __tostring that raises (or runs out of budget) becomes
+/// a LuaArgError instead of a longjmp through the calling binding.
+std::string toDisplayString(lua_State* L, int idx);
 
 /// Number at idx; must be finite. `what` names the argument for the message.
 double checkNumber(lua_State* L, int idx, const char* what);
