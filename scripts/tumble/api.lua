@@ -1150,7 +1150,9 @@ function random.pick(list) end
 
 ---Per-mod save data as JSON in the user's data folder ($TUMBLE_SAVE_DIR,
 ---else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves), one
----folder per mod, written atomically.
+---folder per mod, written atomically. `tumble run` keeps saves in a
+---throw-away folder (removed at exit) unless given --save-dir, so headless
+---runs never change what the player's game shows.
 save = {}
 
 ---

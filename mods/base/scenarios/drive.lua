@@ -1,12 +1,13 @@
--- Drive: free roam on generated hills among scattered rocks and trees. With
--- the autopilot (the default until the input module lands; --set
--- autopilot=0 hands the car to drive.player) the car drives a loop of
--- waypoints over the hills.
--- Expectations: the car covers ground, stays upright, keeps its wheels on
--- the terrain (never below it), and nothing in the vehicle goes non-finite.
+-- Drive: free roam on generated hills among scattered rocks and trees. The
+-- player drives (keyboard and gamepad, drive.player: W/S/A/D, R resets the
+-- car, C the camera); with --set autopilot=1 the autopilot drives a loop of
+-- waypoints over the hills instead (what the headless tests use).
+-- Expectations: the car stays upright, keeps its wheels on the terrain
+-- (never below it), and nothing in the vehicle goes non-finite; on
+-- autopilot it also covers ground.
 --
---   tumble run base:drive
 --   tumble play base:drive --set car=base:truck
+--   tumble run base:drive --set autopilot=1
 local drive = require "tumble.drive"
 
 local car, pilot, player, effects
@@ -57,7 +58,7 @@ return {
       local a = i / 12 * 2 * math.pi
       waypoints[i] = {math.cos(a) * 60, math.sin(a) * 60}
     end
-    if param("autopilot", 1) ~= 0 then
+    if param("autopilot", 0) ~= 0 then
       pilot = drive.autopilot(car, {waypoints = waypoints, speed = param("speed", 16), loop = true, radius = 10})
     else
       player = drive.player(car)
