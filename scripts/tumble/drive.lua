@@ -302,10 +302,13 @@ function drive.show(car, opts)
     -- The cockpit eye sits where the driver's head is in the shipped
     -- models (x 0.35 m, 1.17 m above the model's ground, 0.1 m behind
     -- its middle), in the body frame; the interior model is drawn there.
+    -- The hood eye is over the front of the bonnet (1.07 m up, 1.6 m ahead).
     local eye = {-def.chassis.com[1] + 0.35, y0 + 1.17, z0 - 0.1}
+    local hood = {-def.chassis.com[1], y0 + 1.07, z0 + 1.6}
     -- Without the base mod's interior model (mods loaded from elsewhere), no interior.
-    if not pcall(camera.set_mode, mode, {target = body, eye = eye, interior = "base:assets/models/cockpit.obj"}) then
-      camera.set_mode(mode, {target = body, eye = eye})
+    if not pcall(camera.set_mode, mode, {target = body, eye = eye, hood_eye = hood,
+                                         interior = "base:assets/models/cockpit.obj"}) then
+      camera.set_mode(mode, {target = body, eye = eye, hood_eye = hood})
     end
     done = done + 1
   end
