@@ -4,16 +4,29 @@
 -- ~/.config/tumble/bindings.json. Binding texts: see docs/input.md.
 --
 -- Priority: when two enabled contexts bind the same key, the higher one
--- gets it. "game" comes first so pause, screenshot and the menu always work.
+-- gets it. "ui" (on only while the pause menu is open) comes first, then
+-- "game", so pause, screenshot and the menus always work.
 -- "vehicle" and "interact" start off; a scenario switches on what it uses
 -- with input.set_context(name, true), so the camera keeps the left mouse
 -- button and Space where no scenario asks for them.
 return {
   contexts = {
+    ui = {
+      priority = 200,
+      enabled = false,
+      actions = {
+        ui_up = {type = "button", label = "Menu: up", bindings = {"key:Up", "key:W", "pad:dpup", "pad_axis:lefty-"}},
+        ui_down = {type = "button", label = "Menu: down", bindings = {"key:Down", "key:S", "pad:dpdown", "pad_axis:lefty+"}},
+        ui_select = {type = "button", label = "Menu: choose", bindings = {"key:Return", "key:Keypad Enter", "key:Space", "pad:a"}},
+      },
+    },
     game = {
       priority = 100,
       actions = {
-        pause = {type = "button", label = "Pause", bindings = {"key:P", "key:Pause", "pad:start"}},
+        pause_menu = {type = "button", label = "Pause menu (Escape also closes a menu)", bindings = {"key:Escape", "pad:start"}},
+        pause = {type = "button", label = "Pause", bindings = {"key:P", "key:Pause"}},
+        restart = {type = "button", label = "Restart the scenario", bindings = {"key:F5"}},
+        debug_panel = {type = "button", label = "Debug panel (FPS, ms per subsystem)", bindings = {"key:F4"}},
         screenshot = {type = "button", label = "Screenshot", bindings = {"key:F12"}},
         menu = {type = "button", label = "Bindings menu", bindings = {"key:F1", "pad:back"}},
       },
@@ -32,8 +45,8 @@ return {
         handbrake = {type = "button", label = "Handbrake", bindings = {"key:Space", "pad:a"}},
         gear_up = {type = "button", label = "Gear up", bindings = {"key:E", "pad:rightshoulder"}},
         gear_down = {type = "button", label = "Gear down", bindings = {"key:Q", "pad:leftshoulder"}},
-        reset = {type = "button", label = "Reset vehicle", bindings = {"key:R", "pad:y"}},
-        camera = {type = "button", label = "Camera orbit / follow", bindings = {"key:C", "pad:rightstick"}},
+        reset = {type = "button", label = "Reset vehicle (upright, where it is)", bindings = {"key:R", "pad:y"}},
+        camera = {type = "button", label = "Camera (chase, hood, cockpit, orbit, follow)", bindings = {"key:C", "pad:rightstick"}},
       },
     },
     interact = {

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 
+#include "app/pause_menu.h"
 #include "core/log.h"
 #include "input/overrides_file.h"
+#include "render/camera_rig.h"
 
 namespace tumble::app {
 
@@ -203,15 +205,32 @@ void BindingsMenu::draw() {
 }
 
 void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
-                     render::Renderer& renderer) {
+                     render::Renderer& renderer, PauseMenu* pauseMenu, FrameRequests* requests) {
   render::Camera& camera = renderer.camera();
   for (int a : input.takeFramePresses()) {
     const std::string& name = input.action(a).name;
     if (name == "pause") controls.paused = !controls.paused;
     else if (name == "screenshot") controls.screenshotRequested = true;
     else if (name == "menu") menu.toggle();
-    else if (name == "camera")
-      camera.mode = camera.mode == render::CameraMode::Orbit ? render::CameraMode::Follow : render::CameraMode::Orbit;
+    else if (name == "camera") camera.mode = render::nextCameraMode(camera.mode, camera.vehicleModes);
+    else if (name == "debug_panel") controls.debugPanelVisible = !controls.debugPanelVisible;
+    else if (name == "pause_menu" && menu.isOpen()) menu.toggle();  // Escape closes the bindings menu only
+    else if (name == "pause_menu" && pauseMenu) pauseMenu->toggle();
+    else if (name == "ui_up" && pauseMenu) pauseMenu->moveSelection(-1);
+    else if (name == "ui_down" && pauseMenu) pauseMenu->moveSelection(+1);
+    else if (name == "ui_select" && pauseMenu) pauseMenu->activate();
+    else if (name == "restart" && requests) requests->restart = true;
+  }
+  if (pauseMenu) {
+    switch (pauseMenu->takeChoice()) {
+      case PauseMenu::Choice::Restart:
+        if (requests) requests->restart = true;
+        break;
+      case PauseMenu::Choice::Quit: controls.quitRequested = true; break;
+      case PauseMenu::Choice::Resume:
+      case PauseMenu::Choice::None: break;
+    }
+    pauseMenu->syncPause(controls);
   }
   menu.syncPause(controls);
   if (auto p = input.pointer()) {

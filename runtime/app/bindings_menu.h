@@ -13,6 +13,10 @@
 #include "render/renderer.h"
 
 namespace tumble::app {
+class PauseMenu;
+}
+
+namespace tumble::app {
 
 class BindingsMenu {
  public:
@@ -52,12 +56,22 @@ class BindingsMenu {
   input::Source m_pairNegative;
 };
 
+/// What the player asked play for in a frame beyond render::Controls.
+struct FrameRequests {
+  bool restart = false;  ///< the restart key or the pause menu's Restart
+};
+
 /// Once per rendered frame, after Renderer::processEvents: the app's own
 /// actions pressed since the last frame (they work while the simulation is
-/// paused): pause, screenshot, menu (opens this menu, which pauses the game)
-/// and camera (orbit / follow); actions no loaded mod declares are skipped. Then the world ray
-/// under the pointer for input.pointer_ray().
+/// paused): pause, screenshot, menu (opens this menu, which pauses the
+/// game), camera (the next camera mode: orbit, follow, and chase, hood,
+/// cockpit when the scenario follows a body), debug_panel; with a pause
+/// menu also pause_menu (Escape: closes the bindings menu if it is open,
+/// else opens or closes the pause menu; never quits), the menu's ui_up /
+/// ui_down / ui_select, and restart (into `requests`). Actions no loaded
+/// mod declares are skipped. Then the world ray under the pointer for
+/// input.pointer_ray().
 void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Controls& controls,
-                     render::Renderer& renderer);
+                     render::Renderer& renderer, PauseMenu* pauseMenu = nullptr, FrameRequests* requests = nullptr);
 
 }  // namespace tumble::app

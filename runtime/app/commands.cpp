@@ -142,9 +142,21 @@ void addCommands(CLI::App& cli, int* exitCode) {
   play->add_option("scenario", st->playScenarioRef, "MOD:SCENARIO (default base:drop)");
   play->add_option("--width", st->play.width, "window width, px")->check(CLI::Range(64, 16384));
   play->add_option("--height", st->play.height, "window height, px")->check(CLI::Range(64, 16384));
-  play->add_option("--screenshot", st->play.screenshotPath, "where play without a display writes its picture");
+  play->add_option("--screenshot", st->play.screenshotPath,
+                   "where play without a display writes its picture (with --frames: the last frame)");
+  play->add_option("--frames", st->play.frames,
+                   "play exactly N frames offscreen (one fixed step each unless paused), then stop")
+      ->check(CLI::NonNegativeNumber);
+  play->add_option("--events", st->play.eventsPath,
+                   "scripted input pushed into SDL's event queue, one event a line: FRAME down|up SOURCE "
+                   "(key:W, mouse:left, pad:a), FRAME axis pad_axis:NAME VALUE, FRAME move X Y, "
+                   "FRAME wheel Y, FRAME quit; '#' starts a comment (docs/play-events.md); needs --frames");
+  play->add_option("--report", st->play.reportPath,
+                   "write what the player saw (JSON): scenario, pause menu, vehicle speed and distance, "
+                   "frame times, state hash");
   addSceneOptions(play, st->play.scene, st->playSets);
-  play->callback([st, exitCode] {
+  play->callback([st, exitCode, play] {
+    st->play.screenshotGiven = play->count("--screenshot") > 0;
     if (auto s = finishSceneOptions(st->play.scene, st->playScenarioRef, *st, st->playSets); !s) {
       log::error(s.error());
       *exitCode = 1;
@@ -163,6 +175,9 @@ void addCommands(CLI::App& cli, int* exitCode) {
   run->add_option("--screenshot", st->run.screenshotPath, "render offscreen and save a PNG here");
   run->add_option("--at", st->run.screenshotAt_s, "simulated time of the screenshot, s (default: the end)")
       ->check(kFinite)->check(CLI::NonNegativeNumber);
+  run->add_option("--save-dir", st->run.saveDir,
+                  "where the scenario's save.write files go (default: a throw-away folder removed at exit, "
+                  "so runs never change the player's saves)");
   run->add_option("--width", st->run.width, "screenshot width, px")->check(CLI::Range(64, 16384));
   run->add_option("--height", st->run.height, "screenshot height, px")->check(CLI::Range(64, 16384));
   addSceneOptions(run, st->run.scene, st->runSets);

@@ -2,6 +2,10 @@
 // number of fixed steps, its expectations, the run report.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <system_error>
 
 #include "app/fixed_step.h"
 #include "app/run_report.h"
@@ -13,7 +17,52 @@
 
 namespace tumble::app {
 
-int runScenario(const RunOptions& o, const Stopwatch& processClock) {
+namespace {
+
+// A folder under the system's temporary directory (mkdtemp: a fresh name,
+// mode 0700) that is removed with everything in it when this goes away.
+class ThrowAwayDir {
+ public:
+  static Result<ThrowAwayDir> create() {
+    std::error_code ec;
+    const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) return makeError("no temporary directory for the run's saves: " + ec.message() + " (give --save-dir DIR)");
+    std::string name = (base / "tumble-run-saves-XXXXXX").string();
+    if (!mkdtemp(name.data()))
+      return makeError("cannot create a temporary folder for the run's saves in " + base.string() + " (give --save-dir DIR)");
+    return ThrowAwayDir(name);
+  }
+  ThrowAwayDir(ThrowAwayDir&& o) noexcept : m_path(std::move(o.m_path)) { o.m_path.clear(); }
+  ThrowAwayDir(const ThrowAwayDir&) = delete;
+  ThrowAwayDir& operator=(const ThrowAwayDir&) = delete;
+  ThrowAwayDir& operator=(ThrowAwayDir&&) = delete;
+  ~ThrowAwayDir() {
+    std::error_code ec;
+    if (!m_path.empty()) std::filesystem::remove_all(m_path, ec);
+  }
+  const std::string& path() const { return m_path; }
+
+ private:
+  explicit ThrowAwayDir(std::string path) : m_path(std::move(path)) {}
+  std::string m_path;
+};
+
+}  // namespace
+
+int runScenario(const RunOptions& options, const Stopwatch& processClock) {
+  RunOptions o = options;
+  std::optional<ThrowAwayDir> saves;
+  if (o.saveDir.empty()) {
+    auto made = ThrowAwayDir::create();
+    if (!made) {
+      log::error(made.error());
+      return 1;
+    }
+    saves.emplace(std::move(made.value()));
+    o.scene.saveDir = saves->path();
+  } else {
+    o.scene.saveDir = o.saveDir;
+  }
   auto created = Scene::create(o.scene);
   if (!created) {
     log::error(created.error());

@@ -45,6 +45,12 @@ std::uint64_t sceneStateHash(Scene& scene) {
 
 }  // namespace
 
+std::string stateHashText(Scene& scene) {
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneStateHash(scene)));
+  return hash;
+}
+
 StepMsSummary summarizeSteps(std::vector<double> ms) {
   StepMsSummary s;
   if (ms.empty()) return s;
@@ -121,8 +127,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
                               // one, shapes built (one per file and scale).
                               {"shapes_placed", scene.models().meshShapesPlaced()},
                               {"shapes_built", scene.models().meshShapesBuilt()}};
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sceneStateHash(scene)));
+  const std::string hash = stateHashText(scene);
   return json{
       {"scenario", scene.name()},
       {"seed", scene.options().seed},
@@ -159,7 +164,7 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"params", params},
       {"tunables", tunables},
       {"mesh_collision", meshCollision},
-      {"state_hash", std::string(hash)},
+      {"state_hash", hash},
   };
 }
 

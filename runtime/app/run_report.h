@@ -29,6 +29,10 @@ struct StepMsSummary {
 };
 StepMsSummary summarizeSteps(std::vector<double> stepMs);
 
+/// The state hash (16 hex digits) of everything the scene simulates: the
+/// bodies, rope and cloth particles, live effect particles. Exact bits.
+std::string stateHashText(Scene& scene);
+
 nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSeconds, const RunTimings& timings,
                            const RunCounts& counts);
 

@@ -48,6 +48,9 @@ struct SceneOptions {
   /// Read the mod's saved tunable overrides (script/tunables.h). `play` does;
   /// `run` does not, so a headless run depends only on its command line.
   bool tuneOverrides = false;
+  /// Where the scenario's save.read / save.write files go; empty: the
+  /// player's data folder (script/bind_save.cpp).
+  std::string saveDir;
   /// The Lua budgets the scenario runs under.
   script::VmLimits limits;
   /// The input actions; unset: those of base and the scenario's mod with its

@@ -118,6 +118,7 @@ void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render:
     if (request.lookAt_m) s.chaseLookAt_m = request.lookAt_m->cast<float>();
     if (request.stiffness_per_s) s.chaseStiffness_per_s = float(*request.stiffness_per_s);
     if (request.eye_m) s.hoodEye_m = s.cockpitEye_m = request.eye_m->cast<float>();
+    if (request.hoodEye_m) s.hoodEye_m = request.hoodEye_m->cast<float>();
     if (request.distance_m) camera.distance_m = float(*request.distance_m);
     m_rig.settings = s;
     m_rig.reset();

@@ -22,6 +22,10 @@ struct RunOptions {
   std::string screenshotPath;
   double screenshotAt_s = -1;  ///< -1: at the end
   int width = 1280, height = 720;
+  /// --save-dir: where the scenario's save.write files go. Empty: a
+  /// throw-away folder removed at exit, so a run never changes the player's
+  /// saves and two identical runs read the same (no) saves.
+  std::string saveDir;
 };
 
 struct PlayOptions {
@@ -31,6 +35,12 @@ struct PlayOptions {
   /// shorter), writes the screenshot and prints a summary.
   double offscreenSeconds = 5;
   std::string screenshotPath = "tumble-play.png";
+  bool screenshotGiven = false;  ///< --screenshot was on the command line
+  /// --frames N: play exactly N frames offscreen (one fixed step each
+  /// unless paused), then stop; -1: until the player quits.
+  long long frames = -1;
+  std::string eventsPath;  ///< --events FILE: scripted input (app/play_events.h)
+  std::string reportPath;  ///< --report FILE: what the player saw (docs/play-report.md)
 };
 
 /// `tumble run`: headless unless a screenshot is asked for. Returns the exit

@@ -24,7 +24,6 @@ constexpr float kZoomPerNotch = 0.9f;
 
 void applyKey(SDL_Keycode key, Controls& controls, Camera& camera) {
   switch (key) {
-    case SDLK_ESCAPE: controls.quitRequested = true; break;
     case SDLK_p:
     case SDLK_SPACE: controls.paused = !controls.paused; break;
     case SDLK_n: requestSingleStep(controls); break;
@@ -60,8 +59,8 @@ void Renderer::processEvents(Controls& controls) {
         if (event.window.event == SDL_WINDOWEVENT_CLOSE) controls.quitRequested = true;
         break;
       case SDL_KEYDOWN:
-        // Escape always quits, even while a HUD field has focus.
-        if (event.key.keysym.sym == SDLK_ESCAPE || (!hudKeyboard && event.key.repeat == 0)) {
+        // Escape is the app's (the pause menu, an action in bindings.lua): it never quits.
+        if (!hudKeyboard && event.key.repeat == 0) {
           applyKey(event.key.keysym.sym, controls, r.camera);
         }
         break;

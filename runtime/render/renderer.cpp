@@ -62,6 +62,7 @@ Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
 Renderer::~Renderer() = default;
 
 bool Renderer::offscreen() const { return m_impl->context->offscreen(); }
+std::uint32_t Renderer::windowId() const { return SDL_GetWindowID(m_impl->context->window()); }
 Camera& Renderer::camera() { return m_impl->camera; }
 
 Eigen::Vector2i Renderer::framebufferSize() const {

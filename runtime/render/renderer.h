@@ -205,11 +205,14 @@ struct Controls {
   bool stepOnce = false;
   float timeScale = 1.0f;             // slow motion: 1, 0.5, 0.25, 0.1
   bool screenshotRequested = false;   // screenshot key (F12); app clears it after saving
-  bool quitRequested = false;         // window closed or Escape
+  bool quitRequested = false;         // window closed (Escape opens the app's pause menu instead)
   bool tuningPanelVisible = false;    // F2 or the HUD's "Tune" button toggles the tuning panel
   // F3 or the HUD's "Collision" button: the app draws what collides instead
   // of what models show (static meshes as wireframe triangles).
   bool collisionView = false;
+  // The debug panel (FPS, ms per subsystem, sim controls), top left. Off for
+  // players; the app's debug_panel action (F4) toggles it.
+  bool debugPanelVisible = false;
 };
 
 /// One tunable as the tuning panel shows it (plain data; the app copies it
@@ -289,6 +292,8 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   bool offscreen() const;  // true when running on the offscreen driver
+  /// SDL's id of the window (events sent to it carry this id).
+  std::uint32_t windowId() const;
   Camera& camera();
   /// Size in pixels of the frame drawFrame renders and screenshots store.
   Eigen::Vector2i framebufferSize() const;
@@ -296,7 +301,7 @@ class Renderer {
   /// (pointer picking): origin (m, world) and unit direction.
   std::pair<Eigen::Vector3f, Eigen::Vector3f> viewRay(float x, float y) const;
 
-  // Handles SDL events: close/Escape quit; P or Space pause; N single step;
+  // Handles SDL events: window close quits (Escape does not); P or Space pause; N single step;
   // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; F3 collision view; C steps through the
   // camera modes (orbit, follow, and with Camera::vehicleModes chase, hood, cockpit);
   // mouse drag orbits, wheel zooms. Also feeds ImGui; keys and mouse that the

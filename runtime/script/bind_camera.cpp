@@ -28,6 +28,7 @@ const std::set<std::string> kModes = {"orbit", "follow", "chase", "hood", "cockp
 /// @field look_at? Vec3Arg chase: point looked at, target's frame, m (default {0, 1, 2})
 /// @field stiffness? number chase: spring rate of the critically damped follow, 1/s (default 4; larger is stiffer)
 /// @field eye? Vec3Arg hood / cockpit: eye position in the target's frame, m
+/// @field hood_eye? Vec3Arg hood: eye position in the target's frame, m (wins over eye for the hood view, so one call can place both)
 /// @field distance? number orbit / follow: distance of the eye from the target, m
 /// @field interior? string cockpit: interior model ("MOD:path"), drawn with the body; placed at the eye
 
@@ -49,7 +50,7 @@ int cameraSetMode(lua_State* L) {
   r.mode = lua_tostring(L, 1);
   if (!lua_isnoneornil(L, 2)) {
     if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": options must be a table {target = body, ...}");
-    checkFields(L, 2, fn, {"target", "offset", "look_at", "stiffness", "eye", "distance", "interior"});
+    checkFields(L, 2, fn, {"target", "offset", "look_at", "stiffness", "eye", "hood_eye", "distance", "interior"});
     try {
       if (rawGetField(L, 2, "target") != LUA_TNIL) r.target = checkBody(L, -1);
       lua_pop(L, 1);
@@ -57,6 +58,7 @@ int cameraSetMode(lua_State* L) {
       if (optVec3Field(L, 2, "offset", &v)) r.offset_m = v;
       if (optVec3Field(L, 2, "look_at", &v)) r.lookAt_m = v;
       if (optVec3Field(L, 2, "eye", &v)) r.eye_m = v;
+      if (optVec3Field(L, 2, "hood_eye", &v)) r.hoodEye_m = v;
       if (rawGetField(L, 2, "stiffness") != LUA_TNIL) {
         const double k = checkNumber(L, -1, "option 'stiffness'");
         if (!(k > 0)) throw LuaArgError("option 'stiffness' must be > 0 (1/s)");

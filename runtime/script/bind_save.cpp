@@ -1,9 +1,11 @@
 // Lua module `save`: small per-mod save data (best times, unlocked cars) as
 // JSON files in the user's data folder, written atomically (a crash never
-// leaves half a file). The folder is $TUMBLE_SAVE_DIR if set (tests use it;
-// TUMBLE_DATA_DIR already names where mods and scripts are found), else
-// $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves; each mod
-// has its own subfolder, so mods cannot read or overwrite each other's saves.
+// leaves half a file). The folder is the scene's save folder if the app set
+// one (`run` uses a throw-away folder, or --save-dir), else $TUMBLE_SAVE_DIR
+// if set (TUMBLE_DATA_DIR already names where mods and scripts are found),
+// else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves; each
+// mod has its own subfolder, so mods cannot read or overwrite each other's
+// saves.
 //
 //   local best = (save.read("time_trial") or {}).best
 //   save.write("time_trial", {best = 61.4})
@@ -29,6 +31,11 @@ using nlohmann::json;
 
 constexpr std::size_t kMaxSaveBytes = 1u << 20;
 
+// The scene's save folder (run's throw-away folder or --save-dir), else the player's.
+fs::path dataDir(lua_State* L) {
+  if (const std::string& d = ScenarioHost::from(L)->options().saveDir; !d.empty()) return d;
+  return savesDir();
+}
 
 fs::path savePath(lua_State* L, const char* fn) {
   if (lua_type(L, 1) != LUA_TSTRING) throw LuaArgError(std::string(fn) + ": expected a save name (a string)");
@@ -41,7 +48,7 @@ fs::path savePath(lua_State* L, const char* fn) {
   if (!valid)
     throw LuaArgError(std::string(fn) + ": save name \"" + clipped(name) +
                       "\" must be 1 to 64 letters, digits, '_' or '-' (it becomes a file name)");
-  return fs::path(savesDir()) / ScenarioHost::from(L)->mod().name / (name + ".json");
+  return dataDir(L) / ScenarioHost::from(L)->mod().name / (name + ".json");
 }
 
 // Deepest nesting a save may have, in tables (save.write) and in JSON
@@ -157,7 +164,9 @@ std::pair<std::uintmax_t, std::size_t> folderUse(const fs::path& dir, const fs::
 /// @module save
 /// Per-mod save data as JSON in the user's data folder ($TUMBLE_SAVE_DIR,
 /// else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves), one
-/// folder per mod, written atomically.
+/// folder per mod, written atomically. `tumble run` keeps saves in a
+/// throw-away folder (removed at exit) unless given --save-dir, so headless
+/// runs never change what the player's game shows.
 
 /// @function save.read
 /// @param name string 1 to 64 letters, digits, '_' or '-'

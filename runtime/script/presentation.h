@@ -59,6 +59,7 @@ struct CameraRequest {
   std::optional<Vec3> offset_m;        ///< chase: eye in the target's frame
   std::optional<Vec3> lookAt_m;        ///< chase: looked-at point in the target's frame
   std::optional<Vec3> eye_m;           ///< hood / cockpit: eye in the target's frame
+  std::optional<Vec3> hoodEye_m;       ///< hood only (wins over eye_m for hood), target's frame
   std::optional<Real> stiffness_per_s; ///< chase: spring rate (critically damped)
   std::optional<Real> distance_m;      ///< orbit / follow: distance from the target
   std::string interiorFile;            ///< cockpit: absolute path of the interior model ("" none)

@@ -93,6 +93,10 @@ struct ScenarioOptions {
   std::string tuneOverridesFile;
   /// Every known mod's folder by name, for "MOD:path" asset references.
   std::map<std::string, std::string> modDirs;
+  /// Where save.read / save.write keep their files (one folder per mod);
+  /// empty: the player's data folder (bind_save.cpp). `run` gives a
+  /// throw-away folder so headless runs never touch the player's saves.
+  std::string saveDir;
 };
 
 class ScenarioHost {

@@ -146,6 +146,7 @@ function Body:clear_model() end
 ---@field look_at? Vec3Arg chase: point looked at, target's frame, m (default {0, 1, 2})
 ---@field stiffness? number chase: spring rate of the critically damped follow, 1/s (default 4; larger is stiffer)
 ---@field eye? Vec3Arg hood / cockpit: eye position in the target's frame, m
+---@field hood_eye? Vec3Arg hood: eye position in the target's frame, m (wins over eye for the hood view, so one call can place both)
 ---@field distance? number orbit / follow: distance of the eye from the target, m
 ---@field interior? string cockpit: interior model ("MOD:path"), drawn with the body; placed at the eye
 
@@ -1157,7 +1158,9 @@ function random.pick(list) end
 
 ---Per-mod save data as JSON in the user's data folder ($TUMBLE_SAVE_DIR,
 ---else $XDG_DATA_HOME/tumble/saves, else ~/.local/share/tumble/saves), one
----folder per mod, written atomically.
+---folder per mod, written atomically. `tumble run` keeps saves in a
+---throw-away folder (removed at exit) unless given --save-dir, so headless
+---runs never change what the player's game shows.
 save = {}
 
 ---

@@ -14,12 +14,15 @@
 --                                 than opts.slip (default 0.15) of the speed or 1 m/s
 --   drive.autopilot(car, opts)    follows waypoints {x, z} at opts.speed (m/s);
 --                                 uses gearbox and traction control; for headless runs
---   drive.player(car, opts)       reads the input actions throttle, brake, steer,
---                                 handbrake, gear_up, gear_down, reset (bindings.lua);
---                                 does nothing until the input module exists
+--   drive.player(car, opts)       the player's keyboard and gamepad: switches the
+--                                 `vehicle` input context on and reads its actions
+--                                 throttle, brake, steer, handbrake, gear_up,
+--                                 gear_down, reset (bindings.lua)
+--   drive.upright(car, opts)      a car on its roof or stuck back on its wheels where
+--                                 it is, facing the same way, at rest, lifted clear
 --   drive.effects(car)            tyre dust and exhaust smoke rates from slip and throttle;
 --                                 feeds particle emitters when the particles module exists
---   drive.show(car)               the chase camera on the car and its chassis mesh, when the
+--   drive.show(car, opts)         the chase camera on the car and its chassis mesh, when the
 --                                 camera and model APIs exist (nothing before)
 -- Each returns an object with :update(dt).
 
@@ -150,11 +153,14 @@ end
 local Player = {}
 Player.__index = Player
 
--- The player's controller: reads the input actions named in bindings.lua.
--- Until the input module exists (no global `input`), update() leaves the
--- controls alone and returns false.
+-- The player's controller: switches the `vehicle` input context on (it
+-- starts off, so scenarios without a car keep Space and the mouse for the
+-- camera) and reads the actions named in bindings.lua. In a build without
+-- the input module (no global `input`) update() leaves the controls alone
+-- and returns false.
 function drive.player(car, opts)
   opts = opts or {}
+  if type(input) == "table" then input.set_context("vehicle", true) end
   return setmetatable({car = car, automatic = opts.automatic ~= false, gearbox = drive.gearbox(car),
                        traction = drive.traction(car, opts)}, Player)
 end
@@ -172,7 +178,7 @@ function Player:update(dt)
   end
   controls.throttle = self.traction:filter(dt, controls.throttle)
   car:set_controls(controls)
-  if input.pressed("reset") then car:reset{position = car:position(), heading = 0} end
+  if input.pressed("reset") then drive.upright(car) end
   if self.automatic then
     self.gearbox:update(dt, reverse and -1 or 1)
   else
@@ -181,6 +187,26 @@ function Player:update(dt)
     if input.pressed("gear_down") then car:set_controls{gear = g - 1} end
   end
   return true
+end
+
+-- Puts a car that is on its roof or stuck back on its wheels where it is:
+-- upright, facing the way it faced (its forward axis seen from above),
+-- at rest, with its wheels opts.lift (default 0.5) m above the highest
+-- ground under it (the terrain, or any other body a vertical ray from 2 m
+-- above its centre meets), so
+-- it drops clear of what held it. Returns the ground point used.
+function drive.upright(car, opts)
+  local lift = (opts and opts.lift) or 0.5
+  local p, f = car:position(), car:forward()
+  local heading = (f.x * f.x + f.z * f.z > 1e-6) and math.atan(f.x, f.z) or 0
+  local ground = vehicle.surface(p.x, p.z)
+  local body = car:body()
+  for _, hit in ipairs(world.raycast_all({p.x, p.y + 2, p.z}, {0, -1, 0}, 200)) do
+    if hit.body ~= body and (not ground or hit.point.y > ground) then ground = hit.point.y end
+  end
+  ground = ground or p.y
+  car:reset{position = {p.x, ground + lift, p.z}, heading = heading}
+  return {x = p.x, y = ground, z = p.z}
 end
 
 -- Effects ----------------------------------------------------------------------------
@@ -236,39 +262,59 @@ end
 
 -- Presentation ------------------------------------------------------------------------
 
--- Puts the chase camera on the car (camera.set_mode) and its definition's
--- chassis mesh on the chassis body (Body:set_model), each only when that API
--- exists; returns how many of the two it could do.
-function drive.show(car)
-  local done = 0
-  if type(camera) == "table" and camera.set_mode then
-    camera.set_mode("chase", {target = car:body()})
-    done = done + 1
+-- The shipped models stand on their origin (the ground) with the front
+-- along +Z; the body's frame is the centre of mass. At rest each axle's hub
+-- hangs its static spring length (rest_length less the sag under the car's
+-- weight) below full bump, and the ground is a wheel radius lower: through
+-- those points (z, y), one per axle, runs the ground in the body's frame.
+-- Returns where the model's origin goes in the body frame (z0, y0, below
+-- the box centre) and the ground's slope dy/dz (a least squares fit, tilted
+-- when the axles sag differently), so the drawn car sits where the physics
+-- car is.
+local function model_ground(car, def)
+  local com, wheels = def.chassis.com, car:telemetry().wheels
+  local n, sz, sy, szz, szy = 0, 0, 0, 0, 0
+  for i, axle in ipairs(def.axles) do
+    local w = wheels[2 * i - 1]
+    local z = axle.position[3] - com[3]
+    local y = axle.position[2] - com[2] - w.static_length - w.radius
+    n, sz, sy, szz, szy = n + 1, sz + z, sy + y, szz + z * z, szy + z * y
   end
+  local spread = szz - sz * sz / n
+  local slope = spread > 1e-9 and (szy - sz * sy / n) / spread or 0
+  local z0 = -com[3]
+  return z0, sy / n + slope * (z0 - sz / n), slope
+end
+
+-- Puts the chase camera on the car (camera.set_mode; the camera key then
+-- steps through chase, hood and cockpit, the cockpit with the base mod's
+-- interior model) and its definition's chassis mesh on the chassis body
+-- (Body:set_model), each only when that API exists; returns how many of the
+-- two it could do. opts.camera: the mode to start in (default "chase").
+function drive.show(car, opts)
+  local mode = (opts and opts.camera) or "chase"
+  local done = 0
   local def = car:definition()
   local mesh = def.chassis.mesh
   local body = car:body()
-  if mesh and body.set_model then
-    -- The shipped models stand on their origin (the ground) with the front
-    -- along +Z; the body's frame is the centre of mass. At rest each axle's
-    -- hub hangs its static spring length (rest_length less the sag under
-    -- the car's weight) below full bump, and the ground is a wheel radius
-    -- lower: through those points (z, y), one per axle, runs the ground in
-    -- the body's frame. The model's ground goes on that line (a least
-    -- squares fit, tilted when the axles sag differently), its origin below
-    -- the box centre, so the drawn car sits where the physics car is.
-    local com, wheels = def.chassis.com, car:telemetry().wheels
-    local n, sz, sy, szz, szy = 0, 0, 0, 0, 0
-    for i, axle in ipairs(def.axles) do
-      local w = wheels[2 * i - 1]
-      local z = axle.position[3] - com[3]
-      local y = axle.position[2] - com[2] - w.static_length - w.radius
-      n, sz, sy, szz, szy = n + 1, sz + z, sy + y, szz + z * z, szy + z * y
+  local z0, y0, slope = model_ground(car, def)
+  if type(camera) == "table" and camera.set_mode then
+    -- The cockpit eye sits where the driver's head is in the shipped
+    -- models (x 0.35 m, 1.17 m above the model's ground, 0.1 m behind
+    -- its middle), in the body frame; the interior model is drawn there.
+    -- The hood eye is over the front of the bonnet (1.07 m up, 1.6 m ahead).
+    local eye = {-def.chassis.com[1] + 0.35, y0 + 1.17, z0 - 0.1}
+    local hood = {-def.chassis.com[1], y0 + 1.07, z0 + 1.6}
+    -- Without the base mod's interior model (mods loaded from elsewhere), no interior.
+    if not pcall(camera.set_mode, mode, {target = body, eye = eye, hood_eye = hood,
+                                         interior = "base:assets/models/cockpit.obj"}) then
+      camera.set_mode(mode, {target = body, eye = eye, hood_eye = hood})
     end
-    local spread = szz - sz * sz / n
-    local slope = spread > 1e-9 and (szy - sz * sy / n) / spread or 0  -- dy/dz of the ground, body frame
-    local z0 = -com[3]
-    local y0 = sy / n + slope * (z0 - sz / n)
+    done = done + 1
+  end
+  if mesh and body.set_model then
+    -- The model's ground on the line through the wheels' contact points (model_ground).
+    local com = def.chassis.com
     -- The mesh path is inside the vehicle's mod, which need not be the scenario's.
     local mod = car:name():match("^([^:]+):")
     body:set_model(mod and (mod .. ":" .. mesh) or mesh,

@@ -126,7 +126,7 @@ TEST(ModelsCli, StaticModelsCollideThroughTheirMeshesOrBoxes) {
 
 TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
   const std::string dir = outDir("models_cli");
-  auto chase = runTumble("run base:showroom --screenshot " + dir + "/chase.png --width 320 --height 180");
+  auto chase = runTumble("run base:showroom --set autopilot=1 --screenshot " + dir + "/chase.png --width 320 --height 180");
   ASSERT_EQ(chase.exitCode, 0) << chase.output;
   const Picture behind = loadPicture(dir + "/chase.png");
   ASSERT_EQ(behind.w, 320);
@@ -136,7 +136,7 @@ TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
   EXPECT_GT(behind.share(0.35, 0.55, 0.65, 0.95, red), 0.3);
   EXPECT_LT(behind.share(0.0, 0.0, 1.0, 0.4, red), 0.01) << "nothing red in the sky";
 
-  auto cockpit = runTumble("run base:showroom --set camera=cockpit --at 0.5 --screenshot " + dir +
+  auto cockpit = runTumble("run base:showroom --set autopilot=1 --set camera=cockpit --at 0.5 --screenshot " + dir +
                            "/cockpit.png --width 320 --height 180");
   ASSERT_EQ(cockpit.exitCode, 0) << cockpit.output;
   const Picture inside = loadPicture(dir + "/cockpit.png");
@@ -145,6 +145,21 @@ TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
   // paint covers the view.
   auto dark = [](int r, int g, int b) { return r < 60 && g < 60 && b < 60; };
   EXPECT_GT(inside.share(0.1, 0.85, 0.9, 1.0, dark), 0.8);
+  EXPECT_LT(inside.share(0.3, 0.3, 0.7, 0.6, dark), 0.1) << "the view ahead is open";
+  EXPECT_LT(inside.share(0.0, 0.0, 1.0, 1.0, red), 0.01) << "the exterior is hidden in the cockpit";
+}
+
+// The player's car (a real vehicle, drive.show) gets the same cockpit: the
+// interior model at the driver's eye, the car's own body hidden.
+TEST(ModelsCli, DrivenCarCockpitShowsTheInterior) {
+  const std::string dir = outDir("models_cli");
+  auto cockpit = runTumble("run base:showroom --set camera=cockpit --at 0.5 --screenshot " + dir +
+                           "/driven_cockpit.png --width 320 --height 180");
+  ASSERT_EQ(cockpit.exitCode, 0) << cockpit.output;
+  const Picture inside = loadPicture(dir + "/driven_cockpit.png");
+  auto dark = [](int r, int g, int b) { return r < 60 && g < 60 && b < 60; };
+  auto red = [](int r, int g, int b) { return r > 90 && r > g + 50 && r > b + 50; };
+  EXPECT_GT(inside.share(0.1, 0.85, 0.9, 1.0, dark), 0.8) << "the dashboard across the bottom";
   EXPECT_LT(inside.share(0.3, 0.3, 0.7, 0.6, dark), 0.1) << "the view ahead is open";
   EXPECT_LT(inside.share(0.0, 0.0, 1.0, 1.0, red), 0.01) << "the exterior is hidden in the cockpit";
 }

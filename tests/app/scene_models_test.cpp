@@ -57,7 +57,7 @@ TEST(SceneModels, StaticModelsGoIntoTheTerrainTree) {
 }
 
 TEST(SceneModels, BodiesWithModelsAreDrawnAsModels) {
-  auto scene = makeScene("base:showroom");
+  auto scene = makeScene("base:showroom", {{"autopilot", "1"}});  // the sliding box
   ASSERT_TRUE(scene);
   scene->host().start();
   scene->savePreviousState();

@@ -48,7 +48,10 @@ TEST(BindingsFile, TheBaseModDeclaresEveryActionTheGameAndTheJointsDemosUse) {
       other = other || !(bind.source.device == input::Device::PadButton || bind.source.device == input::Device::PadAxis);
     }
     EXPECT_TRUE(other) << name << " has a keyboard or mouse default";
-    if (std::string(name) != "screenshot") {
+    // On a pad, Start opens the pause menu, which pauses and restarts; the
+    // plain pause toggle, restart, screenshot and the debug panel are keys.
+    const std::string n = name;
+    if (n != "screenshot" && n != "pause" && n != "restart" && n != "debug_panel") {
       EXPECT_TRUE(pad) << name << " has a gamepad default";
     }
   };
@@ -57,9 +60,12 @@ TEST(BindingsFile, TheBaseModDeclaresEveryActionTheGameAndTheJointsDemosUse) {
     expect(n, "vehicle", T::Button);
   expect("steer", "vehicle", T::Axis);
   for (const char* n : {"grab", "impulse", "more_links", "fewer_links", "dt_up", "dt_down"}) expect(n, "interact", T::Button);
-  for (const char* n : {"pause", "screenshot", "menu"}) expect(n, "game", T::Button);
+  for (const char* n : {"pause_menu", "pause", "restart", "debug_panel", "screenshot", "menu"}) expect(n, "game", T::Button);
+  for (const char* n : {"ui_up", "ui_down", "ui_select"}) expect(n, "ui", T::Button);
+  EXPECT_EQ(toText(b.set.findAction("pause_menu")->bindings[0]), "key:Escape");
   EXPECT_EQ(toText(b.set.findAction("grab")->bindings[0]), "mouse:left");
   EXPECT_GT(b.set.findContext("game")->priority, b.set.findContext("vehicle")->priority);
+  EXPECT_GT(b.set.findContext("ui")->priority, b.set.findContext("game")->priority) << "menu keys win while it is open";
 }
 
 TEST(BindingsFile, ATableBindingCarriesItsModifiersAndTheActionsApplyToTheRest) {

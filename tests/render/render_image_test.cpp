@@ -195,6 +195,7 @@ TEST(RenderImageHud, HudPanelAndRedMessagesAreDrawn) {
   ASSERT_NE(renderer, nullptr);
   test::ScratchDir scratch;
   Controls controls;
+  controls.debugPanelVisible = true;  // off for players; the debug key shows it
   HudStats stats;
   stats.scenario = "base:hud_test";
   stats.fps = 60;

@@ -1,16 +1,18 @@
 -- Convoy: many vehicles (50 by default, --set count=N) driven by Lua
 -- autopilots around concentric rings on generated hills; hatchbacks, trucks
--- and buggies in turn. The scene behind tools/bench/bench_vehicle.cpp
--- (ms per step and Lua cost per vehicle); --set autopilot=0 leaves the cars
+-- and buggies in turn. The player drives the lead car (drive.player, with
+-- the chase camera on it); --set autopilot=1 puts it on autopilot too (what
+-- the headless runs use). The scene behind tools/bench/bench_vehicle.cpp
+-- (ms per step and Lua cost per vehicle); --set parked=1 leaves every car
 -- parked (no Lua per car), for the benchmark's baseline.
 -- Expectations: with autopilots most cars are under way at the end and
 -- none has flipped.
 --
---   tumble run base:convoy
 --   tumble play base:convoy --set count=20
+--   tumble run base:convoy --set autopilot=1
 local drive = require "tumble.drive"
 
-local cars, pilots = {}, {}
+local cars, pilots, player = {}, {}, nil
 local kinds = {"base:hatchback", "base:truck", "base:buggy"}
 
 return {
@@ -32,18 +34,24 @@ return {
       -- Heading along the ring (counter-clockwise seen from above).
       local car = vehicle.spawn(kinds[(i - 1) % #kinds + 1], {position = {x, h, z}, heading = math.atan(-math.sin(a), math.cos(a))})
       cars[i] = car
-      if param("autopilot", 1) ~= 0 then
+      if param("parked", 0) ~= 0 then
+        -- no controller: the benchmark's baseline
+      elseif i == 1 and param("autopilot", 0) == 0 then
+        player = drive.player(car)
+        drive.show(car)
+      else
         local waypoints = {}
         for k = 1, 16 do
           local b = a + k / 16 * 2 * math.pi
           waypoints[k] = {math.cos(b) * radius, math.sin(b) * radius}
         end
-        pilots[i] = drive.autopilot(car, {waypoints = waypoints, speed = 12, loop = true, radius = 8})
+        pilots[#pilots + 1] = drive.autopilot(car, {waypoints = waypoints, speed = 12, loop = true, radius = 8})
       end
     end
   end,
 
   on_update = function(ctx, dt)
+    if player then player:update(dt) end
     for i = 1, #pilots do pilots[i]:update(dt) end
   end,
 

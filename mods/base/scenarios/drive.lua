@@ -1,12 +1,13 @@
--- Drive: free roam on generated hills among scattered rocks and trees. With
--- the autopilot (the default until the input module lands; --set
--- autopilot=0 hands the car to drive.player) the car drives a loop of
--- waypoints over the hills.
--- Expectations: the car covers ground, stays upright, keeps its wheels on
--- the terrain (never below it), and nothing in the vehicle goes non-finite.
+-- Drive: free roam on generated hills among scattered rocks and trees. The
+-- player drives (keyboard and gamepad, drive.player: W/S/A/D, R resets the
+-- car, C the camera); with --set autopilot=1 the autopilot drives a loop of
+-- waypoints over the hills instead (what the headless tests use).
+-- Expectations: the car stays upright, keeps its wheels on the terrain
+-- (never below it), and nothing in the vehicle goes non-finite; on
+-- autopilot it also covers ground.
 --
---   tumble run base:drive
 --   tumble play base:drive --set car=base:truck
+--   tumble run base:drive --set autopilot=1
 local drive = require "tumble.drive"
 
 local car, pilot, player, effects
@@ -45,7 +46,7 @@ return {
   params = {
     rocks = {default = 40, description = "rocks and trees scattered off the route (a count)"},
     car = {default = "base:hatchback", description = "the vehicle definition, MOD:NAME"},
-    autopilot = {default = 1, description = "1: the autopilot drives the waypoint loop; 0: drive.player hands the car to you"},
+    autopilot = {default = 0, description = "0: the player drives (drive.player); 1: the autopilot drives the waypoint loop"},
     speed = {default = 16, unit = "m/s", description = "the autopilot's cruising speed"},
     grip = {default = 1, description = "scales the tyre's friction curves (peak and sliding friction), a ratio"},
     spring_rate = {default = 1, description = "scales every axle's suspension spring rate, a ratio"},

@@ -3,13 +3,16 @@
 -- mud (friction 0.3, softness 0.7) in patches on flat low ground and grass
 -- (0.6, 0.4) elsewhere (app/terrain_scene.cpp); tyre grip scales with the
 -- surface friction and its softness adds rolling drag (docs/vehicles.md
--- "Surfaces"), so the car in the mud spins its wheels and falls behind. Both drive the same autopilot straight ahead.
--- Expectations: the lanes were found, the mud car's tyres report mud
--- (friction and softness), it
--- covered clearly less ground and its driven wheels slipped more.
+-- "Surfaces"), so the car in the mud spins its wheels and falls behind.
+-- The player drives the mud car (drive.player) against the grass car on
+-- autopilot; with --set autopilot=1 both drive the same autopilot straight
+-- ahead (what the headless tests use).
+-- Expectations: the lanes were found; on autopilot also: the mud car's
+-- tyres report mud (friction and softness), it covered clearly less ground
+-- and its driven wheels slipped more.
 --
---   tumble run base:mud
 --   tumble play base:mud --set car=base:truck
+--   tumble run base:mud --set autopilot=1
 local drive = require "tumble.drive"
 
 local LANE = 28   -- m of the same surface ahead of the start
@@ -40,10 +43,16 @@ local function find_lane(mu, avoid)
   end
 end
 
-local function launch(entry, start)
+local autopilot = param("autopilot", 0) ~= 0
+
+local function launch(entry, start, player)
   local h = vehicle.surface(start[1], start[2])
   entry.car = vehicle.spawn(param("car", "base:hatchback"), {position = {start[1], h, start[2]}, heading = math.pi / 2})
-  entry.pilot = drive.autopilot(entry.car, {waypoints = {{start[1] + 400, start[2]}}, speed = 30, traction = false})
+  if player then
+    entry.pilot = drive.player(entry.car)
+  else
+    entry.pilot = drive.autopilot(entry.car, {waypoints = {{start[1] + 400, start[2]}}, speed = 30, traction = false})
+  end
   entry.start, entry.slip, entry.friction_min, entry.softness_max = start, 0, math.huge, 0
   entry.driven = {}
   for i, axle in ipairs(entry.car:definition().axles) do
@@ -61,8 +70,8 @@ return {
     local g = m and find_lane(0.6, m)
     expect("a mud lane and a grass lane found", m ~= nil and g ~= nil)
     if not (m and g) then return end
-    launch(mud, m)
-    launch(grass, g)
+    launch(mud, m, not autopilot)
+    launch(grass, g, false)
     drive.show(mud.car)
   end,
 
@@ -87,7 +96,7 @@ return {
   end,
 
   on_finish = function(ctx)
-    if not mud.car then return end
+    if not mud.car or not autopilot then return end
     local function dist(e) local p = e.car:position() return math.abs(p.x - e.start[1]) end
     expect("mud car's tyres on mud (surface friction)", mud.friction_min, {max = 0.31})
     expect("grass car's tyres on grass (surface friction)", grass.friction_min, {min = 0.59})

@@ -1,24 +1,34 @@
--- Showroom: the project's own models on bodies and as static scenery. A
--- hatchback-shaped box (collision stays a box; the picture is the model)
--- slides down a ramp between rocks, trees, barriers, a building and a
--- checkpoint arch, followed by the chase camera. Static models get static
--- box collision bodies, so the car stops against the barrier.
+-- Showroom: the project's own models on bodies and as static scenery among
+-- rocks, trees, barriers, a building and a checkpoint arch, followed by the
+-- chase camera. The player drives a hatchback (drive.player) between them.
+-- With --set autopilot=1 nobody drives: a hatchback-shaped box (collision
+-- stays a box; the picture is the model) slides towards the barriers
+-- instead; static models get static box collision bodies, so it stops
+-- against them (what the headless tests check).
 --
 --   tumble play base:showroom            (C cycles orbit, follow, chase, hood, cockpit)
---   tumble run base:showroom --screenshot shot.png
+--   tumble run base:showroom --set autopilot=1 --screenshot shot.png
+
+local drive = require "tumble.drive"
 
 local M = "base:assets/models/"
-local car
+local car, player
+local sliding = param("autopilot", 0) ~= 0
 
 return {
   title = "Showroom: models on bodies, static scenery, chase camera",
   duration = 5,
   on_start = function(ctx)
     world.plane{color = {0.42, 0.48, 0.38}}
-    -- The car: a 1.6 x 1.2 x 4.1 m box whose centre is 0.87 m above the model's origin.
-    car = world.box{size = {1.6, 1.2, 4.1}, position = {0, 0.9, -6}, velocity = {0, 0, 12}, mass = 1100,
-                    friction = 0.3}
-    car:set_model(M .. "hatchback.obj", {offset = {0, -0.87, 0}})
+    if sliding then
+      -- The car: a 1.6 x 1.2 x 4.1 m box whose centre is 0.87 m above the model's origin.
+      car = world.box{size = {1.6, 1.2, 4.1}, position = {0, 0.9, -6}, velocity = {0, 0, 12}, mass = 1100,
+                      friction = 0.3}
+      car:set_model(M .. "hatchback.obj", {offset = {0, -0.87, 0}})
+    else
+      car = vehicle.spawn("base:hatchback", {position = {0, 0, -6}, heading = 0})
+      player = drive.player(car)
+    end
     for _, x in ipairs({-1, 1}) do
       world.add_static_model(M .. "barrier.obj", {position = {x * 1.1, 0, 8}})
     end
@@ -30,13 +40,24 @@ return {
     end
     world.add_static_model(M .. "building.obj", {position = {-14, 0, 20}})
     world.add_static_model(M .. "checkpoint_arch.obj", {position = {0, 0, 2}, collision = "none"})
-    -- Eyes in the car body's frame (its centre is 0.87 m above the model's
-    -- origin): the driver's seat for the cockpit, above the bonnet for hood.
     local mode = param("camera", "chase")
-    local eye = mode == "hood" and {0, 0.2, 1.6} or {0.35, 0.3, -0.1}
-    camera.set_mode(mode, {target = car, eye = eye, interior = M .. "cockpit.obj"})
+    if sliding then
+      -- Eyes in the car body's frame (its centre is 0.87 m above the model's
+      -- origin): the driver's seat for the cockpit, above the bonnet for hood.
+      local eye = mode == "hood" and {0, 0.2, 1.6} or {0.35, 0.3, -0.1}
+      camera.set_mode(mode, {target = car, eye = eye, interior = M .. "cockpit.obj"})
+    else
+      drive.show(car, {camera = mode})  -- the camera, the model, the cockpit's eye and interior
+    end
+  end,
+  on_update = function(ctx, dt)
+    if player then player:update(dt) end
   end,
   on_finish = function(ctx)
+    if not sliding then
+      expect("car still upright", car:body():up().y, {min = 0.5})
+      return
+    end
     -- The barriers' static boxes stopped the car before z = 8 - 0.2 - 2.05.
     -- Without them it would slide 12^2 / (2 * 0.3 * 9.81) = 24 m, to z = 18.
     expect("car stopped by the barriers", car:position().z, {min = 5.0, max = 5.8})

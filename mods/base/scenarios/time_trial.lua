@@ -1,13 +1,14 @@
 -- Time trial: drive through six checkpoint gates in order and back to the
 -- start; the timer runs from the first step, the HUD shows the time, the
 -- next gate and the best time, and a new best is saved (save.write: JSON in
--- the user's data folder, written atomically). The autopilot drives the
--- lap for headless runs (--set autopilot=0: drive.player).
+-- the user's data folder, written atomically). The player drives
+-- (drive.player); --set autopilot=1 hands the lap to the autopilot (what the
+-- headless runs use).
 -- Expectations: every gate passed in order, the lap within a sane time,
 -- the best time read back equals the one written.
 --
---   tumble run base:time_trial
 --   tumble play base:time_trial --set car=base:buggy
+--   tumble run base:time_trial --set autopilot=1
 local drive = require "tumble.drive"
 
 -- Gates on a 240 x 120 m loop, start/finish last.
@@ -52,7 +53,7 @@ return {
     end
     car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -12}, heading = 0})
     drive.show(car)
-    if param("autopilot", 1) ~= 0 then
+    if param("autopilot", 0) ~= 0 then
       pilot = drive.autopilot(car, {waypoints = gates, speed = param("speed", 22), loop = false, radius = 4})
     else
       player = drive.player(car)

@@ -114,6 +114,13 @@ void Hud::draw(const HudStats& stats, Controls& controls, CameraMode cameraMode,
 void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
 
+  if (controls.debugPanelVisible) buildDebugPanel(stats, controls, cameraMode, tuning);
+  if (tuning && controls.tuningPanelVisible) buildTuningPanel(*tuning, &controls.tuningPanelVisible);
+  buildMessages(stats, display);
+  for (const HudPanel& panel : m_panels) panel();
+}
+
+void Hud::buildDebugPanel(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning) {
   ImGui::SetNextWindowPos(ImVec2(kMargin_px, kMargin_px), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.72f);
   if (ImGui::Begin("Tumble", nullptr, kOverlayFlags | ImGuiWindowFlags_NoMove)) {
@@ -152,6 +159,7 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     }
     ImGui::TextColored(kDimColor, "camera: %s (C)", cameraModeName(cameraMode));
     ImGui::TextColored(kDimColor, "P pause  N step  -/= speed  F12 shot  F1 keys");
+    ImGui::TextColored(kDimColor, "F4 hides this panel");
     if (ImGui::Button(controls.collisionView ? "Models (F3)" : "Collision (F3)", ImVec2(132, 0)))
       controls.collisionView = !controls.collisionView;
     if (tuning) {
@@ -160,9 +168,9 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     }
   }
   ImGui::End();
+}
 
-  if (tuning && controls.tuningPanelVisible) buildTuningPanel(*tuning, &controls.tuningPanelVisible);
-
+void Hud::buildMessages(const HudStats& stats, const ImVec2& display) {
   if (!stats.messages.empty()) {
     ImGui::SetNextWindowPos(ImVec2(kMargin_px, display.y - kMargin_px), ImGuiCond_Always,
                             ImVec2(0.0f, 1.0f));
@@ -177,7 +185,6 @@ void Hud::build(const HudStats& stats, Controls& controls, CameraMode cameraMode
     }
     ImGui::End();
   }
-  for (const HudPanel& panel : m_panels) panel();
 }
 
 }  // namespace tumble::render

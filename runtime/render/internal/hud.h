@@ -1,8 +1,10 @@
 #pragma once
-// The Dear ImGui heads-up display: frame timings, simulation counters, the
-// pause / step / slow-motion controls, and messages (script errors) in red.
+// The Dear ImGui heads-up display: the debug panel (frame timings,
+// simulation counters, the pause / step / slow-motion controls; shown while
+// Controls::debugPanelVisible), and messages (script errors) in red.
 // Owns its ImGui context and the SDL2 + OpenGL3 backends from libimgui.
 #include <SDL.h>
+#include <imgui.h>
 
 #include <memory>
 #include <vector>
@@ -41,6 +43,8 @@ class Hud {
   Hud() = default;
   void newFrame();
   void build(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning);
+  void buildDebugPanel(const HudStats& stats, Controls& controls, CameraMode cameraMode, TuningPanel* tuning);
+  void buildMessages(const HudStats& stats, const ImVec2& display);
 
   ImGuiContext* m_context = nullptr;
   bool m_sdlBackend = false, m_glBackend = false;

@@ -8,6 +8,7 @@ return {
   scenarios = {"base:drive"},
   seconds = 20,
   grid = {grip = {0.6, 0.8, 1, 1.2, 1.4}, spring_rate = {0.75, 1, 1.5, 2}},
+  set = {autopilot = 1},  -- headless: the autopilot drives (the player drives by default)
   seeds = {1, 2, 3},
   collect = {"wall_seconds.total", "error.energy_rel_drift_max", "error.penetration_max_m",
              "expectations.distance driven (m)", "expectations.stayed upright (lowest chassis up.y)"},
