@@ -9,7 +9,8 @@
 //   { integrate velocities (gravity, forces, applied springs, implicit
 //     gyroscopic term; translation by WorldSettings::integrator, integrate.h),
 //     warm start, solve contacts with soft constraints, integrate positions,
-//     relax contacts without bias } -> restitution -> sleep.
+//     relax contacts without bias, restitution and impact friction for the
+//     points that first pushed in this substep } -> sleep.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -59,8 +60,8 @@ struct WorldSettings {
   Real speculativeDistance_m = Real(0.02);
   /// Allowed overlap (m) that is not corrected, so resting contacts persist.
   Real linearSlop_m = Real(0.005);
-  /// Gauss-Seidel passes of Newton's restitution law after the substeps
-  /// (several bouncing contacts on one body need more than one).
+  /// Gauss-Seidel passes of Newton's restitution law in the substep of an
+  /// impact (several bouncing contacts on one body need more than one).
   int restitutionIterations = 1;
   /// Continuous collision against static bodies: after the step, a body that
   /// moved more than half its inner radius is swept from where it started

@@ -151,7 +151,10 @@ TEST_P(AttackProbe, EndsWithAClearMessageAndWritesNothingOutsideTheMod) {
                           " TUMBLE_CONFIG_DIR=" + (root / "config").string() + " TUMBLE_SAVE_DIR=" +
                           (root / "saves").string() + " XDG_DATA_HOME=" + (root / "xdg").string() +
                           " XDG_CONFIG_HOME=" + (root / "config").string() + " timeout 120 ";
-  const std::string command = replaceAll(probe.command, "{root}", root.string());
+  std::string command = replaceAll(probe.command, "{root}", root.string());
+  // `run` keeps saves in a throw-away folder unless told: the probes' saves
+  // (and their hand-made save files) are in root/saves.
+  if (command.rfind("run ", 0) == 0) command += " --save-dir " + (root / "saves").string();
   // "tool terrain ..." runs an offline tool (no --mods: tools take their own arguments).
   const bool tool = command.rfind("tool ", 0) == 0;
   const auto r = tumble::test::runTumble(tool ? command.substr(5) : "--mods " + (root / "mods").string() + " " + command, env);
