@@ -49,6 +49,20 @@ namespace {
 constexpr int kQuickSteps = 20;
 constexpr int kBulletDefaultIterations = 10;  // btContactSolverInfo's default
 
+/// Prints the report on stdout and, when asked, writes it atomically; the
+/// exit status: 0, or 1 when the file cannot be written.
+int emitReport(const json& report, const std::string& path) {
+  const std::string text = report.dump(2) + "\n";
+  std::fputs(text.c_str(), stdout);
+  if (!path.empty()) {
+    if (auto s = tumble::writeFileAtomic(path, text); !s) {
+      std::fprintf(stderr, "tumble_compare: %s\n", s.error().c_str());
+      return 1;
+    }
+  }
+  return 0;
+}
+
 double ratio(const json& a, const json& b, const char* field = "step_ms_median") {
   double den = b[field].get<double>();
   return den > 0 ? a[field].get<double>() / den : 0.0;
@@ -113,15 +127,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "tumble_compare: terrain_rays: %s\n", report["error"].get<std::string>().c_str());
       return 1;
     }
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!reportPath.empty()) {
-      if (auto s = tumble::writeFileAtomic(reportPath, text); !s) {
-        std::fprintf(stderr, "tumble_compare: %s\n", s.error().c_str());
-        return 1;
-      }
-    }
-    return 0;
+    return emitReport(report, reportPath);
   }
   SceneSpec scene;
   if (!buildScene(sceneName, &scene)) {
@@ -155,15 +161,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "tumble_compare: %s\n", e.what());
       return 1;
     }
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!reportPath.empty()) {
-      if (auto s = tumble::writeFileAtomic(reportPath, text); !s) {
-        std::fprintf(stderr, "tumble_compare: %s\n", s.error().c_str());
-        return 1;
-      }
-    }
-    return 0;
+    return emitReport(report, reportPath);
   }
 
   std::fprintf(stderr, "tumble_compare: %s, %zu bodies, %d steps of %.6g s\n", scene.name.c_str(),
@@ -228,13 +226,5 @@ int main(int argc, char** argv) {
       "displacement of a dynamic body from its start, at the end; escaped: dynamic bodies whose centre is "
       "outside the container's cavity at the end; kinetic_energy_ratio: end / start (null when starting at rest)";
 
-  const std::string text = report.dump(2) + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!reportPath.empty()) {
-    if (auto s = tumble::writeFileAtomic(reportPath, text); !s) {
-      std::fprintf(stderr, "tumble_compare: %s\n", s.error().c_str());
-      return 1;
-    }
-  }
-  return 0;
+  return emitReport(report, reportPath);
 }

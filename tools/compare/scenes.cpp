@@ -22,6 +22,16 @@ void addGroundBox(SceneSpec& s) {
   s.bodies.push_back(ground);
 }
 
+/// An 80 x 1 x 80 m static slab with its top at y = 0 (the pyramids' ground).
+void addSlabGround(SceneSpec& s) {
+  BodySpec ground;
+  ground.shape = BodyShape::Box;
+  ground.halfExtents_m = V3(40, 0.5, 40);
+  ground.position_m = V3(0, -0.5, 0);
+  ground.mass_kg = 0;
+  s.bodies.push_back(ground);
+}
+
 /// Bullet's own "3000 boxes" benchmark (bullet3 examples/Benchmarks,
 /// BenchmarkDemo::createTest1), rebuilt from its description: 47 layers of
 /// 8 x 8 cubes of half-extent 1 m and mass 2 kg, 3 m apart (1 m gaps) in x
@@ -92,12 +102,7 @@ void pyramid20(SceneSpec& s) {
   s.friction = 0.6;
   s.restitution = 0;
   s.defaultSteps = 600;
-  BodySpec ground;
-  ground.shape = BodyShape::Box;
-  ground.halfExtents_m = V3(40, 0.5, 40);
-  ground.position_m = V3(0, -0.5, 0);
-  ground.mass_kg = 0;
-  s.bodies.push_back(ground);
+  addSlabGround(s);
   const int base = 20;
   const double half = 0.5;
   for (int row = 0; row < base; ++row) {
@@ -124,12 +129,7 @@ void pile1015(SceneSpec& s) {
   s.friction = 0.6;
   s.restitution = 0;
   s.defaultSteps = 300;
-  BodySpec ground;
-  ground.shape = BodyShape::Box;
-  ground.halfExtents_m = V3(40, 0.5, 40);
-  ground.position_m = V3(0, -0.5, 0);
-  ground.mass_kg = 0;
-  s.bodies.push_back(ground);
+  addSlabGround(s);
   const int base = 14;
   const double half = 0.5;
   for (int layer = 0; layer < base; ++layer) {
