@@ -145,6 +145,17 @@ namespace {
 
 bool takesImpulses(const Body& b) { return b.isDynamic() && b.awake; }
 
+/// Coulomb's cone: scales the tangential impulse (l0, l1) back onto the
+/// circle of radius maxF (friction x normal impulse) when it lies outside.
+inline void clampToFrictionCone(Real maxF, Real& l0, Real& l1) {
+  const Real len2 = l0 * l0 + l1 * l1;
+  if (len2 > maxF * maxF) {
+    const Real scale = maxF / std::sqrt(len2);
+    l0 *= scale;
+    l1 *= scale;
+  }
+}
+
 const Body& heightFieldBody() {
   static const Body ground = [] {
     Body g;
@@ -418,13 +429,7 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
     const Real old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
     Real l0 = old0 - p.tangentMass[0] * vt0;
     Real l1 = old1 - p.tangentMass[1] * vt1;
-    const Real maxF = c.friction * p.normalImpulse;
-    const Real len2 = l0 * l0 + l1 * l1;
-    if (len2 > maxF * maxF) {
-      const Real scale = maxF / std::sqrt(len2);
-      l0 *= scale;
-      l1 *= scale;
-    }
+    clampToFrictionCone(c.friction * p.normalImpulse, l0, l1);
     p.tangentImpulse[0] = l0;
     p.tangentImpulse[1] = l1;
     const Real d0 = l0 - old0, d1 = l1 - old1;
@@ -564,12 +569,7 @@ Eigen::Vector3d ContactSolver::applyRestitution(std::vector<SolverVelocity>& vel
         const Real vt1 = rowDot(c.tangent[1], dvt, p.rtB[1], B.angular, p.rtA[1], A.angular);
         const Real old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
         Real l0 = old0 - p.tangentMass[0] * vt0, l1 = old1 - p.tangentMass[1] * vt1;
-        const Real maxF = c.friction * p.normalImpulse, len2 = l0 * l0 + l1 * l1;
-        if (len2 > maxF * maxF) {
-          const Real scale = maxF / std::sqrt(len2);
-          l0 *= scale;
-          l1 *= scale;
-        }
+        clampToFrictionCone(c.friction * p.normalImpulse, l0, l1);
         p.tangentImpulse[0] = l0;
         p.tangentImpulse[1] = l1;
         const Real d0 = l0 - old0, d1 = l1 - old1;
