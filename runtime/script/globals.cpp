@@ -105,12 +105,22 @@ void pushDeclaredDefault(lua_State* L, const ScenarioHost& host, const std::stri
 int luaParam(lua_State* L) {
   ScenarioHost* host = ScenarioHost::from(L);
   if (lua_type(L, 1) != LUA_TSTRING) throw LuaArgError("param: argument 1 must be the parameter's name");
+  const int nargs = lua_gettop(L);
   std::string name = lua_tostring(L, 1);
-  pushDeclaredDefault(L, *host, name);
+  pushDeclaredDefault(L, *host, name);  // the default is at index 2 from here on
+  // Leaves exactly the arguments and one result (the value on top), as every
+  // binding must (the debug stack check).
+  auto result = [&]() {
+    if (lua_gettop(L) > nargs + 1) {
+      lua_replace(L, nargs + 1);
+      lua_settop(L, nargs + 1);
+    }
+    return 1;
+  };
   auto it = host->options().params.find(name);
   if (it == host->options().params.end()) {
-    lua_settop(L, 2);
-    return 1;
+    lua_pushvalue(L, 2);
+    return result();
   }
   const std::string& text = it->second;
   switch (lua_type(L, 2)) {
@@ -120,13 +130,13 @@ int luaParam(lua_State* L) {
       if (end == text.c_str() || *end != 0 || !std::isfinite(v))
         throw LuaArgError("--set " + name + "=" + text + ": expected a number");
       lua_pushnumber(L, v);
-      return 1;
+      return result();
     }
     case LUA_TBOOLEAN:
       if (text != "true" && text != "false") throw LuaArgError("--set " + name + "=" + text + ": expected true or false");
       lua_pushboolean(L, text == "true");
-      return 1;
-    default: lua_pushstring(L, text.c_str()); return 1;
+      return result();
+    default: lua_pushstring(L, text.c_str()); return result();
   }
 }
 
