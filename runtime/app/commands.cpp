@@ -1,3 +1,4 @@
+#include "core/cli_finite.h"
 #include "app/commands.h"
 
 #include <cmath>
@@ -48,17 +49,6 @@ Status finishSceneOptions(SceneOptions& scene, const std::string& ref, const Com
   return parseSets(sets, scene.sets);
 }
 
-// CLI11 reads "nan" and "inf" as numbers, and its range checks let NaN
-// through (every comparison with NaN is false): each number option also
-// gets this check.
-const CLI::Validator kFinite(
-    [](std::string& text) -> std::string {
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) return "expected a finite number, got " + text;
-      return {};
-    },
-    "FINITE");
 
 void addSceneOptions(CLI::App* cmd, SceneOptions& scene, std::vector<std::string>& sets) {
   cmd->add_option("--dt", scene.dt_s, "fixed time step, s (default 1/60)")->check(kFinite)->check(CLI::PositiveNumber);

@@ -1,3 +1,4 @@
+#include "core/cli_finite.h"
 #include "tools/terrain/terrain_commands.h"
 
 #include <CLI/CLI.hpp>
@@ -46,16 +47,6 @@ Status writeOutput(const HeightMap& map, const TerrainDesc& desc, bool withSidec
 }
 
 // "a,b[,c...]" -> exactly `count` finite numbers.
-// CLI11 reads "nan" and "inf" as numbers and its range checks let NaN through
-// (every comparison with NaN is false): every number option also gets this.
-const CLI::Validator kFinite(
-    [](std::string& text) -> std::string {
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) return "expected a finite number, got " + text;
-      return {};
-    },
-    "FINITE");
 
 Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t count, const std::string& option) {
   std::vector<double> values;
