@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   std::string spec, out, dir;
   bool force = false, run = false, noPlots = false;
   int jobsAtOnce = 0;
+  int batch = 0;
   long long index = -1, chunk = -1;
   WriteOptions wo;
   cli.add_option("spec", spec, "the sweep spec, a .json or .lua file");
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
   cli.add_flag("--force", force, "write a sweep larger than " + std::to_string(kMaxJobsWithoutForce) + " jobs");
   cli.add_flag("--run", run, "after writing, run the jobs here through GNU parallel");
   cli.add_option("-j,--jobs", jobsAtOnce, "runs at once with --run (default: one per core)")->check(CLI::NonNegativeNumber);
+  cli.add_option("--batch", batch, "with --run: runs a GNU parallel job runs one after another (default: 32 batches a slot)")
+      ->check(CLI::PositiveNumber);
   cli.add_option("--chunk-size", wo.chunkSize, "runs per Slurm array task / Kubernetes index (default: at most 1000 tasks)")
       ->check(CLI::PositiveNumber);
   cli.add_option("--image", wo.image, "container image for the Kubernetes Job (built from tools/sweep/Dockerfile)");
@@ -42,6 +45,8 @@ int main(int argc, char** argv) {
   CLI::App* runCmd = cli.add_subcommand("run", "run a written sweep's unfinished jobs here through GNU parallel (resumes)");
   runCmd->add_option("dir", dir, "the sweep folder")->required();
   runCmd->add_option("-j,--jobs", jobsAtOnce, "runs at once (default: one per core)")->check(CLI::NonNegativeNumber);
+  runCmd->add_option("--batch", batch, "runs a GNU parallel job runs one after another (default: 32 batches a slot)")
+      ->check(CLI::PositiveNumber);
 
   CLI::App* execCmd = cli.add_subcommand("exec", "run one job (--index) or one chunk (--chunk) of a sweep; what parallel, "
                                                   "Slurm and Kubernetes call");
@@ -76,7 +81,7 @@ int main(int argc, char** argv) {
   if (*runCmd) {
     auto sweep = readSweepFolder(dir);
     if (!sweep) return fail(sweep.error());
-    return runLocal(*sweep, jobsAtOnce, ownBinDir() + "/tumble");
+    return runLocal(*sweep, jobsAtOnce, batch, ownBinDir() + "/tumble");
   }
   if (*collectCmd) {
     auto sweep = readSweepFolder(dir);
@@ -105,5 +110,5 @@ int main(int argc, char** argv) {
                 shellQuote(sweep->dir).c_str(), shellQuote(sweep->dir).c_str(), shellQuote(sweep->dir).c_str());
     return 0;
   }
-  return runLocal(*sweep, jobsAtOnce, ownBinDir() + "/tumble");
+  return runLocal(*sweep, jobsAtOnce, batch, ownBinDir() + "/tumble");
 }

@@ -43,8 +43,10 @@ expect_in "16 jobs: 4 passed, 4 failed an expectation, 8 had a script error, 0 f
 expect_in "tumble run sweeptest:drop --seed 1 --integrator symplectic_euler --set explode=false --set height=1 --mods $src/mods --report runs/0000" sweep-drops/jobs.txt "job line"
 expect_in "#SBATCH --array=0-" sweep-drops/slurm.sh "slurm script"
 expect_in "completionMode: Indexed" sweep-drops/k8s-job.yaml "kubernetes manifest"
-runs() { grep -c "tumble run sweeptest" sweep-drops/joblog.txt; }
-[ "$(runs)" = 16 ] || fail "GNU parallel's joblog has the 16 runs"
+runs() { cat sweep-drops/runs/*/log.txt | grep -c "^== .*tumble run sweeptest"; }
+[ "$(runs)" = 16 ] || fail "the runs' logs record the 16 runs"
+[ -s sweep-drops/joblog.txt ] || fail "GNU parallel's joblog was written"
+[ "$(ls sweep-drops/runs/*/time | wc -l)" = 16 ] || fail "each run's start and end times are kept"
 grep -q "asked to fail with explode = true" sweep-drops/runs/000008/log.txt || fail "a script error's log is kept"
 
 # ---- resume: nothing to do; then two removed reports run again, same hashes
@@ -56,7 +58,7 @@ h9=$(grep -o '"state_hash": "[0-9a-f]*"' sweep-drops/runs/000009/report.json)
 rm sweep-drops/runs/000000/report.json sweep-drops/runs/000009/report.json
 "$bin/tumble" sweep drops.json --run >run3.txt 2>&1   # the same spec again: the same folder, resumed
 expect_in "2 of 16 jobs to run (14 finished before are skipped)" run3.txt "partial resume"
-[ "$(runs)" = 18 ] || fail "the joblog gains the two runs"
+[ "$(runs)" = 18 ] || fail "the logs gain the two runs"
 [ "$h0" = "$(grep -o '"state_hash": "[0-9a-f]*"' sweep-drops/runs/000000/report.json)" ] || fail "job 0's state differs on a rerun"
 [ "$h9" = "$(grep -o '"state_hash": "[0-9a-f]*"' sweep-drops/runs/000009/report.json)" ] || fail "job 9's state differs on a rerun"
 
