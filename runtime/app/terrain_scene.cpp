@@ -150,7 +150,7 @@ void paintMaterials(terrain::Terrain& t, bool island) {
     }
 }
 
-Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s, terrain::HeightMap* built) {
+Status TerrainScene::checkSettings(const Settings& s) {
   static const char* kKnown[] = {"terrain.heightmap", "terrain.generate", "terrain.size",   "terrain.roughness",
                                  "terrain.spacing",   "terrain.height",   "terrain.style"};
   for (const auto& [key, value] : s) {
@@ -160,16 +160,27 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s, te
                        ": unknown terrain setting (known: terrain.heightmap, terrain.generate, terrain.size, "
                        "terrain.roughness, terrain.spacing, terrain.height, terrain.style)");
   }
+  double unused = 0;
+  if (auto st = parseNumber(s, "terrain.size", terrain::kMinHeightMapSide, terrain::kMaxHeightMapSide, &unused); !st)
+    return st;
+  if (auto st = parseNumber(s, "terrain.roughness", 0.01, 1, &unused); !st) return st;
+  if (auto st = parseNumber(s, "terrain.spacing", 0.01, 1000, &unused); !st) return st;
+  if (auto st = parseNumber(s, "terrain.height", 0.01, 10000, &unused); !st) return st;
+  if (auto st = parseNumber(s, "terrain.generate", 0, 9.0e15, &unused); !st) return st;
+  if (auto it = s.find("terrain.style"); it != s.end() && it->second != "hills" && it->second != "island")
+    return makeError("--set terrain.style=" + it->second + ": expected hills or island");
+  return Ok{};
+}
+
+Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s, terrain::HeightMap* built) {
+  if (auto st = checkSettings(s); !st) return makeError(st.error());
   double size = 1025, roughness = 0.5, spacing = 1, height = 40, seed = 0;
-  if (auto st = parseNumber(s, "terrain.size", terrain::kMinHeightMapSide, terrain::kMaxHeightMapSide, &size); !st)
-    return makeError(st.error());
-  if (auto st = parseNumber(s, "terrain.roughness", 0.01, 1, &roughness); !st) return makeError(st.error());
-  if (auto st = parseNumber(s, "terrain.spacing", 0.01, 1000, &spacing); !st) return makeError(st.error());
-  if (auto st = parseNumber(s, "terrain.height", 0.01, 10000, &height); !st) return makeError(st.error());
+  (void)parseNumber(s, "terrain.size", terrain::kMinHeightMapSide, terrain::kMaxHeightMapSide, &size);
+  (void)parseNumber(s, "terrain.roughness", 0.01, 1, &roughness);
+  (void)parseNumber(s, "terrain.spacing", 0.01, 1000, &spacing);
+  (void)parseNumber(s, "terrain.height", 0.01, 10000, &height);
   const auto styleIt = s.find("terrain.style");
   const std::string style = styleIt == s.end() ? "hills" : styleIt->second;
-  if (style != "hills" && style != "island")
-    return makeError("--set terrain.style=" + style + ": expected hills or island");
 
   terrain::HeightMap map;
   terrain::TerrainDesc desc;
@@ -193,7 +204,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const Settings& s, te
     if (!sidecar) return makeError("--set terrain.heightmap=" + path + ": " + sidecar.error());
     desc = sidecar.value();
   } else {
-    if (auto st = parseNumber(s, "terrain.generate", 0, 9.0e15, &seed); !st) return makeError(st.error());
+    (void)parseNumber(s, "terrain.generate", 0, 9.0e15, &seed);
     const int n = int(size);
     map = terrain::generatePlasma(n, n, {std::uint64_t(seed), roughness});
     if (style == "island") {

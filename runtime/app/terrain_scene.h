@@ -55,6 +55,9 @@ class TerrainScene {
  public:
   /// True if `settings` (terrain.* keys) ask for a terrain.
   static bool requested(const std::map<std::string, std::string>& settings);
+  /// The terrain.* keys known and their numbers in range (what create checks
+  /// before it reads a file); tools check settings with it before a run.
+  static Status checkSettings(const std::map<std::string, std::string>& settings);
   /// Loads or generates the terrain; errors name the key or the file.
   /// `built`: a height map the scenario made (terrain.build in Lua), used
   /// unless the settings name a heightmap or a generate seed; it is moved from.

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "core/cli_finite.h"
 #include "tools/sweep/sweep_collect.h"
 #include "tools/sweep/sweep_run.h"
 #include "tools/sweep/sweep_spec.h"
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   bool force = false, run = false, noPlots = false;
   int jobsAtOnce = 0;
   int batch = 0;
+  double timeout_s = 0;
   long long index = -1, chunk = -1;
   WriteOptions wo;
   cli.add_option("spec", spec, "the sweep spec, a .json or .lua file");
@@ -34,6 +36,8 @@ int main(int argc, char** argv) {
   cli.add_flag("--force", force, "write a sweep larger than " + std::to_string(kMaxJobsWithoutForce) + " jobs");
   cli.add_flag("--run", run, "after writing, run the jobs here through GNU parallel");
   cli.add_option("-j,--jobs", jobsAtOnce, "runs at once with --run (default: one per core)")->check(CLI::NonNegativeNumber);
+  cli.add_option("--timeout", timeout_s, "with --run: stop a run after this many seconds of wall time (default: never)")
+      ->check(tumble::kFinite)->check(CLI::PositiveNumber);
   cli.add_option("--batch", batch, "with --run: runs a GNU parallel job runs one after another (default: 32 batches a slot)")
       ->check(CLI::PositiveNumber);
   cli.add_option("--chunk-size", wo.chunkSize, "runs per Slurm array task / Kubernetes index (default: at most 1000 tasks)")
@@ -45,6 +49,8 @@ int main(int argc, char** argv) {
   CLI::App* runCmd = cli.add_subcommand("run", "run a written sweep's unfinished jobs here through GNU parallel (resumes)");
   runCmd->add_option("dir", dir, "the sweep folder")->required();
   runCmd->add_option("-j,--jobs", jobsAtOnce, "runs at once (default: one per core)")->check(CLI::NonNegativeNumber);
+  runCmd->add_option("--timeout", timeout_s, "stop a run after this many seconds of wall time (default: never)")
+      ->check(tumble::kFinite)->check(CLI::PositiveNumber);
   runCmd->add_option("--batch", batch, "runs a GNU parallel job runs one after another (default: 32 batches a slot)")
       ->check(CLI::PositiveNumber);
 
@@ -81,7 +87,7 @@ int main(int argc, char** argv) {
   if (*runCmd) {
     auto sweep = readSweepFolder(dir);
     if (!sweep) return fail(sweep.error());
-    return runLocal(*sweep, jobsAtOnce, batch, ownBinDir() + "/tumble");
+    return runLocal(*sweep, jobsAtOnce, batch, timeout_s, ownBinDir() + "/tumble");
   }
   if (*collectCmd) {
     auto sweep = readSweepFolder(dir);
@@ -110,5 +116,5 @@ int main(int argc, char** argv) {
                 shellQuote(sweep->dir).c_str(), shellQuote(sweep->dir).c_str(), shellQuote(sweep->dir).c_str());
     return 0;
   }
-  return runLocal(*sweep, jobsAtOnce, batch, ownBinDir() + "/tumble");
+  return runLocal(*sweep, jobsAtOnce, batch, timeout_s, ownBinDir() + "/tumble");
 }

@@ -338,7 +338,7 @@ std::string outcomeSummary(const SweepFolder& sweep, int* exitStatus) {
   return buf;
 }
 
-int runLocal(const SweepFolder& sweep, int jobsAtOnce, int runsPerJob, const std::string& tumbleBinary) {
+int runLocal(const SweepFolder& sweep, int jobsAtOnce, int runsPerJob, double timeout_s, const std::string& tumbleBinary) {
   // GNU parallel runs batches of runs, one bash line a batch. Each run in a
   // batch appends its output to runs/<id>/log.txt (earlier attempts stay
   // above it), and leaves its exit status in runs/<id>/exit and its start
@@ -364,9 +364,19 @@ int runLocal(const SweepFolder& sweep, int jobsAtOnce, int runsPerJob, const std
     fs::create_directories(sweep.dir + "/" + run, ec);
     fs::remove(sweep.dir + "/" + run + "/exit", ec);
     fs::remove(sweep.dir + "/" + run + "/time", ec);
-    lines.push_back("echo " + shellQuote("== " + command) + " >> " + run + "/log.txt; t0=$EPOCHREALTIME; " + command +
-                    " >> " + run + "/log.txt 2>&1; s=$?; echo \"$t0 $EPOCHREALTIME\" > " + run + "/time; echo $s > " +
-                    run + "/exit; [ $s -gt $worst ] && worst=$s");
+    // --timeout: coreutils timeout stops the run (TERM, then KILL 5 s later)
+    // and exits 124; the log says so, and that line becomes the reason.
+    std::string timed = command, onTimeout;
+    if (timeout_s > 0) {
+      char t[64];
+      std::snprintf(t, sizeof t, "%g", timeout_s);
+      timed = std::string("timeout -k 5 ") + t + " " + command;
+      onTimeout = std::string("; [ $s = 124 ] && echo 'stopped by the sweep: ran longer than --timeout ") + t + " s' >> " + run +
+                  "/log.txt";
+    }
+    lines.push_back("echo " + shellQuote("== " + command) + " >> " + run + "/log.txt; t0=$EPOCHREALTIME; " + timed +
+                    " >> " + run + "/log.txt 2>&1; s=$?; echo \"$t0 $EPOCHREALTIME\" > " + run + "/time" + onTimeout +
+                    "; echo $s > " + run + "/exit; [ $s -gt $worst ] && worst=$s");
   }
   const std::size_t todo = lines.size();
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());

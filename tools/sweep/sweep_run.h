@@ -55,10 +55,11 @@ std::pair<std::size_t, std::size_t> chunkRange(const SweepFolder& sweep, std::si
 
 /// Runs the unfinished jobs through GNU parallel with `jobsAtOnce` slots
 /// (0: one per core), `batch` runs a GNU parallel job (0: 32 jobs a slot),
-/// a progress bar and ETA, and DIR/joblog.txt. Returns
+/// a progress bar and ETA, and DIR/joblog.txt; `timeout_s` > 0 stops a run
+/// that takes longer (its reason says so). Returns
 /// the exit status: 0 every job passed, 2 every job ran but some failed an
 /// expectation or had a script error, 1 some jobs left no report.
-int runLocal(const SweepFolder& sweep, int jobsAtOnce, int batch, const std::string& tumbleBinary);
+int runLocal(const SweepFolder& sweep, int jobsAtOnce, int batch, double timeout_s, const std::string& tumbleBinary);
 
 /// The job's exit status, signal and reason (why it did not pass; empty
 /// when it passed), from runs/<id>/status.json (exec) or runs/<id>/exit

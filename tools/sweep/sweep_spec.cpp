@@ -8,6 +8,7 @@
 #include <set>
 
 #include "app/physics_settings.h"
+#include "app/terrain_scene.h"
 #include "app/scene.h"
 #include "core/file_util.h"
 #include "core/random.h"
@@ -347,10 +348,14 @@ std::string checkSetting(const std::string& scenario, const script::ParamDecls& 
     auto st = app::applyPhysicsSetting(ws, key, value);
     return st ? "" : st.error();
   }
-  if (key.rfind("tune.", 0) == 0 || key.rfind("terrain.", 0) == 0)
-    return key + ": a sweep takes scenario parameters (the scenario's params table) and physics.* settings; " +
-           key.substr(0, key.find('.')) +
-           ".* values cannot be checked before a run, so declare a scenario parameter that sets it";
+  if (key.rfind("terrain.", 0) == 0) {
+    auto st = app::TerrainScene::checkSettings({{key, value}});
+    return st ? "" : st.error();
+  }
+  if (key.rfind("tune.", 0) == 0)
+    return key + ": a sweep takes scenario parameters (the scenario's params table), physics.* and terrain.* "
+                 "settings; a tunable is declared while the scenario runs, so it cannot be checked before the sweep: "
+                 "declare a scenario parameter that sets it";
   if (!decls)
     return scenario + " declares no parameters, so '" + key +
            "' cannot be checked before the sweep runs: add a params table to the scenario (docs/lua-api.md, Scenario.params)";

@@ -62,6 +62,21 @@ expect_in "2 of 16 jobs to run (14 finished before are skipped)" run3.txt "parti
 [ "$h0" = "$(grep -o '"state_hash": "[0-9a-f]*"' sweep-drops/runs/000000/report.json)" ] || fail "job 0's state differs on a rerun"
 [ "$h9" = "$(grep -o '"state_hash": "[0-9a-f]*"' sweep-drops/runs/000009/report.json)" ] || fail "job 9's state differs on a rerun"
 
+# ---- --timeout stops a run that takes longer; its reason says so, and a
+# later run without it finishes the job (resume)
+spec slow '{"height": [1]}'
+"$bin/tumble" sweep slow.json --out sweep-slow >/dev/null 2>&1
+"$bin/tumble" sweep run sweep-slow --timeout nan >nan.txt 2>&1 && fail "--timeout nan was accepted"
+expect_in "expected a finite number, got nan" nan.txt "--timeout nan"
+"$bin/tumble" sweep run sweep-slow --timeout 0.001 >slow1.txt 2>&1
+[ $? = 1 ] || fail "a sweep whose runs timed out exits 1"
+expect_in "0 passed, 0 failed an expectation, 0 had a script error, 4 failed to run" slow1.txt "timed-out runs"
+expect_in "stopped by the sweep: ran longer than --timeout 0.001 s" sweep-slow/runs/000000/log.txt "timeout in the log"
+"$bin/tumble" sweep collect sweep-slow --no-plots >/dev/null 2>&1
+expect_in "exit 124 without a report: stopped by the sweep: ran longer than --timeout 0.001 s" sweep-slow/results.csv "timeout reason"
+"$bin/tumble" sweep run sweep-slow >slow2.txt 2>&1 || fail "the timed-out runs did not finish on a second run"
+expect_in "4 of 4 jobs to run" slow2.txt "timed-out runs run again"
+
 # ---- collect
 "$bin/tumble" sweep collect sweep-drops >collect.txt 2>&1 || fail "collect failed: $(cat collect.txt)"
 csv=sweep-drops/results.csv

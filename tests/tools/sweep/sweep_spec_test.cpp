@@ -102,7 +102,16 @@ TEST(SweepSpec, AnUnknownParameterIsNamedWithTheOnesTheScenarioDeclares) {
   j["grid"] = {{"physics.iterations", {0}}};
   EXPECT_NE(problems(j).find("iterations must be 1..1000"), std::string::npos) << problems(j);
   j["grid"] = {{"tune.wind", {1, 2}}};
-  EXPECT_NE(problems(j).find("tune.* values cannot be checked before a run"), std::string::npos) << problems(j);
+  EXPECT_NE(problems(j).find("a tunable is declared while the scenario runs"), std::string::npos) << problems(j);
+  // terrain.* settings are checked as a run checks them, for any scenario.
+  j["grid"] = {{"terrain.generate", {1, 2}}, {"terrain.size", {65, 129}}, {"terrain.style", {"hills", "island"}}};
+  EXPECT_EQ(problems(j), "");
+  j["grid"] = {{"terrain.size", {65, 1}}};
+  EXPECT_NE(problems(j).find("--set terrain.size=1: expected a number in ["), std::string::npos) << problems(j);
+  j["grid"] = {{"terrain.styl", {"hills"}}};
+  EXPECT_NE(problems(j).find("--set terrain.styl: unknown terrain setting"), std::string::npos) << problems(j);
+  j["grid"] = {{"terrain.style", {"dunes"}}};
+  EXPECT_NE(problems(j).find("terrain.style=dunes: expected hills or island"), std::string::npos) << problems(j);
   // base:drop declares no parameters: nothing can be checked, so it is refused.
   j["scenarios"] = {"base:pyramid"};
   j["grid"] = {{"base", {3, 4}}};
