@@ -29,6 +29,8 @@ return {
         debug_panel = {type = "button", label = "Debug panel (FPS, ms per subsystem)", bindings = {"key:F4"}},
         screenshot = {type = "button", label = "Screenshot", bindings = {"key:F12"}},
         menu = {type = "button", label = "Bindings menu", bindings = {"key:F1", "pad:back"}},
+        console = {type = "button", label = "Script-error console (modders)", bindings = {"key:`"}},
+        hud = {type = "button", label = "Show or hide the HUD", bindings = {"key:H"}},
       },
     },
     vehicle = {

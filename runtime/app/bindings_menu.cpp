@@ -136,6 +136,8 @@ void BindingsMenu::drawAction(int a) {
     std::string label = capturingThis ? (m_waitingPositive ? "press the + key..." : "press a key...")
                                       : input::bindingLabel(list[i]);
     if (ImGui::SmallButton(label.c_str()) && m_captureAction < 0) rebind(a, int(i));
+    const ImVec2 at = ImGui::GetItemRectMin(), size = ImGui::GetItemRectSize();
+    m_layout.push_back({def.name, label, int(i), at.x, at.y, size.x, size.y});
     ImGui::SameLine(0, 2);
     if (ImGui::SmallButton("x")) remove = int(i);
     ImGui::SameLine();
@@ -163,6 +165,7 @@ void BindingsMenu::drawAction(int a) {
 
 void BindingsMenu::draw() {
   if (!m_open) return;
+  m_layout.clear();
   if (m_captureAction >= 0) finishCapture();
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
@@ -220,6 +223,8 @@ void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Cont
     else if (name == "ui_down" && pauseMenu) pauseMenu->moveSelection(+1);
     else if (name == "ui_select" && pauseMenu) pauseMenu->activate();
     else if (name == "restart" && requests) requests->restart = true;
+    else if (name == "console" && requests) requests->toggleConsole = true;
+    else if (name == "hud" && requests) requests->toggleHud = true;
   }
   if (pauseMenu) {
     switch (pauseMenu->takeChoice()) {

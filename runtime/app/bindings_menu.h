@@ -8,6 +8,7 @@
 // that draws with Dear ImGui inside the HUD's frame (Renderer::addHudPanel)
 // and changes the InputSystem directly.
 #include <string>
+#include <vector>
 
 #include "input/input_system.h"
 #include "render/renderer.h"
@@ -39,6 +40,15 @@ class BindingsMenu {
   /// Writes the overrides now (what the Save button does).
   Status save();
   const std::string& status() const { return m_status; }
+  /// Where each binding's button was drawn in the last frame the menu was
+  /// open, window pixels (top-left origin): for the play report and tests
+  /// that click one.
+  struct ButtonRect {
+    std::string action, label;
+    int slot = 0;
+    float x_px = 0, y_px = 0, w_px = 0, h_px = 0;
+  };
+  const std::vector<ButtonRect>& lastLayout() const { return m_layout; }
 
  private:
   void drawAction(int action);
@@ -54,11 +64,14 @@ class BindingsMenu {
   int m_captureAction = -1, m_captureSlot = -1;
   bool m_waitingPositive = false;  ///< a key pair: the negative key is in m_pairNegative
   input::Source m_pairNegative;
+  std::vector<ButtonRect> m_layout;
 };
 
 /// What the player asked play for in a frame beyond render::Controls.
 struct FrameRequests {
   bool restart = false;  ///< the restart key or the pause menu's Restart
+  bool toggleConsole = false;  ///< the console key: the script-error console (app/script_console.h)
+  bool toggleHud = false;      ///< the hud key: the driving HUD on or off (app/driving_hud.h)
 };
 
 /// Once per rendered frame, after Renderer::processEvents: the app's own

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "app/bindings_menu.h"
+#include "app/driving_hud.h"
 #include "app/fixed_step.h"
 #include "app/pause_menu.h"
 #include "app/play_events.h"
@@ -237,6 +238,8 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
 
   PauseMenu pauseMenu;
   std::unique_ptr<PlaySession> session = startSession(std::move(*first), renderer, pauseMenu);
+  GameHud gameHud;  // speed, rpm, gear, lap, minimap, messages, script-error console
+  renderer.addHudPanel([&gameHud] { gameHud.draw(); });
   // The HUD's extra windows follow the current session (a restart replaces it).
   renderer.addHudPanel([&session] { session->bindings->draw(); });
   renderer.addHudPanel([&pauseMenu] { pauseMenu.draw(); });
@@ -272,6 +275,8 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     renderer.processEvents(controls);
     FrameRequests requests;
     applyFrameInput(session->scene->input(), *session->bindings, controls, renderer, &pauseMenu, &requests);
+    if (requests.toggleConsole) gameHud.console().toggle();
+    if (requests.toggleHud) gameHud.toggleVisible();
     if (requests.restart) {
       // A fresh scene from the same options: the start state again. If the
       // scenario cannot start now (a broken edit), the current one goes on.
@@ -280,6 +285,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
         session.reset();  // the old scene's systems go before the new ones start
         session = startSession(std::move(*fresh), renderer, pauseMenu);
         setUpTuning();
+        gameHud.newSession();
         ++restarts;
         controls.paused = false;
         controls.stepOnce = false;
@@ -291,7 +297,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     Scene& scene = *session->scene;
     double now = clock.seconds();
     for (const script::ReloadEvent& e : session->hotReload->poll(now, session->time_s, session->step))
-      if (e.ok) scene.host().addMessage(e.message, 3);  // failures are already on the HUD as errors
+      if (e.ok) {
+        scene.host().addMessage(e.message, 3);  // failures are already on the HUD as errors
+        gameHud.reloaded();                     // ... and leave it once the fix is in
+      }
     // Scripted frames each take one fixed step (the same steps on any
     // machine); a window takes the steps due in the wall time that passed.
     double elapsed = scripted ? scene.dt_s() : std::min(now - last, 0.25);  // avoid the spiral of death after a stall
@@ -329,8 +338,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     Stopwatch rs;
     frame.render_s = lastRender_s;
     if (controls.tuningPanelVisible) fillTuningPanel(scene.host().tunables(), tuning);
-    Status st = renderer.drawFrame(snap, hudStats(scene, fps, frame, session->time_s), controls,
-                                   shot.empty() ? nullptr : shot.c_str());
+    gameHud.update(scene, session->time_s);
+    render::HudStats stats = hudStats(scene, fps, frame, session->time_s);
+    stats.messages.clear();  // the game HUD shows them, coloured by kind
+    Status st = renderer.drawFrame(snap, stats, controls, shot.empty() ? nullptr : shot.c_str());
     applyTuningPanel(tuning, scene.host().tunables(), scene.host().mod().name);
     lastRender_s = rs.seconds();
     if (!shot.empty()) {
@@ -354,6 +365,10 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     for (const auto& e : scene.host().errors())
       errors.push_back({{"mod", e.mod}, {"file", e.file}, {"line", e.line}, {"message", e.message}});
     const auto& selectedItem = pauseMenu.items()[std::size_t(pauseMenu.selected())];
+    nlohmann::json bindingButtons = nlohmann::json::array();
+    for (const BindingsMenu::ButtonRect& b : session->bindings->lastLayout())
+      bindingButtons.push_back({{"action", b.action}, {"slot", b.slot}, {"label", b.label}, {"x_px", b.x_px},
+                                {"y_px", b.y_px}, {"w_px", b.w_px}, {"h_px", b.h_px}});
     nlohmann::json report = {
         {"scenario", scene.name()},
         {"title", scene.host().title()},
@@ -371,6 +386,8 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
         {"frame_ms", {{"p50", percentile(frameMs, 0.5)}, {"p95", percentile(frameMs, 0.95)},
                       {"max", frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end())}}},
         {"hud_messages", hudStats(scene, fps, frame, session->time_s).messages},
+        {"hud", gameHud.report()},
+        {"bindings_menu_buttons", bindingButtons},
         {"script_errors", errors},
         {"state_hash", stateHashText(scene)},
     };

@@ -16,13 +16,25 @@ std::string textArg(lua_State* L, int idx) { return toDisplayString(L, idx); }
 /// @function game.message
 /// Shows a message to the player for a while.
 /// @param text string the message (other values are converted with tostring)
-/// @param seconds? number how long it stays on the HUD, s (default 3)
+/// @param seconds? number how long it stays on the HUD, s (default 3); it fades out over its last second
+/// @param kind? string "info" (white, the default), "warning" (yellow) or "error" (red)
 /// @example game.message("Checkpoint 2 of 5")
+/// @example game.message("Fuel low", 5, "warning")
 int gameMessage(lua_State* L) {
   if (lua_isnoneornil(L, 1)) throw LuaArgError("game.message: expected the message text");
   double seconds = lua_isnoneornil(L, 2) ? 3.0 : checkNumber(L, 2, "game.message seconds");
   if (seconds <= 0) throw LuaArgError("game.message: seconds must be > 0");
-  ScenarioHost::from(L)->addMessage(textArg(L, 1), seconds);
+  MessageKind kind = MessageKind::Info;
+  if (!lua_isnoneornil(L, 3)) {
+    const std::string k = lua_type(L, 3) == LUA_TSTRING ? lua_tostring(L, 3) : "";
+    if (k == "info") kind = MessageKind::Info;
+    else if (k == "warning") kind = MessageKind::Warning;
+    else if (k == "error") kind = MessageKind::Error;
+    else
+      throw LuaArgError("game.message: kind must be \"info\", \"warning\" or \"error\", got " +
+                        (lua_type(L, 3) == LUA_TSTRING ? "\"" + k + "\"" : std::string(luaL_typename(L, 3))));
+  }
+  ScenarioHost::from(L)->addMessage(textArg(L, 1), seconds, kind);
   return 0;
 }
 

@@ -72,12 +72,26 @@ struct ScriptLine {
   Eigen::Vector3f color;
 };
 
+/// hud.set_lap: what the driving HUD's lap widget shows. The scenario keeps
+/// its own timer and hands the figures over each step (bind_hud.cpp).
+struct LapDisplay {
+  bool shown = false;                ///< false until hud.set_lap, again after hud.clear_lap
+  double time_s = 0;                 ///< the lap being driven, s
+  std::optional<double> last_s;      ///< the previous lap, s
+  std::optional<double> best_s;      ///< the best lap (e.g. read with save.read), s
+  int gate = 0, gates = 0;           ///< the next gate k of n; 0 of 0: no gates
+  int lap = 0, laps = 0;             ///< lap k of n; 0 of 0: not shown
+  bool finished = false;             ///< the run is over: the timer stops on screen
+};
+
 /// Everything above, owned by the ScenarioHost.
 struct Presentation {
   std::vector<ModelAttachment> attachments;  ///< at most one per body (a new one replaces)
   std::vector<StaticModel> statics;
   CameraRequest camera;
   std::uint64_t revision = 0;  ///< bumped whenever attachments or statics change
+  LapDisplay lap;               ///< hud.set_lap
+  std::vector<Vec3> gates_m;    ///< hud.set_gates: gate centres in order (minimap), m, world
 
   /// Display colour (linear RGB 0..1) of a body the script made or coloured.
   void setColor(physics::BodyId id, const Eigen::Vector3f& rgb);

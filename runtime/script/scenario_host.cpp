@@ -64,7 +64,7 @@ ScenarioHost::ScenarioHost(const ModInfo& mod, SceneSystems& scene, const Scenar
     if (Status st = m_tunables.loadOverrides(options.tuneOverridesFile); !st) {
       // A corrupt settings file must not stop the game: defaults, and say so.
       log::warn(st.error());
-      m_messages.push_back({st.error(), 0, 10});
+      m_messages.push_back({st.error(), 0, 10, MessageKind::Warning});
     }
   }
   for (const auto& [name, text] : options.tuneSets) {
@@ -97,6 +97,7 @@ void ScenarioHost::buildEnvironment() {
   openOdeBindings(L, env);
   openSpringBindings(L, env);
   openJointBindings(L, env);
+  openHudBindings(L, env);
   guardEnvironment(L, env);
   m_envRef = luaL_ref(L, LUA_REGISTRYINDEX);  // pops env
 
@@ -276,9 +277,18 @@ void ScenarioHost::runTimers(double time_s, double dt_s, std::int64_t step) {
 
 // ---- game state -------------------------------------------------------------------
 
-void ScenarioHost::addMessage(std::string text, double duration_s) {
+const char* messageKindName(MessageKind kind) {
+  switch (kind) {
+    case MessageKind::Info: return "info";
+    case MessageKind::Warning: return "warning";
+    case MessageKind::Error: return "error";
+  }
+  return "info";
+}
+
+void ScenarioHost::addMessage(std::string text, double duration_s, MessageKind kind) {
   if (m_messages.size() >= kMaxMessages) m_messages.erase(m_messages.begin());
-  m_messages.push_back({std::move(text), m_now_s, duration_s});
+  m_messages.push_back({std::move(text), m_now_s, duration_s, kind});
 }
 
 std::vector<std::string> ScenarioHost::activeMessages(double time_s) const {

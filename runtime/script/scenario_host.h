@@ -68,11 +68,18 @@ struct Expectation {
   std::optional<double> min, max;
 };
 
-/// game.message(text, seconds): shown on the HUD from time_s for duration_s.
+/// How a message is meant: the HUD colours it (info white, warning yellow,
+/// error red).
+enum class MessageKind { Info, Warning, Error };
+/// "info", "warning", "error".
+const char* messageKindName(MessageKind kind);
+
+/// game.message(text, seconds, kind): shown on the HUD from time_s for duration_s.
 struct GameMessage {
   std::string text;
   double time_s = 0;
   double duration_s = 3;
+  MessageKind kind = MessageKind::Info;
 };
 
 /// game.win / game.lose. The first call decides; later ones are ignored.
@@ -218,7 +225,7 @@ class ScenarioHost {
   void addExpectation(Expectation e) { m_expectations.push_back(std::move(e)); }
   const ScenarioOptions& options() const { return m_options; }
   void setHudText(std::vector<std::string> lines) { m_hudText = std::move(lines); }
-  void addMessage(std::string text, double duration_s);
+  void addMessage(std::string text, double duration_s, MessageKind kind = MessageKind::Info);
   void setScore(double score) { m_score = score, m_hasScore = true; }
   void decide(Outcome outcome, std::string reason);
   /// Seed for random.new() without a seed: the run's seed mixed with a count.

@@ -303,6 +303,16 @@ function Emitter:count() end
 ---@return boolean # false once removed, or stopped with no particles left
 function Emitter:alive() end
 
+---@class LapFigures
+---@field time number the lap being driven, s (>= 0)
+---@field last? number the previous lap, s
+---@field best? number the best lap, s (e.g. read back with save.read)
+---@field gate? integer the next gate, 1..gates (shown as "gate k of n"; the minimap highlights it)
+---@field gates? integer how many gates a lap has
+---@field lap? integer the lap being driven, 1..laps (shown as "lap k of n" when laps > 0)
+---@field laps? integer how many laps the run has
+---@field finished? boolean the run is over: the HUD shows the time as final
+
 ---What world.joint takes. Angles in rad, lengths in m.
 ---@class JointDef
 ---@field type string "ball", "hinge", "cone_twist" or "fixed"
@@ -946,10 +956,12 @@ game = {}
 ---
 ---```lua
 ---game.message("Checkpoint 2 of 5")
+---game.message("Fuel low", 5, "warning")
 ---```
 ---@param text string the message (other values are converted with tostring)
----@param seconds? number how long it stays on the HUD, s (default 3)
-function game.message(text, seconds) end
+---@param seconds? number how long it stays on the HUD, s (default 3); it fades out over its last second
+---@param kind? string "info" (white, the default), "warning" (yellow) or "error" (red)
+function game.message(text, seconds, kind) end
 
 ---Sets the score when given a number; returns the score either way.
 ---
@@ -990,6 +1002,40 @@ function game.lose(reason) end
 ---@return string? # "won", "lost" or nil while undecided
 ---@return string? # the reason given to game.win / game.lose
 function game.outcome() end
+
+---The driving HUD's lap and gate widget and the minimap's gates. The HUD
+---shows the speed, rpm and gear of the driven car by itself; a scenario
+---with a lap timer or gates tells it the figures with hud.set_lap (every
+---step, or whenever they change) and where the gates are with
+---hud.set_gates. The next gate is highlighted on the minimap.
+hud = {}
+
+---Shows (or updates) the lap widget of the driving HUD: current lap time,
+---last and best lap, gate k of n, lap k of n. The figures stay until the
+---next call; the scenario keeps the timer.
+---
+---```lua
+---hud.set_lap{time = lap_time, best = best, gate = next_gate, gates = #gates}
+---```
+---@param figures LapFigures the figures to show
+function hud.set_lap(figures) end
+
+---Hides the lap widget (until the next hud.set_lap).
+---
+---```lua
+---hud.clear_lap()
+---```
+function hud.clear_lap() end
+
+---Where the gates are, in order, for the minimap (numbered dots; the next
+---gate from hud.set_lap is highlighted). Replaces the previous list; an
+---empty table removes them.
+---
+---```lua
+---hud.set_gates{{40, 0}, {110, 25}, {120, 90}}
+---```
+---@param gates table a list of points {x, z} (ground position) or {x, y, z}, m
+function hud.set_gates(gates) end
 
 ---Named actions declared in the mods' bindings.lua files (mods/base/bindings.lua:
 ---throttle, brake, steer, handbrake, gear_up, gear_down, reset, camera in context

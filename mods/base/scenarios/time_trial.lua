@@ -1,6 +1,7 @@
 -- Time trial: drive through six checkpoint gates in order and back to the
--- start; the timer runs from the first step, the HUD shows the time, the
--- next gate and the best time, and a new best is saved (save.write: JSON in
+-- start; the timer runs from the first step, the HUD's lap widget shows the
+-- time, the next gate and the best time (hud.set_lap), the minimap the gates
+-- (hud.set_gates), and a new best is saved (save.write: JSON in
 -- the user's data folder, written atomically). The player drives
 -- (drive.player); --set autopilot=1 hands the lap to the autopilot (what the
 -- headless runs use).
@@ -51,6 +52,7 @@ return {
         end
       end}
     end
+    hud.set_gates(gates)
     car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -12}, heading = 0})
     drive.show(car)
     if param("autopilot", 0) ~= 0 then
@@ -63,10 +65,8 @@ return {
   on_update = function(ctx, dt)
     if not finished then lap_time = lap_time + dt end
     if pilot then pilot:update(dt) else player:update(dt) end
-    local t = car:telemetry()
-    hud_text(("time %6.2f s   best %s"):format(lap_time, best and ("%.2f s"):format(best) or "-"),
-             finished and "finished" or ("gate %d of %d"):format(next_gate, #gates),
-             ("%3.0f km/h  gear %d"):format(t.speed * 3.6, t.gear))
+    -- Speed, rpm and gear are on the HUD already; the lap is the scenario's.
+    hud.set_lap{time = lap_time, best = best, gate = math.min(next_gate, #gates), gates = #gates, finished = finished}
   end,
 
   on_finish = function(ctx)

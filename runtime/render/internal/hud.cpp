@@ -4,6 +4,7 @@
 #include <backends/imgui_impl_sdl.h>
 #include <imgui.h>
 
+#include <cfloat>
 #include <cstdio>
 #include <iterator>
 #include <optional>
@@ -67,6 +68,12 @@ Hud::~Hud() {
 void Hud::processEvent(const SDL_Event& event) {
   ImGui::SetCurrentContext(m_context);
   ImGui_ImplSDL2_ProcessEvent(&event);
+  if (event.type == SDL_WINDOWEVENT && event.window.event == SDL_WINDOWEVENT_LEAVE) m_haveMotion = false;
+  if (event.type == SDL_MOUSEMOTION) {
+    m_haveMotion = true;
+    m_motionX = float(event.motion.x);
+    m_motionY = float(event.motion.y);
+  }
 }
 
 bool Hud::wantsKeyboard() const {
@@ -82,6 +89,11 @@ bool Hud::wantsMouse() const {
 void Hud::newFrame() {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplSDL2_NewFrame();
+  // The SDL backend (1.86) reads the pointer from SDL's mouse focus and
+  // state, which the offscreen driver (play --frames) never sets: there the
+  // last motion event is where the pointer is.
+  ImGuiIO& io = ImGui::GetIO();
+  if (m_haveMotion && io.MousePos.x <= -FLT_MAX) io.MousePos = ImVec2(m_motionX, m_motionY);
   ImGui::NewFrame();
 }
 

@@ -49,6 +49,11 @@ class Hud {
   ImGuiContext* m_context = nullptr;
   bool m_sdlBackend = false, m_glBackend = false;
   bool m_primed = false;
+  // The pointer from the last mouse motion event, pixels: used when SDL
+  // reports no window under the mouse (the offscreen driver never gives one
+  // the mouse focus), so scripted moves and clicks reach the HUD's windows.
+  bool m_haveMotion = false;
+  float m_motionX = 0, m_motionY = 0;
   bool m_hadMessages = false;
   std::vector<HudPanel> m_panels;
   bool m_hadTuning = false;

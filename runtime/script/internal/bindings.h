@@ -20,6 +20,7 @@ void pushTrigger(lua_State* L, std::uint32_t id);
 /// game, timer, random and trigger tables (bind_game.cpp, bind_timer.cpp,
 /// bind_random.cpp, bind_trigger.cpp), each set as a field of the env.
 void openGameBindings(lua_State* L, int envIndex);
+void openHudBindings(lua_State* L, int envIndex);
 void openTimerBindings(lua_State* L, int envIndex);
 void openRandomBindings(lua_State* L, int envIndex);
 void openTriggerBindings(lua_State* L, int envIndex);

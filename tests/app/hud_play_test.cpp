@@ -1,0 +1,256 @@
+// The player's HUD through the real event path (`tumble play --frames N
+// --events FILE --report r.json`, docs/play-events.md): what the report says
+// the HUD showed (speed, rpm, gear, lap and gates, minimap, messages and
+// their kinds, the script-error console), and pictures with the HUD on and
+// off. Also a throttle key rebound in the bindings menu, then driven.
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tumble_process.h"
+
+namespace tumble::test {
+namespace {
+
+struct Played {
+  ProcessResult process;
+  nlohmann::json report;
+};
+
+// Plays `ref` for `frames` frames with the events and reads the report. The
+// player's bindings and saves are kept out of it (TUMBLE_CONFIG_DIR,
+// TUMBLE_SAVE_DIR point into the test's folder).
+Played play(const std::string& dir, const std::string& name, const std::string& ref, int frames,
+            const std::string& events, const std::string& size = "--width 320 --height 180",
+            const std::string& extra = "") {
+  const std::string eventsPath = dir + "/" + name + ".events", reportPath = dir + "/" + name + ".json";
+  std::ofstream(eventsPath) << events;
+  Played p;
+  p.process = runTumble("play " + ref + " --frames " + std::to_string(frames) + " --events " + eventsPath +
+                            " --report " + reportPath + " " + size + " " + extra,
+                        "env TUMBLE_CONFIG_DIR=" + dir + " TUMBLE_SAVE_DIR=" + dir + "/saves ");
+  std::ifstream in(reportPath);
+  p.report = nlohmann::json::parse(in, nullptr, false);
+  return p;
+}
+
+const nlohmann::json* findMessage(const nlohmann::json& hud, const std::string& text) {
+  for (const auto& m : hud["messages"])
+    if (m["text"] == text) return &m;
+  return nullptr;
+}
+
+TEST(HudPlay, TheSpeedometerShowsTheCarsSpeedGearAndRpm) {
+  const std::string dir = outDir("hud_play_speed");
+  // The buggy on the hills with W held for 5 s (300 frames at 60 Hz).
+  auto r = play(dir, "drive", "base:drive --set car=base:buggy", 300, "0 down key:W\n");
+  ASSERT_EQ(r.process.exitCode, 0) << r.process.output;
+  ASSERT_FALSE(r.report.is_discarded()) << r.process.output;
+  const auto& hud = r.report["hud"];
+  const auto& car = r.report["vehicle"];
+  ASSERT_TRUE(hud["vehicle"].get<bool>()) << hud.dump(2);
+  const double speed = car["speed_kmh"].get<double>();
+  ASSERT_GT(speed, 20.0) << car.dump(2);
+  EXPECT_NEAR(hud["speed_kmh"].get<double>(), speed, 1e-6);
+  EXPECT_EQ(hud["speed_text"], std::to_string(std::lround(speed))) << "the digits the player reads";
+  const std::string gear = hud["gear"];
+  ASSERT_FALSE(gear.empty());
+  EXPECT_TRUE(gear != "R" && gear != "N" && std::stoi(gear) >= 1) << gear;
+  // mods/base/vehicles/buggy.lua: engine max_rpm 8500, idle 1000.
+  EXPECT_EQ(hud["redline_rpm"].get<double>(), 8500.0);
+  EXPECT_GT(hud["rpm"].get<double>(), 1000.0);
+  EXPECT_LE(hud["rpm"].get<double>(), 8500.0 * 1.02);
+  EXPECT_EQ(hud["rpm_text"], std::to_string(std::lround(hud["rpm"].get<double>())));
+  // drive has a terrain: the minimap shows it, built once in 300 frames.
+  EXPECT_TRUE(hud["minimap"]["shown"].get<bool>());
+  EXPECT_EQ(hud["minimap"]["source"], "terrain");
+  EXPECT_EQ(hud["minimap"]["builds"], 1);
+  EXPECT_FALSE(hud.contains("lap")) << "drive has no lap: no lap widget";
+}
+
+TEST(HudPlay, PassingAGateInTheTimeTrialMovesTheGateCounter) {
+  const std::string dir = outDir("hud_play_gates");
+  // A best lap saved before, as a player's earlier run would have left it.
+  std::filesystem::create_directories(dir + "/saves/base");
+  std::ofstream(dir + "/saves/base/time_trial.json") << R"({"best_s": 99.5, "car": "Hatchback"})";
+  const std::string ref = "base:time_trial --set autopilot=1";
+  auto start = play(dir, "start", ref, 60, "");
+  ASSERT_EQ(start.process.exitCode, 0) << start.process.output;
+  const auto& lap0 = start.report["hud"]["lap"];
+  ASSERT_TRUE(lap0.is_object()) << start.report["hud"].dump(2);
+  EXPECT_EQ(lap0["gate_text"], "1 / 7");
+  EXPECT_EQ(lap0["time_text"], "0:01.00") << "60 steps of 1/60 s";
+  EXPECT_EQ(lap0["best_text"], "1:39.50") << "the best lap read from the scenario's save";
+  EXPECT_EQ(start.report["hud"]["minimap"]["source"], "plan") << "no terrain: a plan of the gates";
+  EXPECT_EQ(start.report["hud"]["minimap"]["gates"], 7);
+
+  // Gate 1 is 42 m from the start; the autopilot drives at up to 22 m/s.
+  auto later = play(dir, "later", ref, 600, "");
+  ASSERT_EQ(later.process.exitCode, 0) << later.process.output;
+  const auto& lap1 = later.report["hud"]["lap"];
+  EXPECT_GE(lap1["gate"].get<int>(), 2) << lap1.dump(2);
+  EXPECT_EQ(lap1["gate_text"], std::to_string(lap1["gate"].get<int>()) + " / 7");
+  EXPECT_EQ(lap1["time_text"], "0:10.00");
+}
+
+TEST(HudPlay, MessagesHaveTheirKindsAndFadeOut) {
+  const std::string dir = outDir("hud_play_messages");
+  const std::string ref = "good:hud_messages " + testMods();
+  // good/scenarios/hud_messages.lua: "welcome" (info, 1 s), "mind the gap"
+  // (warning, 2 s), "engine on fire" (error, 2 s) at 0 s; fading over the last second.
+  auto early = play(dir, "early", ref, 15, "");
+  ASSERT_EQ(early.process.exitCode, 0) << early.process.output;
+  const auto& hud = early.report["hud"];
+  const auto* welcome = findMessage(hud, "welcome");
+  const auto* gap = findMessage(hud, "mind the gap");
+  const auto* fire = findMessage(hud, "engine on fire");
+  ASSERT_TRUE(welcome && gap && fire) << hud["messages"].dump(2);
+  EXPECT_EQ((*welcome)["kind"], "info");
+  EXPECT_EQ((*gap)["kind"], "warning");
+  EXPECT_EQ((*fire)["kind"], "error");
+  EXPECT_NEAR((*welcome)["alpha"].get<double>(), 0.75, 1e-3) << "0.25 s into its last second";
+  EXPECT_NEAR((*gap)["alpha"].get<double>(), 1.0, 1e-6);
+
+  auto later = play(dir, "later", ref, 90, "");  // 1.5 s
+  ASSERT_EQ(later.process.exitCode, 0) << later.process.output;
+  EXPECT_EQ(findMessage(later.report["hud"], "welcome"), nullptr) << "gone after its second";
+  const auto* gapLater = findMessage(later.report["hud"], "mind the gap");
+  ASSERT_NE(gapLater, nullptr);
+  EXPECT_NEAR((*gapLater)["alpha"].get<double>(), 0.5, 1e-3) << "half faded";
+  // The script error (at 0.5 s) shows in red too.
+  bool errorShown = false;
+  for (const auto& m : later.report["hud"]["messages"])
+    if (m["kind"] == "error" && m["text"].get<std::string>().find("hud_messages.lua:13:") != std::string::npos)
+      errorShown = true;
+  EXPECT_TRUE(errorShown) << later.report["hud"]["messages"].dump(2);
+}
+
+TEST(HudPlay, AScriptErrorIsInTheConsoleWithFileAndLineAndClearEmptiesIt) {
+  const std::string dir = outDir("hud_play_console");
+  const std::string ref = "good:hud_messages " + testMods();
+  // Closed: a badge counts the error.
+  auto closed = play(dir, "closed", ref, 60, "");
+  ASSERT_EQ(closed.process.exitCode, 0) << closed.process.output;
+  const auto& c0 = closed.report["hud"]["console"];
+  EXPECT_FALSE(c0["open"].get<bool>());
+  EXPECT_EQ(c0["badge"], 1) << c0.dump(2);
+
+  // ` opens it: the error with file:line.
+  const std::string open = "40 down key:`\n41 up key:`\n";
+  auto opened = play(dir, "opened", ref, 60, open);
+  ASSERT_EQ(opened.process.exitCode, 0) << opened.process.output;
+  const auto& c1 = opened.report["hud"]["console"];
+  ASSERT_TRUE(c1["open"].get<bool>()) << c1.dump(2);
+  ASSERT_EQ(c1["entries"].size(), 1u) << c1.dump(2);
+  EXPECT_EQ(c1["entries"][0]["where"], "scenarios/hud_messages.lua:13");
+  EXPECT_NE(c1["entries"][0]["message"].get<std::string>().find("nil value"), std::string::npos);
+  EXPECT_EQ(c1["badge"], 0);
+  const auto& b = c1["clear_button"];
+  ASSERT_GT(b["w_px"].get<double>(), 0.0) << c1.dump(2);
+
+  // Clicking Clear (where the report says it is) empties it.
+  const double x = b["x_px"].get<double>() + b["w_px"].get<double>() / 2;
+  const double y = b["y_px"].get<double>() + b["h_px"].get<double>() / 2;
+  auto cleared = play(dir, "cleared", ref, 60,
+                      open + "45 move " + std::to_string(x) + " " + std::to_string(y) +
+                          "\n46 down mouse:left\n47 up mouse:left\n");
+  ASSERT_EQ(cleared.process.exitCode, 0) << cleared.process.output;
+  EXPECT_TRUE(cleared.report["hud"]["console"]["entries"].empty()) << cleared.report["hud"]["console"].dump(2);
+  EXPECT_EQ(cleared.report["script_errors"].size(), 1u) << "the report still lists what happened";
+}
+
+TEST(HudPlay, AThrottleKeyReboundInTheBindingsMenuDrivesTheCar) {
+  const std::string dir = outDir("hud_play_rebind");
+  const std::string ref = "base:drive --set car=base:buggy";
+  const std::string size = "--width 800 --height 600";  // the menu shows the vehicle actions without scrolling
+  const std::string f1 = "0 down key:F1\n1 up key:F1\n";
+  auto layout = play(dir, "layout", ref, 4, f1, size);
+  ASSERT_EQ(layout.process.exitCode, 0) << layout.process.output;
+  const nlohmann::json* button = nullptr;
+  for (const auto& bt : layout.report["bindings_menu_buttons"])
+    if (bt["action"] == "throttle" && bt["slot"] == 0) button = &bt;
+  ASSERT_NE(button, nullptr) << layout.report["bindings_menu_buttons"].dump(2);
+  ASSERT_EQ((*button)["label"], "W");
+  const double x = (*button)["x_px"].get<double>() + (*button)["w_px"].get<double>() / 2;
+  const double y = (*button)["y_px"].get<double>() + (*button)["h_px"].get<double>() / 2;
+  // Click W's binding, press I, close the menu, hold I for 5 s.
+  const std::string events = f1 + "5 move " + std::to_string(x) + " " + std::to_string(y) +
+                             "\n6 down mouse:left\n7 up mouse:left\n10 down key:I\n11 up key:I\n"
+                             "15 down key:F1\n16 up key:F1\n20 down key:I\n";
+  auto driven = play(dir, "driven", ref, 320, events, size);
+  ASSERT_EQ(driven.process.exitCode, 0) << driven.process.output;
+  const auto& r = driven.report;
+  EXPECT_FALSE(r["bindings_menu_open"].get<bool>());
+  bool rebound = false;
+  for (const auto& bt : r["bindings_menu_buttons"])
+    if (bt["action"] == "throttle" && bt["slot"] == 0) rebound = bt["label"] == "I";
+  EXPECT_TRUE(rebound) << r["bindings_menu_buttons"].dump(2);
+  EXPECT_EQ(r["steps"], 320 - 15) << "paused while the menu was open (frames 0 to 14)";
+  EXPECT_GE(r["vehicle"]["distance_m"].get<double>(), 20.0) << r["vehicle"].dump(2);
+}
+
+// Pixels of an RGB PNG; empty on failure (with a test failure).
+struct Picture {
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+};
+Picture load(const std::string& path) {
+  Picture p;
+  int n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &p.w, &p.h, &n, 3);
+  if (!data) {
+    ADD_FAILURE() << path << ": " << stbi_failure_reason();
+    return p;
+  }
+  p.rgb.assign(data, data + std::size_t(p.w) * std::size_t(p.h) * 3);
+  stbi_image_free(data);
+  return p;
+}
+// Share of pixels in the region (fractions of the picture) that differ by more than 24 in a channel.
+double differing(const Picture& a, const Picture& b, double x0, double y0, double x1, double y1) {
+  int n = 0, diff = 0;
+  for (int y = int(y0 * a.h); y < int(y1 * a.h); ++y)
+    for (int x = int(x0 * a.w); x < int(x1 * a.w); ++x) {
+      const std::size_t i = (std::size_t(y) * std::size_t(a.w) + std::size_t(x)) * 3;
+      ++n;
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(a.rgb[i + c]) - int(b.rgb[i + c])) > 24) {
+          ++diff;
+          break;
+        }
+    }
+  return n ? double(diff) / n : 0;
+}
+
+TEST(HudPlay, TheHudIsDrawnInTheCornersAndHKeyHidesIt) {
+  const std::string dir = outDir("hud_play_pixels");
+  const std::string ref = "base:drive --set car=base:buggy";
+  const std::string size = "--width 640 --height 360";
+  auto on = play(dir, "on", ref, 30, "0 down key:W\n", size, "--screenshot " + dir + "/on.png");
+  auto off = play(dir, "off", ref, 30, "0 down key:W\n1 down key:H\n2 up key:H\n", size,
+                  "--screenshot " + dir + "/off.png");
+  ASSERT_EQ(on.process.exitCode, 0) << on.process.output;
+  ASSERT_EQ(off.process.exitCode, 0) << off.process.output;
+  EXPECT_TRUE(on.report["hud"]["visible"].get<bool>());
+  EXPECT_FALSE(off.report["hud"]["visible"].get<bool>());
+  EXPECT_FALSE(off.report["hud"]["minimap"]["shown"].get<bool>());
+  EXPECT_EQ(on.report["state_hash"], off.report["state_hash"]) << "the HUD changes no simulation";
+  const Picture a = load(dir + "/on.png"), b = load(dir + "/off.png");
+  ASSERT_EQ(a.w, 640);
+  ASSERT_EQ(b.w, 640);
+  // The speedometer panel (330 x 236 px at 1280 x 720, scaled) in the bottom
+  // right, the minimap (210 px) in the bottom left: most of their pixels change.
+  EXPECT_GT(differing(a, b, 0.78, 0.72, 0.98, 0.97), 0.5);
+  EXPECT_GT(differing(a, b, 0.03, 0.72, 0.16, 0.97), 0.5);
+  // The middle of the road has no HUD: the same picture.
+  EXPECT_LT(differing(a, b, 0.3, 0.45, 0.7, 0.65), 0.001);
+}
+
+}  // namespace
+}  // namespace tumble::test
