@@ -4,8 +4,12 @@
 #include <AL/alc.h>
 #include <AL/alext.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace tumble::audio {
 
@@ -34,6 +38,20 @@ ALuint uploadBuffer(const Clip& clip) {
   return buffer;
 }
 
+/// OpenAL Soft probes its backends when opening the default device, and
+/// ALSA prints a dozen lines to stderr for each card it cannot find. The
+/// player gets one message from us instead: stderr is muted for the probe.
+ALCdevice* openDefaultDeviceQuietly() {
+  std::fflush(stderr);
+  const int saved = dup(STDERR_FILENO), devNull = open("/dev/null", O_WRONLY);
+  if (saved >= 0 && devNull >= 0) dup2(devNull, STDERR_FILENO);
+  ALCdevice* device = alcOpenDevice(nullptr);
+  if (saved >= 0 && devNull >= 0) dup2(saved, STDERR_FILENO);
+  if (saved >= 0) close(saved);
+  if (devNull >= 0) close(devNull);
+  return device;
+}
+
 void setSourcePosition(ALuint s, const Vec3& p) { alSource3f(s, AL_POSITION, float(p.x()), float(p.y()), float(p.z())); }
 
 }  // namespace
@@ -44,7 +62,7 @@ Result<std::unique_ptr<AudioSystem>> AudioSystem::create(AudioOutput output) {
   std::unique_ptr<AudioSystem> sys(new AudioSystem(output));
   Impl& im = *sys->m_impl;
   if (output == AudioOutput::Device) {
-    im.device = alcOpenDevice(nullptr);
+    im.device = openDefaultDeviceQuietly();
     if (!im.device) return makeError("no audio output device");
     const char* name = alcGetString(im.device, ALC_DEVICE_SPECIFIER);
     sys->m_deviceName = name ? name : "";
