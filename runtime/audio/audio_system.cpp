@@ -99,6 +99,9 @@ Result<std::unique_ptr<AudioSystem>> AudioSystem::create(AudioOutput output) {
     im.current();
     alDistanceModel(AL_INVERSE_DISTANCE_CLAMPED);
   }
+  sys->setVolumes({});
+  sys->setListener(Vec3::Zero(), Vec3(0, 0, -1), Vec3(0, 1, 0), Vec3::Zero());
+  if (output == AudioOutput::Silent) return sys;  // nothing is mixed: no need for the runtime's own sounds
   // The runtime's own sounds (synth.h).
   sys->m_engineLow = sys->addClip(clipFromFloat(engineLoop(false), kSampleRate_hz));
   sys->m_engineBright = sys->addClip(clipFromFloat(engineLoop(true), kSampleRate_hz));
@@ -107,8 +110,6 @@ Result<std::unique_ptr<AudioSystem>> AudioSystem::create(AudioOutput output) {
   sys->m_thunderClip = sys->addClip(clipFromFloat(thunderClip(), kSampleRate_hz));
   for (int s = 0; s < kTyreSurfaceCount; ++s)
     sys->m_tyre[s] = sys->addClip(clipFromFloat(tyreLoop(TyreSurface(s)), kSampleRate_hz));
-  sys->setVolumes({});
-  sys->setListener(Vec3::Zero(), Vec3(0, 0, -1), Vec3(0, 1, 0), Vec3::Zero());
   return sys;
 }
 

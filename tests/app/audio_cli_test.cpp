@@ -79,6 +79,14 @@ TEST(AudioCli, SoundFileProblemsAreClearScriptErrors) {
   ASSERT_TRUE(audio::writeWav((mod / "assets/beep.wav").string(), beep, 1, 48000));
   std::ofstream(mod / "assets/corrupt.wav") << "RIFF\x24\x10\x00\x00WAVEfmt garbage that is not a wave file";
   std::ofstream(mod / "assets/notes.txt") << "not a sound";
+  // Vehicles with their own engine sample: a corrupt one is refused at spawn, naming the field and file.
+  fs::create_directories(mod / "vehicles");
+  const std::string axles =
+      "axles = {{position = {0.8, -0.2, 1.3}, steered = true, driven = true}, {position = {0.8, -0.2, -1.3}}}";
+  std::ofstream(mod / "vehicles/broken_sample.lua")
+      << "return {" << axles << ", sound = {engine_sample = \"assets/corrupt.wav\"}}\n";
+  std::ofstream(mod / "vehicles/sampled.lua")
+      << "return {" << axles << ", sound = {engine_sample = \"assets/beep.wav\", sample_rpm = 2000}}\n";
   std::ofstream(mod / "scenarios/play.lua") << R"(
 local function err(t)
   local ok, e = pcall(sound.play, t)
@@ -110,6 +118,9 @@ return {
     expect("position and body refused", has(e, "not both"))
     local ok, d = pcall(sound.thunder, {position = {686, 0, 0}})
     expect("thunder delay", ok and math.abs(d - 2) < 1e-9)
+    local okv, ev = pcall(vehicle.spawn, "sounds:broken_sample", {position = {0, 0, 0}})
+    expect("broken engine sample named", not okv and has(tostring(ev), "engine_sample") and has(tostring(ev), "corrupt.wav"))
+    expect("sampled engine spawns", (pcall(vehicle.spawn, "sounds:sampled", {position = {10, 0, 0}})))
     local loops = {}
     for i = 1, 32 do loops[i] = sound.play{file = "assets/beep.wav", loop = true} end
     e = err{file = "assets/beep.wav"}
@@ -122,7 +133,7 @@ return {
   EXPECT_EQ(r.exitCode, 0) << r.output;
   const auto j = readJson(dir + "/r.json");
   ASSERT_TRUE(j["expectations"].is_array()) << r.output;
-  EXPECT_EQ(j["expectations"].size(), 11u) << j["expectations"].dump(1);
+  EXPECT_EQ(j["expectations"].size(), 13u) << j["expectations"].dump(1);
   for (const auto& e : j["expectations"]) EXPECT_TRUE(e["ok"].get<bool>()) << e.dump();
   EXPECT_TRUE(j["script_errors"].empty()) << j["script_errors"].dump(1);
   EXPECT_FALSE(lists(j["subsystems"], "audio")) << "scripts' sounds in a headless run open no device";

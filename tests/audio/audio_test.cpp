@@ -55,6 +55,19 @@ TEST(EngineSound, FundamentalIsTheFiringFrequency) {
   }
 }
 
+// A vehicle's own engine sample plays at pitch rpm / sample_rpm: a 200 Hz
+// tone recorded at 2000 rpm sounds at 300 Hz at 3000 rpm.
+TEST(EngineSound, SamplePlaysAtRpmOverSampleRpm) {
+  auto sys = loopback();
+  std::vector<float> tone(kSampleRate_hz);  // 1 s, 200 whole cycles: loops cleanly
+  for (std::size_t i = 0; i < tone.size(); ++i) tone[i] = 0.5f * float(std::sin(2 * M_PI * 200.0 * double(i) / kSampleRate_hz));
+  VehicleSoundInput in = car(3000, 0.5f, 4);
+  in.engineSample = sys->addClip(clipFromFloat(tone, kSampleRate_hz));
+  in.sampleRpm = 2000;
+  run(*sys, 1.2, &in);
+  EXPECT_NEAR(test::peakFrequency(monoSlice(sys->rendered(), 0.2, 1.2), 15, 2000), 300, 3);
+}
+
 // Load makes the note louder and brighter (more power in upper harmonics).
 TEST(EngineSound, LoadMakesItLouderAndBrighter) {
   double level[2], centroid[2];
