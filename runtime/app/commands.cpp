@@ -144,6 +144,7 @@ void addCommands(CLI::App& cli, int* exitCode) {
   play->add_option("--report", st->play.reportPath,
                    "write what the player saw (JSON): scenario, pause menu, vehicle speed and distance, "
                    "frame times, state hash");
+  play->add_flag("--mute", st->play.mute, "no sound: open no audio device");
   addSceneOptions(play, st->play.scene, st->playSets);
   play->callback([st, exitCode, play] {
     st->play.screenshotGiven = play->count("--screenshot") > 0;
@@ -170,6 +171,8 @@ void addCommands(CLI::App& cli, int* exitCode) {
                   "so runs never change the player's saves)");
   run->add_option("--width", st->run.width, "screenshot width, px")->check(CLI::Range(64, 16384));
   run->add_option("--height", st->run.height, "screenshot height, px")->check(CLI::Range(64, 16384));
+  run->add_option("--audio-out", st->run.audioOutPath,
+                  "render the scene's sound offline (no sound card needed) and write it here as a 48 kHz stereo WAV");
   addSceneOptions(run, st->run.scene, st->runSets);
   run->callback([st, exitCode] {
     if (auto s = finishSceneOptions(st->run.scene, st->runScenarioRef, *st, st->runSets); !s) {

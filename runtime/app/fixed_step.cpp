@@ -1,6 +1,7 @@
 #include "app/fixed_step.h"
 
 #include "app/scene.h"
+#include "app/scene_audio.h"
 #include "core/process_stats.h"
 #include "particles/particle_system.h"
 #include "physics/deformable.h"
@@ -76,6 +77,10 @@ void stepScene(Scene& scene, const StepTime& at, RunTimings& t) {
     stepParticles(scene, *ps, float(dt));
     t.particles_s += clock.seconds() - stepDone_s;
   }
+
+  // 9. Audio: vehicles, the step's impacts, sounds on bodies; the audio
+  //    clock advances one step (offline output renders it). Nothing without audio.
+  stepAudio(scene, dt);
 
   t.script_s += scriptDone_s + (stepDone_s - physicsDone_s);
   t.physics_s += physicsDone_s - scriptDone_s;

@@ -23,6 +23,8 @@
 #include "core/log.h"
 #include "input/overrides_file.h"
 #include "render/camera_rig.h"
+#include "app/scene_audio.h"
+#include "audio/volume_settings.h"
 #include "script/hot_reload.h"
 #include "vehicle/vehicle_system.h"
 
@@ -206,7 +208,15 @@ int playOffscreenSnapshot(const PlayOptions& o, Scene& scene, render::Renderer& 
 
 }  // namespace
 
-int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
+int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
+  PlayOptions o = options;
+  // Sound: the default device unless --mute; the player's volumes.
+  o.scene.audioOutput = o.mute ? audio::AudioOutput::Silent : audio::AudioOutput::Device;
+  if (const std::string bindings = input::bindingsConfigPath(); !bindings.empty()) {
+    const std::string settings = (std::filesystem::path(bindings).parent_path() / "settings.json").string();
+    if (auto v = audio::readVolumes(settings); v) o.scene.volumes = *v;
+    else log::warn("settings: " + v.error());
+  }
   const bool scripted = o.frames >= 0;
   std::vector<PlayEvent> events;
   if (!o.eventsPath.empty()) {
@@ -322,6 +332,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     }
     const double alpha = std::clamp(session->accumulator / scene.dt_s(), 0.0, 1.0);
     session->director.update(scene, alpha, float(elapsed), renderer.camera());
+    scene.setListener(listenerAtCamera(renderer.camera()));  // heard where it is seen (next step's audio)
     if (!session->director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
       renderer.camera().target = dynamicCentroid(scene);
     }

@@ -63,12 +63,18 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
   } else {
     o.scene.saveDir = o.saveDir;
   }
+  if (!o.audioOutPath.empty()) o.scene.audioOutput = audio::AudioOutput::Loopback;
   auto created = Scene::create(o.scene);
   if (!created) {
     log::error(created.error());
     return 1;
   }
   Scene& scene = **created;
+  // Offline sound covers the whole run, from before on_start.
+  if (!o.audioOutPath.empty() && scene.audio().output() != audio::AudioOutput::Loopback) {
+    log::error("--audio-out: cannot render sound offline (see the message above)");
+    return 1;
+  }
   RunTimings t;
   RunCounts counts;
   const double dt = o.scene.dt_s;
@@ -139,6 +145,17 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
   if (!shotStatus) {
     log::error("screenshot: " + shotStatus.error());
     status = 1;
+  }
+  if (!o.audioOutPath.empty()) {
+    const audio::AudioSystem& a = *scene.audioIfAny();
+    if (a.renderTruncated())
+      log::warn("--audio-out: only the first " + std::to_string(int(audio::AudioSystem::kMaxRenderSeconds)) + " s are kept");
+    if (auto st = audio::writeWav(o.audioOutPath, a.rendered(), 2, audio::kSampleRate_hz); !st) {
+      log::error("--audio-out: " + st.error());
+      status = 1;
+    } else {
+      log::info("sound written: " + o.audioOutPath);
+    }
   }
   auto report = buildReport(scene, steps, time_s, t, counts);
   if (!o.reportPath.empty()) {

@@ -250,6 +250,21 @@ particles::ParticleSystem& Scene::particles() {
   return *m_particles;
 }
 
+audio::AudioSystem& Scene::audio() {
+  if (!m_audio) {
+    auto made = audio::AudioSystem::create(m_options.audioOutput);
+    if (!made) {
+      static bool said = false;  // once per process, not at every restart
+      if (!said) log::info("audio: " + made.error() + "; playing silently");
+      said = true;
+      made = audio::AudioSystem::create(audio::AudioOutput::Silent);
+    }
+    m_audio = std::move(made.value());
+    m_audio->setVolumes(m_options.volumes);
+  }
+  return *m_audio;
+}
+
 physics::DeformableSystem& Scene::deformables() {
   if (!m_deformables) m_deformables = std::make_unique<physics::DeformableSystem>();
   return *m_deformables;
@@ -298,6 +313,7 @@ std::vector<std::string> Scene::subsystems() const {
   if (m_models && m_models->size() > 0) names.push_back("models");
   if (m_deformables) names.push_back("deformables");
   if (m_joints) names.push_back("joints");
+  if (m_audio && m_audio->output() != audio::AudioOutput::Silent) names.push_back("audio");  // a device or offline render
   names.insert(names.end(), m_extraSubsystems.begin(), m_extraSubsystems.end());
   return names;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "audio/audio_system.h"
 #include "core/result.h"
 #include "input/input_system.h"
 #include "physics/world.h"
@@ -57,6 +58,10 @@ struct SceneOptions {
   /// dependencies (their bindings.lua). Tools and tests that drive a
   /// scenario with their own actions set it.
   std::optional<input::BindingSet> bindings;
+  /// Where the scene's sound goes: Silent (headless `run`, play --mute; no
+  /// device), Device (play) or Loopback (run --audio-out: rendered offline).
+  audio::AudioOutput audioOutput = audio::AudioOutput::Silent;
+  audio::AudioVolumes volumes;  ///< the player's volume settings (play)
 };
 
 class TerrainScene;
@@ -97,6 +102,21 @@ class Scene final : public script::SceneSystems {
   physics::DeformableSystem& deformables() override;
   physics::DeformableSystem* deformablesIfAny() override { return m_deformables.get(); }
   const physics::DeformableSystem* deformablesIfAny() const { return m_deformables.get(); }
+  /// The audio system, made on first use (a script's sound, or the first
+  /// step with a vehicle or a collision when the output is not Silent). A
+  /// Device that cannot open falls back to Silent with one message.
+  audio::AudioSystem& audio() override;
+  audio::AudioSystem* audioIfAny() { return m_audio.get(); }
+  void attachSound(std::uint64_t sound, physics::BodyId body) override { m_soundBodies[sound] = body; }
+  /// Script sounds following bodies (app/scene_audio.cpp moves them).
+  std::map<std::uint64_t, physics::BodyId>& soundBodies() { return m_soundBodies; }
+  /// The listener: play sets it to the camera each frame; unset, it rides
+  /// behind the first vehicle like the chase camera, else at the origin.
+  struct Listener {
+    Vec3 position_m = Vec3::Zero(), forward = Vec3(0, 0, -1), up = Vec3::UnitY();
+  };
+  void setListener(const Listener& l) { m_listener = l; }
+  const std::optional<Listener>& listener() const { return m_listener; }
   /// The joint solver (--set physics.joint_solver, else the scenario's
   /// joint_solver field, else lagrange; world.set_joint_solver switches it).
   physics::JointSolverKind jointSolver() const override { return m_jointSolver; }
@@ -179,6 +199,9 @@ class Scene final : public script::SceneSystems {
   std::unique_ptr<vehicle::VehicleSystem> m_vehicles;
   std::unique_ptr<particles::ParticleSystem> m_particles;
   std::unique_ptr<physics::DeformableSystem> m_deformables;
+  std::unique_ptr<audio::AudioSystem> m_audio;
+  std::map<std::uint64_t, physics::BodyId> m_soundBodies;
+  std::optional<Listener> m_listener;
   physics::JointSolverKind m_jointSolver = physics::JointSolverKind::Lagrange;
   double m_requestedDt_s = 0;  ///< world.set_dt, 0 = none
   std::unique_ptr<script::ScenarioHost> m_host;  ///< last: scripts reach every system above

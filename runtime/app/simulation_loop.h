@@ -26,6 +26,9 @@ struct RunOptions {
   /// throw-away folder removed at exit, so a run never changes the player's
   /// saves and two identical runs read the same (no) saves.
   std::string saveDir;
+  /// --audio-out: render the scene's sound offline (OpenAL Soft's loopback
+  /// device, in step with simulated time) and write it here as a WAV.
+  std::string audioOutPath;
 };
 
 struct PlayOptions {
@@ -41,6 +44,7 @@ struct PlayOptions {
   long long frames = -1;
   std::string eventsPath;  ///< --events FILE: scripted input (app/play_events.h)
   std::string reportPath;  ///< --report FILE: what the player saw (docs/play-report.md)
+  bool mute = false;       ///< --mute: no audio device at all
 };
 
 /// `tumble run`: headless unless a screenshot is asked for. Returns the exit

@@ -12,6 +12,7 @@
 
 
 #include "physics/mass_properties.h"
+#include "audio/clip.h"
 #include "script/internal/bind_common.h"
 #include "script/vehicle_defs.h"
 #include "vehicle/vehicle_system.h"
@@ -75,6 +76,12 @@ const vehicle::VehicleDef& definition(lua_State* L, const std::string& ref) {
   auto def = loadVehicleFile(*mod, name);
   if (!def) throw LuaArgError(def.error());
   if (def->chassis.inertiaFromMesh) def->chassis.inertia_kgm2 = meshInertia(host, *mod, *def, ref);
+  if (!def->sound.engineSample.empty()) {  // checked now: a broken sample is an error at spawn, not silence
+    const std::string file = (std::filesystem::path(mod->dir) / def->sound.engineSample).string();
+    if (auto clip = audio::loadClip(file); !clip)
+      throw LuaArgError("vehicle \"" + ref + "\": sound.engine_sample: " + clip.error());
+    def->sound.engineSamplePath = file;
+  }
   return cache.emplace(ref, std::move(def.value())).first->second;
 }
 

@@ -32,6 +32,9 @@ class ParticleSystem;
 namespace tumble::input {
 class InputSystem;
 }
+namespace tumble::audio {
+class AudioSystem;
+}
 
 namespace tumble::script {
 
@@ -50,6 +53,12 @@ class SceneSystems {
   /// Ropes and cloth.
   virtual physics::DeformableSystem& deformables() = 0;
   virtual physics::DeformableSystem* deformablesIfAny() = 0;
+
+  /// The scene's sound (created on first use; silent, with no device, in
+  /// headless runs and with --mute), and a playing sound that follows a
+  /// body (the app moves it every step and stops it when the body goes).
+  virtual audio::AudioSystem& audio() = 0;
+  virtual void attachSound(std::uint64_t sound, physics::BodyId body) = 0;
 
   /// The joint solver the scene's joints use (world.set_joint_solver may
   /// switch it while running; existing joints switch too).

@@ -128,6 +128,21 @@ const FieldTable<vehicle::SteeringDef> kSteering{
         number("rate", &vehicle::SteeringDef::rate_radps, "rad/s", "how fast the wheels turn"),
     }};
 
+const FieldTable<vehicle::SoundDef> kSound{
+    "VehicleSound", "engine note and tyre noise",
+    {
+        number("cylinders", &vehicle::SoundDef::cylinders, "",
+               "whole number 1..16: the engine note's fundamental is rpm / 60 * cylinders / 2 Hz"),
+        number("volume", &vehicle::SoundDef::volume, "", "engine gain, 0..4"),
+        text("engine_sample", &vehicle::SoundDef::engineSample,
+             "a loop (WAV or Ogg Vorbis) inside the mod played at pitch rpm / sample_rpm instead of the "
+             "synthesised note",
+             [](const std::string& path, const std::string& v) { insideMod(path, v); }),
+        number("sample_rpm", &vehicle::SoundDef::sampleRpm, "rpm", "rpm the engine sample was recorded at"),
+        number("tyre_slip_threshold", &vehicle::SoundDef::tyreSlipThreshold_mps, "m/s",
+               "contact-patch slip speed where tyre noise starts"),
+    }};
+
 // Later axles start from the one before, so a file need only say what
 // differs; steered, driven, handbrake and drive_share are not copied.
 vehicle::AxleDef nextAxle(const std::vector<vehicle::AxleDef>& before) {
@@ -156,6 +171,7 @@ const FieldTable<VehicleDef> kVehicle{
         table("engine", &VehicleDef::engine, kEngine, "torque curve and speeds"),
         table("gearbox", &VehicleDef::gearbox, kGearbox, "ratios and shift points"),
         table("steering", &VehicleDef::steering, kSteering, "angles and rate"),
+        table("sound", &VehicleDef::sound, kSound, "engine note and tyre noise"),
     }};
 
 }  // namespace
@@ -163,7 +179,8 @@ const FieldTable<VehicleDef> kVehicle{
 std::string vehicleDefinitionDocBlocks() {
   std::string out;
   for (const std::string& block : {kVehicle.docBlock(), kChassis.docBlock(), kAxle.docBlock(), kSuspension.docBlock(),
-                                   kTyre.docBlock(), kEngine.docBlock(), kGearbox.docBlock(), kSteering.docBlock()})
+                                   kTyre.docBlock(), kEngine.docBlock(), kGearbox.docBlock(), kSteering.docBlock(),
+                                   kSound.docBlock()})
     out += block + "\n";
   return out;
 }

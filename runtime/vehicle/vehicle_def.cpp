@@ -73,6 +73,13 @@ Status validateVehicleDef(const VehicleDef& v, const std::string& where) {
                           check("chassis.friction", c.friction, 0, 10, ""),
                           check("chassis.restitution", c.restitution, 0, 1, "")})
     if (!s) return s;
+  const SoundDef& snd = v.sound;
+  for (const Status& s : {check("sound.cylinders", snd.cylinders, 1, 16, ""), check("sound.volume", snd.volume, 0, 4, ""),
+                          check("sound.sample_rpm", snd.sampleRpm, 100, 30000, "rpm"),
+                          check("sound.tyre_slip_threshold", snd.tyreSlipThreshold_mps, 0, 50, "m/s")})
+    if (!s) return s;
+  if (snd.cylinders != std::floor(snd.cylinders))
+    return makeError(where + ": sound.cylinders must be a whole number (1..16), got " + std::to_string(snd.cylinders));
   if (!c.centerOfMass_m.allFinite() || (c.centerOfMass_m.array().abs() > c.size_m.array()).any())
     return makeError(where + ": chassis.com must be finite and within the chassis size (m from the box centre)");
   if (v.axles.size() < 2 || v.axles.size() > 8)

@@ -113,6 +113,19 @@ struct SteeringDef {
   Real rate_radps = Real(2.5);   ///< how fast the wheels turn towards the asked angle
 };
 
+/// How the vehicle sounds (the audio module plays it; docs/vehicles.md).
+struct SoundDef {
+  Real cylinders = 4;  ///< whole number 1..16: the engine note is rpm / 60 * cylinders / 2 Hz (four-stroke)
+  Real volume = 1;     ///< engine gain, 0..4
+  /// A loop inside the mod (WAV or Ogg Vorbis) played at pitch rpm /
+  /// sampleRpm instead of the synthesised note; empty: synthesised.
+  std::string engineSample;
+  Real sampleRpm = 3000;                ///< rpm the sample was recorded at
+  Real tyreSlipThreshold_mps = Real(1.5);  ///< contact-patch slip speed where tyre noise starts, m/s
+  /// engineSample resolved to a file when the definition is loaded (not a Lua field).
+  std::string engineSamplePath;
+};
+
 struct VehicleDef {
   std::string name = "vehicle";  ///< shown to the player
   std::string description;       ///< the feel, in a sentence
@@ -122,6 +135,7 @@ struct VehicleDef {
   EngineDef engine;
   GearboxDef gearbox;
   SteeringDef steering;
+  SoundDef sound;
 };
 
 /// Numbers derived from a VehicleDef (per axle, static loads on level ground).

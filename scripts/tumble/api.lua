@@ -515,6 +515,35 @@ function Random:pick(list) end
 ---@return integer # the seed this generator started from
 function Random:seed() end
 
+---@class SoundPlay
+---@field file string "MOD:path/in/mod" or a path in this mod: a .wav or .ogg (Vorbis) file
+---@field position? Vec3Arg where the sound is, m (fixed)
+---@field body? Body the body the sound moves with (it stops when the body is removed)
+---@field volume? number gain, 0..4 (default 1)
+---@field pitch? number playback rate, 0.05..8 (default 1; 2 is an octave up)
+---@field loop? boolean play until stopped (default false)
+---@field distance? number full volume out to this distance, m, then falling as 1/distance (default 5)
+
+---@class SoundThunder
+---@field position Vec3Arg where the lightning struck, m
+
+---A playing sound, returned by sound.play. Once it has finished (or was
+---stopped) its methods do nothing and playing() is false.
+---@class Sound
+local Sound = {}
+
+---@param pitch number playback rate, 0.05..8
+function Sound:set_pitch(pitch) end
+
+---@param volume number gain, 0..4
+function Sound:set_volume(volume) end
+
+---Stops the sound now.
+function Sound:stop() end
+
+---@return boolean # true until it ends or is stopped (a loop plays until stopped)
+function Sound:playing() end
+
 ---@class SpringDef
 ---@field a Body the first end (its centre of mass)
 ---@field b? Body the other end; without it the spring holds a to `anchor`
@@ -792,6 +821,7 @@ function Vehicle:remove() end
 ---@field engine? VehicleEngine torque curve and speeds
 ---@field gearbox? VehicleGearbox ratios and shift points
 ---@field steering? VehicleSteering angles and rate
+---@field sound? VehicleSound engine note and tyre noise
 
 ---body, mass, drag
 ---@class VehicleChassis
@@ -863,6 +893,14 @@ function Vehicle:remove() end
 ---@field max_angle? number at standstill, rad (default 0.55)
 ---@field speed_sensitivity? number the largest angle is max / (1 + this * v), s/m (default 0.02)
 ---@field rate? number how fast the wheels turn, rad/s (default 2.5)
+
+---engine note and tyre noise
+---@class VehicleSound
+---@field cylinders? number whole number 1..16: the engine note's fundamental is rpm / 60 * cylinders / 2 Hz (default 4)
+---@field volume? number engine gain, 0..4 (default 1)
+---@field engine_sample? string a loop (WAV or Ogg Vorbis) inside the mod played at pitch rpm / sample_rpm instead of the synthesised note
+---@field sample_rpm? number rpm the engine sample was recorded at, rpm (default 3000)
+---@field tyre_slip_threshold? number contact-patch slip speed where tyre noise starts, m/s (default 1.5)
 
 ---The view of the scene: free orbit, following a body, a chase camera, a
 ---hood camera or a cockpit view with its interior drawn as a model. Body
@@ -1229,6 +1267,34 @@ function save.read(name) end
 ---@param name string 1 to 64 letters, digits, '_' or '-'
 ---@param data table what to save (at most 1 MB as JSON)
 function save.write(name, data) end
+
+---Sounds from the mod's files (WAV or Ogg Vorbis), placed in the world:
+---at a point, on a body (moving with it), or, with neither, at the
+---listener. The listener is the camera. At most 32 sounds play at once.
+---Headless runs and `--mute` play nothing but check files and fields the
+---same way, so a scenario behaves alike everywhere.
+sound = {}
+
+---Plays a sound file of a mod. The file is read and checked on first use
+---(then kept): a missing, unreadable or corrupt file is an error naming it.
+---
+---```lua
+---local horn = sound.play{file = "assets/sounds/horn.wav", body = car:body(), loop = true}
+---horn:set_pitch(1.2)
+---```
+---@param opts SoundPlay the file, where, how loud and how fast
+---@return Sound # a handle to change or stop it
+function sound.play(opts) end
+
+---The thunder of a lightning flash at `position` now: it is heard when
+---the sound has travelled from there to the listener at 343 m/s.
+---
+---```lua
+---local delay = sound.thunder{position = {800, 300, -200}}
+---```
+---@param opts SoundThunder where the flash was
+---@return number # the delay until it is heard, s (distance / 343 m/s)
+function sound.thunder(opts) end
 
 ---The height map a scenario builds in `terrain.build(map)`, before
 ---on_start. It starts flat at 0, `terrain.size` samples per side. Positions

@@ -26,4 +26,5 @@ return {
   gearbox = {ratios = {3.0, 2.0, 1.5, 1.2, 1.0}, reverse = 3.0, final_drive = 3.9,
              shift_up_rpm = 8000, shift_down_rpm = 4000, shift_time = 0.15},
   steering = {max_angle = 0.55, speed_sensitivity = 0.015, rate = 3.5},
+  sound = {cylinders = 4, volume = 1.2},  -- a light, loud four
 }

@@ -24,4 +24,5 @@ return {
   gearbox = {ratios = {3.45, 1.95, 1.32, 1.03, 0.82}, reverse = 3.3, final_drive = 4.05,
              shift_up_rpm = 6200, shift_down_rpm = 2500, shift_time = 0.25},
   steering = {max_angle = 0.6, speed_sensitivity = 0.02, rate = 2.5},
+  sound = {cylinders = 4, volume = 0.9},
 }

@@ -27,4 +27,5 @@ return {
   gearbox = {ratios = {4.2, 2.5, 1.6, 1.2, 0.95}, reverse = 4.0, final_drive = 4.1,
              shift_up_rpm = 3500, shift_down_rpm = 1400, shift_time = 0.4},
   steering = {max_angle = 0.55, speed_sensitivity = 0.03, rate = 1.8},
+  sound = {cylinders = 6, volume = 1.1},  -- a straight-six diesel: low, steady note
 }

@@ -46,5 +46,7 @@ void openOdeBindings(lua_State* L, int envIndex);
 void openSpringBindings(lua_State* L, int envIndex);
 /// world.joint, world.grab, ... and the Joint type (bind_joint.cpp); after openWorldBindings.
 void openJointBindings(lua_State* L, int envIndex);
+/// The sound table and Sound type (bind_sound.cpp).
+void openSoundBindings(lua_State* L, int envIndex);
 
 }  // namespace tumble::script

@@ -1,0 +1,142 @@
+// Sound from the command line: a headless run opens no audio device (the
+// report says so); --audio-out renders the drive offline into a WAV with
+// the engine in it; sound.play refuses missing, corrupt and badly described
+// files with clear script errors, never a crash.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "audio/clip.h"
+#include "tumble_process.h"
+
+namespace tumble::test {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  return in ? nlohmann::json::parse(in, nullptr, false) : nlohmann::json{};
+}
+
+bool lists(const nlohmann::json& subsystems, const std::string& name) {
+  if (!subsystems.is_array()) return false;
+  auto v = subsystems.get<std::vector<std::string>>();
+  return std::find(v.begin(), v.end(), name) != v.end();
+}
+
+}  // namespace
+
+TEST(AudioCli, AHeadlessRunHasNoAudio) {
+  const std::string dir = outDir("audio_headless");
+  auto r = runTumble("run base:drive --set autopilot=1 --seconds 1 --report " + dir + "/r.json");
+  // 2: the drive's distance and speed expectations need its full 40 s; only a start failure (1) or a script error (3) matters here.
+  ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 2) << r.output;
+  const auto j = readJson(dir + "/r.json");
+  EXPECT_TRUE(lists(j["subsystems"], "vehicle")) << j["subsystems"].dump();
+  EXPECT_FALSE(lists(j["subsystems"], "audio")) << j["subsystems"].dump();
+}
+
+// The autopilot drives for 3 s; the render is 3 s of 48 kHz stereo with
+// sound in it, and the run (and its state hash) is the same as without sound.
+TEST(AudioCli, AudioOutRendersTheDriveOffline) {
+  const std::string dir = outDir("audio_out");
+  auto r = runTumble("run base:drive --set autopilot=1 --seconds 3 --audio-out " + dir + "/drive.wav --report " + dir +
+                     "/r.json");
+  ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 2) << r.output;
+  auto quiet = runTumble("run base:drive --set autopilot=1 --seconds 3 --report " + dir + "/q.json");
+  ASSERT_EQ(quiet.exitCode, r.exitCode) << quiet.output;
+  const auto j = readJson(dir + "/r.json");
+  EXPECT_TRUE(lists(j["subsystems"], "audio")) << j["subsystems"].dump();
+  EXPECT_EQ(j["state_hash"], readJson(dir + "/q.json")["state_hash"]) << "sound must not change the simulation";
+  auto clip = audio::loadClip(dir + "/drive.wav");
+  ASSERT_TRUE(clip) << clip.error();
+  EXPECT_EQ(clip->rate_hz, 48000);
+  EXPECT_NEAR(clip->seconds(), 3.0, 1.0 / 48000);
+  double sum2 = 0;
+  for (std::int16_t s : clip->samples) sum2 += double(s) * s;
+  const double rms = std::sqrt(sum2 / double(clip->samples.size())) / 32768.0;
+  EXPECT_GT(rms, 0.01) << "the engine is heard";
+  EXPECT_LT(rms, 0.7);
+}
+
+// A mod whose scenario plays sounds: a good file, a missing one, a corrupt
+// one, one outside the mod, bad fields and a NaN. Each failure must be a Lua
+// error (caught by pcall) whose message names the problem; the scenario's
+// expectations check the messages, so the run passes only if all are right.
+TEST(AudioCli, SoundFileProblemsAreClearScriptErrors) {
+  const fs::path mod = fs::path(outDir("audio_mod")) / "sounds";
+  fs::create_directories(mod / "scenarios");
+  fs::create_directories(mod / "assets");
+  std::ofstream(mod / "mod.lua") << "return {name = \"sounds\", version = \"0.1.0\", title = \"sound test\", api = 1}\n";
+  std::vector<float> beep(4800);
+  for (std::size_t i = 0; i < beep.size(); ++i) beep[i] = 0.3f * float(std::sin(2 * M_PI * 440.0 * double(i) / 48000.0));
+  ASSERT_TRUE(audio::writeWav((mod / "assets/beep.wav").string(), beep, 1, 48000));
+  std::ofstream(mod / "assets/corrupt.wav") << "RIFF\x24\x10\x00\x00WAVEfmt garbage that is not a wave file";
+  std::ofstream(mod / "assets/notes.txt") << "not a sound";
+  // Vehicles with their own engine sample: a corrupt one is refused at spawn, naming the field and file.
+  fs::create_directories(mod / "vehicles");
+  const std::string axles =
+      "axles = {{position = {0.8, -0.2, 1.3}, steered = true, driven = true}, {position = {0.8, -0.2, -1.3}}}";
+  std::ofstream(mod / "vehicles/broken_sample.lua")
+      << "return {" << axles << ", sound = {engine_sample = \"assets/corrupt.wav\"}}\n";
+  std::ofstream(mod / "vehicles/sampled.lua")
+      << "return {" << axles << ", sound = {engine_sample = \"assets/beep.wav\", sample_rpm = 2000}}\n";
+  std::ofstream(mod / "scenarios/play.lua") << R"(
+local function err(t)
+  local ok, e = pcall(sound.play, t)
+  return ok and "no error" or tostring(e)
+end
+local function has(s, part) return string.find(s, part, 1, true) ~= nil end
+return {
+  duration = 0.5,
+  on_start = function()
+    local box = world.box{size = {1, 1, 1}, mass = 1, position = {0, 3, 0}}
+    local s = sound.play{file = "assets/beep.wav", body = box, volume = 0.5}
+    expect("good file plays", s:playing())
+    s:set_pitch(1.5); s:set_volume(0.2)
+    s:stop()
+    expect("stopped", not s:playing())
+    local e = err{file = "assets/missing.wav", position = {0, 0, 0}}
+    expect("missing file named", has(e, "missing.wav"))
+    e = err{file = "assets/corrupt.wav"}
+    expect("corrupt file named", has(e, "corrupt.wav") and has(e, "WAV"))
+    e = err{file = "assets/notes.txt"}
+    expect("not a sound file", has(e, "notes.txt") and has(e, "Ogg Vorbis"))
+    e = err{file = "../../etc/passwd"}
+    expect("outside the mod refused", not has(e, "no error"))
+    e = err{file = "assets/beep.wav", volum = 1}
+    expect("misspelt field named", has(e, "unknown field 'volum'"))
+    e = err{file = "assets/beep.wav", pitch = 0/0}
+    expect("NaN pitch refused", has(e, "pitch"))
+    e = err{file = "assets/beep.wav", position = {0, 0, 0}, body = box}
+    expect("position and body refused", has(e, "not both"))
+    local ok, d = pcall(sound.thunder, {position = {686, 0, 0}})
+    expect("thunder delay", ok and math.abs(d - 2) < 1e-9)
+    local okv, ev = pcall(vehicle.spawn, "sounds:broken_sample", {position = {0, 0, 0}})
+    expect("broken engine sample named", not okv and has(tostring(ev), "engine_sample") and has(tostring(ev), "corrupt.wav"))
+    expect("sampled engine spawns", (pcall(vehicle.spawn, "sounds:sampled", {position = {10, 0, 0}})))
+    local loops = {}
+    for i = 1, 32 do loops[i] = sound.play{file = "assets/beep.wav", loop = true} end
+    e = err{file = "assets/beep.wav"}
+    expect("cap on sounds", has(e, "limit"))
+  end,
+}
+)";
+  const std::string dir = outDir("audio_mod_run");
+  auto r = runTumble("run sounds:play --mods " + mod.parent_path().string() + " --report " + dir + "/r.json");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  const auto j = readJson(dir + "/r.json");
+  ASSERT_TRUE(j["expectations"].is_array()) << r.output;
+  EXPECT_EQ(j["expectations"].size(), 13u) << j["expectations"].dump(1);
+  for (const auto& e : j["expectations"]) EXPECT_TRUE(e["ok"].get<bool>()) << e.dump();
+  EXPECT_TRUE(j["script_errors"].empty()) << j["script_errors"].dump(1);
+  EXPECT_FALSE(lists(j["subsystems"], "audio")) << "scripts' sounds in a headless run open no device";
+}
+
+}  // namespace tumble::test
