@@ -26,6 +26,11 @@ struct RunOptions {
   /// throw-away folder removed at exit, so a run never changes the player's
   /// saves and two identical runs read the same (no) saves.
   std::string saveDir;
+  /// --inject-nan STEP (test switch): before step STEP the first dynamic
+  /// body's position and velocity become NaN; -1: never. The world freezes
+  /// the body and counts it (error.nan_events), and the run then fails the
+  /// expectation "physics state stayed finite".
+  long long injectNanAtStep = -1;
 };
 
 struct PlayOptions {
