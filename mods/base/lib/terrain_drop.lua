@@ -3,9 +3,8 @@
 -- expectations that they come to rest on its surface: every body's centre is
 -- at most its bounding radius + 0.15 m above the terrain height under it (as
 -- world.raycast finds it), no part of any body is more than 2 cm inside the
--- terrain (a box's corners against the height under each corner; a sphere's
--- distance to the terrain's local plane against its radius), nearly all
--- stopped.
+-- terrain (a box's corners, and points of a sphere's lower half, against the
+-- terrain height under each), nearly all stopped.
 --
 --   local terrain_drop = require "lib.terrain_drop"
 --   return terrain_drop.scenario{title = ..., duration = 12, terrain = {...},
@@ -48,13 +47,20 @@ local function sink_depth(e)
     end
     return deepest
   end
-  -- sphere: the distance from its centre to the terrain's plane at the hit
-  -- below it, against its radius
-  local hit = ground_hit(p.x, p.z)
-  if not hit then return nil end
-  local n = hit.normal
-  local distance = (p.x - hit.point.x) * n.x + (p.y - hit.point.y) * n.y + (p.z - hit.point.z) * n.z
-  return e.radius - distance
+  -- sphere: points of its lower half (the bottom, and rings 30 and 60
+  -- degrees up from it) against the terrain height under each
+  local deepest = -math.huge
+  for ring = 0, 2 do
+    local a = math.rad(30 * ring)
+    for k = 0, (ring == 0 and 0 or 7) do
+      local phi = k * math.pi / 4
+      local x, y, z = e.radius * math.sin(a) * math.cos(phi), -e.radius * math.cos(a), e.radius * math.sin(a) * math.sin(phi)
+      local hit = ground_hit(p.x + x, p.z + z)
+      if not hit then return nil end
+      deepest = math.max(deepest, hit.point.y - (p.y + y))
+    end
+  end
+  return deepest
 end
 
 local function ground(x, z)
@@ -116,7 +122,9 @@ function terrain_drop.scenario(def)
       if e.body:speed() < 0.1 then resting = resting + 1 end
       below = math.min(below, p.y - g)               -- centre above the terrain, m
       above = math.max(above, p.y - g - e.radius)    -- gap beyond the bounding radius, m
-      sunk = math.max(sunk, sink_depth(e) or math.huge)  -- no terrain under it: it fell off
+      local depth = sink_depth(e) or math.huge  -- no terrain under it: it fell off
+      if depth > 0.02 then print(string.format("sunk %.3f m: %s at %.2f %.2f %.2f", depth, e.size and "box" or "sphere", p.x, p.y, p.z)) end
+      sunk = math.max(sunk, depth)
     end
     -- Most bodies have stopped; a ball on a slope steeper than its rolling
     -- resistance allows (tan > ~C_rr) rightly keeps rolling, but none races.
