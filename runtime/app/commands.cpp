@@ -173,6 +173,13 @@ void addCommands(CLI::App& cli, int* exitCode) {
   run->add_option("--height", st->run.height, "screenshot height, px")->check(CLI::Range(64, 16384));
   run->add_option("--audio-out", st->run.audioOutPath,
                   "render the scene's sound offline (no sound card needed) and write it here as a 48 kHz stereo WAV");
+  run->add_flag("--freeze", st->run.scene.freezePhysics,
+                "test switch: scripts run but the physics never steps; every base scenario must then fail an "
+                "expectation (tests/scenarios/CMakeLists.txt)");
+  run->add_option("--inject-nan", st->run.injectNanAtStep,
+                  "test switch: before step N the first dynamic body's position and velocity become NaN; the run "
+                  "must then fail")
+      ->check(CLI::NonNegativeNumber);
   addSceneOptions(run, st->run.scene, st->runSets);
   run->callback([st, exitCode] {
     if (auto s = finishSceneOptions(st->run.scene, st->runScenarioRef, *st, st->runSets); !s) {

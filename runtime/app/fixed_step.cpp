@@ -47,19 +47,25 @@ void stepScene(Scene& scene, const StepTime& at, RunTimings& t) {
   // Static models placed during play go into the terrain's tree too.
   if (script.presentation().statics.size() != staticModels) scene.registerStaticObjects();
   const double scriptDone_s = clock.seconds();
+  const bool simulate = !scene.options().freezePhysics;  // run --freeze: the world never steps
+
+  if (simulate) scene.errorAudit().beforePhysics(scene);
 
   // 3. Joints, last before the physics so every force of the step (scripts'
   //    included) is in the Lagrange solver's Q.
-  if (physics::JointSystem* joints = scene.jointsIfAny()) joints->beforeWorldStep();
+  if (physics::JointSystem* joints = scene.jointsIfAny(); joints && simulate) joints->beforeWorldStep();
 
   // 4. Vehicles: controls, engine and gearbox; the wheels act in every substep.
-  if (vehicle::VehicleSystem* vehicles = scene.vehiclesIfAny()) vehicles->beforeStep(Real(dt));
+  if (vehicle::VehicleSystem* vehicles = scene.vehiclesIfAny(); vehicles && simulate) vehicles->beforeStep(Real(dt));
 
   // 5. Physics: the world's substeps (forces, contacts, integration).
-  scene.world().step(Real(dt));
+  if (simulate) {
+    scene.world().step(Real(dt));
+    scene.errorAudit().afterPhysics(scene, dt);
+  }
 
   // 6. Ropes and cloth, against the bodies' new positions.
-  if (physics::DeformableSystem* deformables = scene.deformablesIfAny()) {
+  if (physics::DeformableSystem* deformables = scene.deformablesIfAny(); deformables && simulate) {
     physics::DeformableEnvironment env;
     env.gravity_mps2 = scene.world().settings().gravity_mps2;
     env.world = &scene.world();

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <string>
 #include <optional>
 #include <system_error>
 
@@ -13,6 +15,7 @@
 #include "app/scene_view.h"
 #include "app/simulation_loop.h"
 #include "core/log.h"
+#include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
 
 namespace tumble::app {
@@ -46,6 +49,32 @@ class ThrowAwayDir {
   explicit ThrowAwayDir(std::string path) : m_path(std::move(path)) {}
   std::string m_path;
 };
+
+/// run --inject-nan: the first dynamic body's position and velocity become
+/// NaN, as a solver fault would leave them. Returns false when the world has
+/// no dynamic body to break.
+/// Without one, the last particle of the first rope or cloth gets a NaN
+/// velocity; without those, the next ode.system step of the script leaves
+/// NaN in its state.
+void injectNan(Scene& scene) {
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  physics::World& world = scene.world();
+  bool done = false;
+  world.forEachBody([&](physics::BodyId id, const physics::Body& b) {
+    if (done || !b.isDynamic()) return;
+    world.setPosition(id, Vec3(nan, b.position_m.y(), b.position_m.z()));
+    world.setLinearVelocity(id, Vec3::Constant(nan));
+    done = true;
+  });
+  if (physics::DeformableSystem* ds = scene.deformablesIfAny(); ds && !done) {
+    ds->forEach([&](int id, const physics::Deformable&) {
+      physics::Deformable* d = done ? nullptr : ds->get(id);
+      if (d && d->particleCount() > 0) done = d->setVelocity(d->particleCount() - 1, Vec3::Constant(nan));
+    });
+  }
+  if (!done) scene.host().requestNanInjection();
+}
+
 
 }  // namespace
 
@@ -124,6 +153,7 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
   for (long long i = 0; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
     if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
     if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
+    if (i == o.injectNanAtStep) injectNan(scene);
     stepScene(scene, StepTime{time_s, i}, t);
     time_s = baseTime_s + double(i + 1 - baseStep) * stepDt;
     done = i + 1;
@@ -140,6 +170,19 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
     t.script_s += sw.seconds();
   }
   counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
+  // A body whose state went non-finite was frozen by the world: whatever the
+  // scenario checked, the run is not physics any more. Only a failure is
+  // added, so runs without one keep exactly the scenario's expectations.
+  if (const long nan = nonFiniteEvents(scene); nan > 0) {
+    script::Expectation e;
+    e.name = "physics state stayed finite (non-finite bodies frozen, rope or cloth steps undone)";
+    e.value = double(nan);
+    e.max = 0;
+    scene.host().addExpectation(e);
+    log::error(scene.name() + ": " + std::to_string(nan) +
+               " times a body, rope or cloth went non-finite and was held where its step began "
+               "(report: error.nan_events)");
+  }
   t.total_s = processClock.seconds();
   int status = exitStatusFor(scene);
   if (!shotStatus) {

@@ -51,6 +51,13 @@ std::string stateHashText(Scene& scene) {
   return hash;
 }
 
+long nonFiniteEvents(Scene& scene) {
+  long n = scene.world().errorStats().nanEvents;
+  if (const physics::DeformableSystem* ds = scene.deformablesIfAny())
+    ds->forEach([&](int, const physics::Deformable& d) { n += d.stats().nanEvents; });
+  return n;
+}
+
 StepMsSummary summarizeSteps(std::vector<double> ms) {
   StepMsSummary s;
   if (ms.empty()) return s;
@@ -153,11 +160,15 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
         {"contacts_max", err.contactsMax},
         {"particles_max", counts.particlesMax}}},
       {"error",
-       {{"energy_rel_drift_max", err.energyRelDriftMax},
+       {{"energy_rel_drift_max", scene.errorAudit().energyRelDriftMax()},
+        {"energy_gain_max_J", scene.errorAudit().energyGainMax_J()},
+        {"energy_scale_J", scene.errorAudit().energyScale_J()},
         {"penetration_max_m", err.penetrationMax_m},
         {"joint_error_max_m", scene.jointErrorMax_m()},
-        {"momentum_rel_drift_max", err.momentumRelDriftMax},
-        {"nan_events", err.nanEvents}}},
+        {"momentum_rel_drift_max", scene.errorAudit().momentumRelDriftMax()},
+        {"momentum_residual_max_Ns", scene.errorAudit().momentumResidualMax_Ns()},
+        {"momentum_scale_Ns", scene.errorAudit().momentumScale_Ns()},
+        {"nan_events", nonFiniteEvents(scene)}}},
       {"expectations", expectations},
       {"script_errors", errors},
       {"game", game},

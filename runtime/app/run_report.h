@@ -33,6 +33,10 @@ StepMsSummary summarizeSteps(std::vector<double> stepMs);
 /// bodies, rope and cloth particles, live effect particles. Exact bits.
 std::string stateHashText(Scene& scene);
 
+/// How often a state went non-finite: bodies the world froze plus rope and
+/// cloth steps undone (the report's error.nan_events).
+long nonFiniteEvents(Scene& scene);
+
 nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSeconds, const RunTimings& timings,
                            const RunCounts& counts);
 

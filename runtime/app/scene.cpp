@@ -109,6 +109,7 @@ Result<std::unique_ptr<Scene>> Scene::build(const SceneOptions& options, bool sc
   so.seed = options.seed;
   so.limits = options.limits;
   so.saveDir = options.saveDir;
+  so.freezeSimulation = options.freezePhysics;
   so.scriptsDir = scriptsDir();
   so.mods = registry.mods();  // emitters may come from other mods ("base:dust")
   if (options.tuneOverrides) so.tuneOverridesFile = script::tuneOverridesPath(mod->name);

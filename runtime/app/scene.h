@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "audio/audio_system.h"
+#include "app/error_audit.h"
 #include "core/result.h"
 #include "input/input_system.h"
 #include "physics/world.h"
@@ -62,6 +63,10 @@ struct SceneOptions {
   /// device), Device (play) or Loopback (run --audio-out: rendered offline).
   audio::AudioOutput audioOutput = audio::AudioOutput::Silent;
   audio::AudioVolumes volumes;  ///< the player's volume settings (play)
+  /// Test switch (`run --freeze`): scripts, timers and input run, but no
+  /// simulation system steps (bodies, joints, vehicles, ropes, cloth), so a
+  /// scenario's expectations can be checked against a world that never moves.
+  bool freezePhysics = false;
 };
 
 class TerrainScene;
@@ -124,6 +129,9 @@ class Scene final : public script::SceneSystems {
   /// Largest joint anchor separation seen (m), 0 without joints: the run
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
+  /// The run report's energy and momentum figures, kept by stepScene.
+  ErrorAudit& errorAudit() { return m_errorAudit; }
+  const ErrorAudit& errorAudit() const { return m_errorAudit; }
   /// The fixed step now (s): --dt, or what the script asked for (world.set_dt).
   double dt_s() const override { return m_requestedDt_s > 0 ? m_requestedDt_s : m_options.dt_s; }
   void requestDt(double dt_s) override { m_requestedDt_s = dt_s; }
@@ -231,6 +239,7 @@ class Scene final : public script::SceneSystems {
   std::vector<std::string> m_extraSubsystems;
   std::optional<physics::BodyId> m_hiddenModelBody;
   bool m_collisionView = false;
+  ErrorAudit m_errorAudit;
 };
 
 }  // namespace tumble::app

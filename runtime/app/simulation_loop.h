@@ -29,6 +29,11 @@ struct RunOptions {
   /// --audio-out: render the scene's sound offline (OpenAL Soft's loopback
   /// device, in step with simulated time) and write it here as a WAV.
   std::string audioOutPath;
+  /// --inject-nan STEP (test switch): before step STEP the first dynamic
+  /// body's position and velocity become NaN; -1: never. The world freezes
+  /// the body and counts it (error.nan_events), and the run then fails the
+  /// expectation "physics state stayed finite".
+  long long injectNanAtStep = -1;
 };
 
 struct PlayOptions {

@@ -311,6 +311,12 @@ bool Deformable::unpin(int i) {
   return true;
 }
 
+bool Deformable::setVelocity(int i, const Vec3& v_mps) {
+  if (i < 0 || i >= particleCount()) return false;
+  m_v.segment<3>(3 * i) = v_mps.cast<double>();
+  return true;
+}
+
 bool Deformable::pinned(int i) const { return i >= 0 && i < particleCount() && m_pinOf[std::size_t(i)] >= 0; }
 
 Eigen::Vector3d Deformable::pinTarget(const Pin& p, const DeformableEnvironment& env) const {

@@ -97,6 +97,10 @@ class Deformable {
   Vec3 position(int i) const { return m_x.segment<3>(3 * i).cast<Real>(); }
   Vec3 velocity(int i) const { return m_v.segment<3>(3 * i).cast<Real>(); }
   Real particleMass_kg() const { return Real(m_mass); }
+  /// Sets particle i's velocity (m/s), e.g. a kick; false: bad index. A
+  /// non-finite velocity is taken as given: the next step then fails, is
+  /// undone and counted (DeformableStats::nanEvents).
+  bool setVelocity(int i, const Vec3& v_mps);
 
   /// Pins: particle i held at a world point, or at the body point where it
   /// is now (carried with the body). false: bad index or stale body.

@@ -260,6 +260,12 @@ class World {
   /// Hash of every live body's position, orientation and velocities (exact bits).
   std::uint64_t stateHash() const;
   const ErrorStats& errorStats() const { return m_error; }
+  /// What the world counts as external since resetErrorStats (diagnostics.cpp):
+  /// the work (J) of forces, torques and impulses scripts applied, and the
+  /// impulse (N s) of gravity, those forces and impulses, damping and contacts
+  /// with static, kinematic or sleeping bodies and the height field.
+  double externalWork_J() const { return m_externalWork; }
+  const Eigen::Vector3d& externalImpulse_Ns() const { return m_externalImpulse; }
   /// Work of the narrow phase against static triangle meshes since the
   /// world was made or resetMeshStats (nodes the tree skipped, triangles tested).
   const MeshStats& meshStats() const { return m_meshStats; }

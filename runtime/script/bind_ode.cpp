@@ -20,6 +20,7 @@
 // The state is committed only after a step succeeded.
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <new>
 
 #include "numerics/integrator.h"
@@ -273,6 +274,11 @@ int odeStep(lua_State* L) {
   if (!(dt > 0)) throw LuaArgError("OdeSystem:step: dt must be > 0 seconds");
   if (n != std::floor(n) || n < 1 || n > 1e6) throw LuaArgError("OdeSystem:step: n must be an integer in 1..1e6");
   const double h = dt / n;
+  ScenarioHost* host = ScenarioHost::from(L);
+  if (host && host->options().freezeSimulation) {  // run --freeze: nothing advances
+    lua_settop(L, 1);
+    return 1;
+  }
   o.f.L = L;  // the running thread (a coroutine may step the system)
   o.trial = o.y;
   double t = o.t;
@@ -281,6 +287,7 @@ int odeStep(lua_State* L) {
     if (!info.converged) ++o.newtonFailures;
   }
   o.y = o.trial;  // committed only when every step succeeded
+  if (host && host->takeNanInjection()) o.y[0] = std::numeric_limits<double>::quiet_NaN();  // run --inject-nan
   o.t += dt;
   o.steps += long(n);
   lua_settop(L, 1);

@@ -15,6 +15,7 @@
 // restitution (0..1), rolling_resistance (C_rr, e.g. 0.02), linear_damping and angular_damping 1/s,
 // type "dynamic" | "static" | "kinematic", color {r,g,b} 0..1, sleep (bool).
 // Unknown fields are refused, so a typo is an error, not a silent default.
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -34,7 +35,7 @@ physics::World& worldOf(lua_State* L) { return ScenarioHost::from(L)->world(); }
 
 const std::set<std::string> kCommonFields = {"position", "rotation", "orientation", "velocity", "angular_velocity",
                                              "mass", "density", "friction", "restitution", "rolling_resistance", "linear_damping",
-                                             "angular_damping", "type", "color", "sleep"};
+                                             "angular_damping", "type", "color", "sleep", "inertia"};
 
 // A body definition's fields: the common ones and the shape's own.
 void checkBodyFields(lua_State* L, int t, const char* fn, std::initializer_list<const char*> shapeFields) {
@@ -92,10 +93,41 @@ Eigen::Vector3f readColor(lua_State* L, int t, const char* fn, const Eigen::Vect
   return c.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
 }
 
+/// The definition's `inertia` field, checked: principal moments of a real
+/// rigid body (finite, > 0, each at most the sum of the other two).
+std::optional<Vec3> readInertia(lua_State* L, int t, const char* fn, const physics::BodyDef& d) {
+  Vec3 I;
+  try {
+    if (!optVec3Field(L, t, "inertia", &I)) return std::nullopt;
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what() + " (principal moments {Ixx, Iyy, Izz}, kg m^2)");
+  }
+  const std::string got = " {" + std::to_string(I.x()) + ", " + std::to_string(I.y()) + ", " + std::to_string(I.z()) + "}";
+  if (d.type != physics::BodyType::Dynamic)
+    throw LuaArgError(std::string(fn) + ": field 'inertia' is for dynamic bodies (static and kinematic ones do not turn under forces)");
+  if (!I.allFinite() || (I.array() <= 0).any())
+    throw LuaArgError(std::string(fn) + ": field 'inertia' must be three finite moments > 0 kg m^2 {Ixx, Iyy, Izz}, got" + got);
+  const char* axis[] = {"Ixx", "Iyy", "Izz"};
+  for (int k = 0; k < 3; ++k) {
+    const Real others = I[(k + 1) % 3] + I[(k + 2) % 3];
+    if (I[k] > Real(1.0001) * others)
+      throw LuaArgError(std::string(fn) + ": field 'inertia': " + axis[k] + " is larger than the sum of the other two" + got +
+                        " (the triangle inequality every rigid body's principal moments satisfy)");
+  }
+  return I;
+}
+
 int create(lua_State* L, physics::BodyDef d, const char* fn, const Eigen::Vector3f& color) {
+  const std::optional<Vec3> inertia = lua_istable(L, 1) ? readInertia(L, 1, fn, d) : std::nullopt;
   ScenarioHost::from(L)->countBodiesCreated(1, fn);
   auto r = worldOf(L).createBody(d);
   if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
+  if (inertia) {
+    if (Status s = worldOf(L).setPrincipalInertia(*r, *inertia); !s) {
+      worldOf(L).destroyBody(*r);
+      throw LuaArgError(std::string(fn) + ": field 'inertia': " + s.error());
+    }
+  }
   ScenarioHost::from(L)->presentation().setColor(*r, color);
   pushBody(L, *r);
   return 1;
@@ -124,6 +156,7 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 /// @field type? string "dynamic" (default), "static" or "kinematic"
 /// @field color? Vec3Arg display colour {r, g, b}, each 0..1
 /// @field sleep? boolean may the body fall asleep when at rest (default true)
+/// @field inertia? Vec3Arg principal moments of inertia {Ixx, Iyy, Izz} about the body's own axes through its centre of mass, kg m^2 (default: from the shape and mass); each > 0 and at most the sum of the other two; dynamic bodies only
 
 /// @class BoxDef: BodyDef
 /// @field size? Vec3Arg full size along x, y, z, m (default {1, 1, 1})

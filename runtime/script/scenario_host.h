@@ -42,6 +42,7 @@
 #include <optional>
 #include <string>
 #include <vector>
+#include <utility>
 
 #include "core/result.h"
 #include "physics/joints/joint_system.h"
@@ -104,6 +105,9 @@ struct ScenarioOptions {
   /// empty: the player's data folder (bind_save.cpp). `run` gives a
   /// throw-away folder so headless runs never touch the player's saves.
   std::string saveDir;
+  /// `run --freeze` (a test switch): systems the script steps itself
+  /// (ode.system) do not advance, like the scene's physics.
+  bool freezeSimulation = false;
 };
 
 class ScenarioHost {
@@ -223,6 +227,10 @@ class ScenarioHost {
 
   // Used by the bindings (bind_*.cpp, globals.cpp).
   void addExpectation(Expectation e) { m_expectations.push_back(std::move(e)); }
+  /// `run --inject-nan` (a test switch) in a scenario without bodies or
+  /// ropes: the next OdeSystem:step leaves NaN in its state's first entry.
+  void requestNanInjection() { m_nanInjectionPending = true; }
+  bool takeNanInjection() { return std::exchange(m_nanInjectionPending, false); }
   const ScenarioOptions& options() const { return m_options; }
   void setHudText(std::vector<std::string> lines) { m_hudText = std::move(lines); }
   void addMessage(std::string text, double duration_s, MessageKind kind = MessageKind::Info);
@@ -277,6 +285,7 @@ class ScenarioHost {
   double m_dt_s = 1.0 / 60.0;  ///< the step of the last update(), for timers' ctx.dt
   std::vector<ScriptError> m_errors;
   std::vector<Expectation> m_expectations;
+  bool m_nanInjectionPending = false;  ///< see requestNanInjection
   std::vector<std::string> m_hudText;
   std::vector<GameMessage> m_messages;
   double m_score = 0;

@@ -708,6 +708,7 @@ function Vehicle:remove() end
 ---@field type? string "dynamic" (default), "static" or "kinematic"
 ---@field color? Vec3Arg display colour {r, g, b}, each 0..1
 ---@field sleep? boolean may the body fall asleep when at rest (default true)
+---@field inertia? Vec3Arg principal moments of inertia {Ixx, Iyy, Izz} about the body's own axes through its centre of mass, kg m^2 (default: from the shape and mass); each > 0 and at most the sum of the other two; dynamic bodies only
 
 ---@class BoxDef: BodyDef
 ---@field size? Vec3Arg full size along x, y, z, m (default {1, 1, 1})

@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "tools/report/accuracy.h"
 #include "tools/report/rigid_body_cases.h"
 #include "core/file_util.h"
 #include "numerics/integrator.h"
@@ -150,6 +151,25 @@ int runStabilityReport(const ReportOptions& options) {
   return ok ? 0 : 1;
 }
 
+int runAccuracyReport(const ReportOptions& options) {
+  const Clock::time_point start = Clock::now();
+  if (!prepareOutDir(options.outDir)) return 1;
+  const std::vector<AccuracyRow> rows = runAccuracyCases();
+  int failed = 0, known = 0;
+  for (const AccuracyRow& r : rows) {
+    const bool pass = r.pass();
+    if (!pass && r.knownLimit) ++known;
+    if (!pass && !r.knownLimit) ++failed;
+    if (options.verbose || !pass)
+      std::printf("  %-14s %-70s analytic %-10.6g measured %-10.6g tolerance %-9.3g %s\n", r.group.c_str(),
+                  r.name.c_str(), r.analytic, r.measured, r.tolerance, pass ? "pass" : r.knownLimit ? "known limit" : "FAIL");
+  }
+  const bool written = writeReportFile(fs::absolute(options.outDir) / "physics-accuracy.md", accuracyMarkdown(rows));
+  std::printf("report accuracy: %zu cases, %d failed, %d known limits (%.1f s)\n", rows.size(), failed, known,
+              secondsSince(start));
+  return written && failed == 0 ? 0 : 1;
+}
+
 void addReportSubcommand(CLI::App& report, const char* name, const char* help,
                          int (*run)(const ReportOptions&), int& exitCode) {
   auto options = std::make_shared<ReportOptions>();
@@ -174,6 +194,10 @@ void addReportCommands(CLI::App& report, int& exitCode) {
                       "Stiff and extreme cases classified stable/drifting/blew_up, and each "
                       "method's largest stable step beside the theory",
                       &runStabilityReport, exitCode);
+  addReportSubcommand(report, "accuracy",
+                      "The physics world against analytic answers (free fall, bounces, friction, rolling, "
+                      "pendulum, spring, cradle, stacks): physics-accuracy.md; exit 1 when a case fails",
+                      &runAccuracyReport, exitCode);
 }
 
 }  // namespace tumble::tools

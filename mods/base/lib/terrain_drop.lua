@@ -1,8 +1,10 @@
 -- Shared by the terrain scenarios (hills, island): static rocks around a
 -- drop zone, spheres and boxes dropped 3 m above the terrain, and the
 -- expectations that they come to rest on its surface: every body's centre is
--- between 0 and its bounding radius + 0.15 m above the terrain height under
--- it (as world.raycast finds it), nothing fell through, nearly all stopped.
+-- at most its bounding radius + 0.15 m above the terrain height under it (as
+-- world.raycast finds it), no part of any body is more than 2 cm inside the
+-- terrain (a box's corners, and points of a sphere's lower half, against the
+-- terrain height under each), nearly all stopped.
 --
 --   local terrain_drop = require "lib.terrain_drop"
 --   return terrain_drop.scenario{title = ..., duration = 12, terrain = {...},
@@ -12,12 +14,58 @@
 
 local terrain_drop = {}
 
--- Terrain height under (x, z): the first hit straight down that is not a body.
-local function ground(x, z)
+-- Terrain hit straight down at (x, z): the first one that is not a body.
+local function ground_hit(x, z)
   for _, hit in ipairs(world.raycast_all({x, 2000, z}, {0, -1, 0}, 5000)) do
-    if not hit.body:is_valid() then return hit.point.y end
+    if not hit.body:is_valid() then return hit end
   end
   return nil
+end
+
+-- v rotated by the unit quaternion q.
+local function rotate(q, x, y, z)
+  local cx, cy, cz = q.y * z - q.z * y, q.z * x - q.x * z, q.x * y - q.y * x
+  local dx, dy, dz = q.y * cz - q.z * cy, q.z * cx - q.x * cz, q.x * cy - q.y * cx
+  return x + 2 * (q.w * cx + dx), y + 2 * (q.w * cy + dy), z + 2 * (q.w * cz + dz)
+end
+
+-- How deep the body reaches into the terrain (m; <= 0 when it does not),
+-- nil where there is no terrain under it.
+local function sink_depth(e)
+  local p = e.body:position()
+  if e.size then  -- box: each corner against the terrain height under it
+    local q, deepest = e.body:orientation(), -math.huge
+    for sx = -1, 1, 2 do
+      for sy = -1, 1, 2 do
+        for sz = -1, 1, 2 do
+          local x, y, z = rotate(q, sx * e.size[1] / 2, sy * e.size[2] / 2, sz * e.size[3] / 2)
+          local hit = ground_hit(p.x + x, p.z + z)
+          if not hit then return nil end
+          deepest = math.max(deepest, hit.point.y - (p.y + y))
+        end
+      end
+    end
+    return deepest
+  end
+  -- sphere: points of its lower half (the bottom, and rings 30 and 60
+  -- degrees up from it) against the terrain height under each
+  local deepest = -math.huge
+  for ring = 0, 2 do
+    local a = math.rad(30 * ring)
+    for k = 0, (ring == 0 and 0 or 7) do
+      local phi = k * math.pi / 4
+      local x, y, z = e.radius * math.sin(a) * math.cos(phi), -e.radius * math.cos(a), e.radius * math.sin(a) * math.sin(phi)
+      local hit = ground_hit(p.x + x, p.z + z)
+      if not hit then return nil end
+      deepest = math.max(deepest, hit.point.y - (p.y + y))
+    end
+  end
+  return deepest
+end
+
+local function ground(x, z)
+  local hit = ground_hit(x, z)
+  return hit and hit.point.y or nil
 end
 
 function terrain_drop.scenario(def)
@@ -25,13 +73,6 @@ function terrain_drop.scenario(def)
   local center = def.center or function() return 0, 0 end
   local bodies = {}
 
-  -- Terrain height under (x, z): the first hit straight down that is not a body.
-  local function ground(x, z)
-    for _, hit in ipairs(world.raycast_all({x, 2000, z}, {0, -1, 0}, 5000)) do
-      if not hit.body:is_valid() then return hit.point.y end
-    end
-    return nil
-  end
 
   function scenario.on_start(ctx)
     local cx, cz = center()
@@ -55,7 +96,7 @@ function terrain_drop.scenario(def)
       local z = cz + ((i - 1) // 6 - 1.5) * 3 + (math.random() - 0.5)
       local y = ground(x, z) + 3
       local color = palette[(i - 1) % #palette + 1]
-      local b, radius
+      local b, radius, size
       if i % 2 == 0 then
         radius = 0.3 + math.random() * 0.3
         b = world.sphere{radius = radius, position = {x, y, z}, density = 500, friction = 0.7,
@@ -63,16 +104,17 @@ function terrain_drop.scenario(def)
       else
         local sx, sy, sz = 0.6 + math.random() * 0.5, 0.4 + math.random() * 0.4, 0.6 + math.random() * 0.5
         radius = math.sqrt(sx * sx + sy * sy + sz * sz) / 2
+        size = {sx, sy, sz}
         b = world.box{size = {sx, sy, sz}, position = {x, y, z}, rotation = {math.random(), math.random(), 0},
                       density = 500, friction = 0.7, restitution = 0.1, color = color}
       end
-      bodies[#bodies + 1] = {body = b, radius = radius}
+      bodies[#bodies + 1] = {body = b, radius = radius, size = size}
     end
   end
 
   function scenario.on_finish(ctx)
     if #bodies == 0 then return end
-    local fastest, resting, below, above = 0, 0, math.huge, -math.huge
+    local fastest, resting, below, above, sunk = 0, 0, math.huge, -math.huge, -math.huge
     for _, e in ipairs(bodies) do
       local p = e.body:position()
       local g = ground(p.x, p.z) or -math.huge
@@ -80,12 +122,16 @@ function terrain_drop.scenario(def)
       if e.body:speed() < 0.1 then resting = resting + 1 end
       below = math.min(below, p.y - g)               -- centre above the terrain, m
       above = math.max(above, p.y - g - e.radius)    -- gap beyond the bounding radius, m
+      local depth = sink_depth(e) or math.huge  -- no terrain under it: it fell off
+      if depth > 0.02 then print(string.format("sunk %.3f m: %s at %.2f %.2f %.2f", depth, e.size and "box" or "sphere", p.x, p.y, p.z)) end
+      sunk = math.max(sunk, depth)
     end
     -- Most bodies have stopped; a ball on a slope steeper than its rolling
     -- resistance allows (tan > ~C_rr) rightly keeps rolling, but none races.
     expect("bodies at rest (fraction slower than 0.1 m/s)", resting / #bodies, {min = 0.9})
     expect("no body still racing downhill", fastest, {max = 3})
     expect("no body fell through the terrain", below, {min = 0})
+    expect("no body sank into the terrain (deepest point inside it, m)", sunk, {max = 0.02})
     expect("every body rests on the terrain", above, {max = 0.15})
   end
   return scenario

@@ -34,6 +34,7 @@ local top, dir
 local e0, emax = 0, 0
 local added = 0  -- work done on the chain by adding links (their energy), J
 local grab, target  -- --set grab=1
+local swing_min_x = math.huge  -- the bottom link's least x (m); it starts at x > 0
 
 local function linkEnergy(b)
   local p = b:position()
@@ -108,6 +109,7 @@ function scenario.on_update(ctx, dt)
   if input.pressed("more_links") then scenario.actions.more_links() end
   if input.pressed("fewer_links") and scenario.actions.fewer_links then scenario.actions.fewer_links() end
   emax = math.max(emax, chainEnergy() - added)
+  swing_min_x = math.min(swing_min_x, links[#links]:position().x)
 end
 
 function scenario.on_finish(ctx)
@@ -133,6 +135,10 @@ function scenario.on_finish(ctx)
   expect("joints hold", worst, {max = param("max_error", 0.05)})
   -- No energy from nowhere: the largest gain over the start, relative to m g L.
   if not grab then expect("energy does not grow", (emax - e0) / scale, {max = 0.002}) end
+  -- It swings (m): released at 60 degrees on the +x side, the bottom link
+  -- passes under the anchor to the -x side in the first swing (it starts at
+  -- x = 0.87 of the chain's length; a chain that does not move stays there).
+  if not grab then expect("bottom link swung past the vertical (least x - anchor x)", swing_min_x - top.x, {max = 0}) end
 end
 
 return scenario

@@ -64,6 +64,11 @@ function scenario.on_finish(ctx)
   expect("flag stayed finite", flag:stats().nan_events == 0)
   expect("sheet energy gain per step before contact (J)", worstGain, {max = 1e-9})
   expect("sheet lowest point (m)", lowest, {min = -1e-3})
+  -- The sheet fell from 1.2 m onto the table (top at 0.5 m): no particle
+  -- is higher than the table top plus 5 cm (m).
+  local top = -math.huge
+  for i = 1, sheet:count() do top = math.max(top, sheet:position(i).y) end
+  expect("sheet lies on the table (highest point, m)", top, {max = 0.55})
   local len, rest = stiff:length()
   expect("stiff cloth (k/m = 1e6, one step per frame) stretch / rest", len / rest - 1, {max = 0.01})
   expect("stiff cloth finite, CG converged", stiff:stats().nan_events == 0 and stiff:stats().cg_failures == 0)

@@ -76,13 +76,14 @@ function scenario.on_start(ctx)
                         rotation = rotation, density = 500, friction = 0.6, restitution = 0.2,
                         rolling_resistance = 0.2, color = color}
     end
-    bodies[#bodies + 1] = {body = b, shape = kind, size = size}
+    bodies[#bodies + 1] = {body = b, shape = kind, size = size, start_y = y}
   end
 end
 
 function scenario.on_finish(ctx)
-  local fastest, lowest, highest = 0, math.huge, -math.huge
+  local fastest, lowest, highest, fell = 0, math.huge, -math.huge, math.huge
   for _, entry in ipairs(bodies) do
+    fell = math.min(fell, entry.start_y - entry.body:position().y)
     fastest = math.max(fastest, entry.body:speed())
     local low = lowest_point(entry.body, entry.shape, entry.size)
     lowest = math.min(lowest, low)
@@ -94,6 +95,13 @@ function scenario.on_finish(ctx)
   expect("nothing sank into the plane", lowest, {min = -0.02})
   -- Nothing was launched away or fell through.
   expect("all bodies near the ground", highest, {min = 0, max = 5})
+  -- Every body fell (m): bodies of the lowest layer start with their
+  -- centres 1.5 m up and end on the plane, centre at most 0.95 m up (a
+  -- capsule on its end: 0.35 + 0.6), a fall of at least 0.55 m; each upper
+  -- layer starts 1.8 m above the one below and lands on it or beside it.
+  -- 0.3 m leaves room for a body propped on another; a world that does
+  -- not step gives 0.
+  expect("every body fell", fell, {min = 0.3})
 end
 
 return scenario

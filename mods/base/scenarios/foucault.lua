@@ -80,6 +80,8 @@ end
 
 function scenario.on_finish(ctx)
   expect("largest distance from the exact solution (m)", worst, {max = 1e-6})
+  -- Stepped through the whole run (its own time over the run's).
+  expect("pendulum stepped to the end (its time / run time)", sys:time() / ctx.time, {min = 0.999, max = 1.001})
   -- The swing plane (a line: angles modulo pi) at the last turning point.
   local d = (last_turn.angle + W * last_turn.t) % math.pi
   if d > math.pi / 2 then d = d - math.pi end

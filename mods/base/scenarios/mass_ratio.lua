@@ -76,7 +76,9 @@ function scenario.on_finish(ctx)
     local tol = s.ratio <= 100 and {drift = 0.01, sink = 0.02} or {drift = 0.03, sink = 0.03}
     expect(tag .. " heavy box horizontal drift", s.drift, {max = tol.drift})
     expect(tag .. " light box horizontal drift", s.light_drift, {max = tol.drift})
-    expect(tag .. " heavy box sink", s.heavy_sink, {max = tol.sink})
+    -- The heavy box does sink: two resting contacts settle into the overlap
+    -- the slop allows (> 0.1 mm); a world that never steps leaves it at 0.
+    expect(tag .. " heavy box sink", s.heavy_sink, {min = 1e-4, max = tol.sink})
     expect(tag .. " light box sink", s.light_sink, {max = tol.sink})
     -- Upright (tilt under 2.6 degrees).
     expect(tag .. " boxes upright", s.min_up, {min = 0.999})

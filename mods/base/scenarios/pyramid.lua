@@ -67,7 +67,10 @@ function scenario.on_finish(ctx)
   -- (5 mm, WorldSettings::linearSlop_m) and the engine's own bound on
   -- penetration is 2 cm (tests/physics), so no box, the top included, may
   -- sink by more than 2 cm over the run (m); a crushed pyramid sinks by more.
-  expect("top box sink", top_sink, {min = -0.005, max = 0.02})
+  -- It does sink: resting contacts settle into the overlap the slop allows,
+  -- so a pyramid that carries its weight sinks by more than 0.1 mm; a
+  -- world that never steps leaves it at exactly 0.
+  expect("top box sink", top_sink, {min = 1e-4, max = 0.02})
   expect("largest sink of any box", max_sink, {max = 0.02})
   -- At rest at the end (m/s).
   expect("pyramid at rest", fastest, {max = 0.05})

@@ -73,7 +73,10 @@ function scenario.on_finish(ctx)
   -- overlap up to the solver's slop (5 mm, WorldSettings::linearSlop_m), and
   -- the engine's own bound on penetration is 2 cm (tests/physics), so the
   -- whole column may shorten by at most 2 cm (m); it must not rise either.
-  expect("top box sink", sink, {min = -0.005, max = 0.02})
+  -- and it does sink: resting contacts settle into the overlap the solver
+  -- allows (its slop), so a stack that carries its weight sinks by more
+  -- than 0.1 mm; a world that never steps leaves it at exactly 0.
+  expect("top box sink", sink, {min = 1e-4, max = 0.02})
   -- Standing still at the end (m/s).
   expect("stack at rest", fastest, {max = 0.05})
   print(string.format("stack: %d boxes, top drift %.2f mm, max box offset %.2f mm, top sink %.2f mm, min up.y %.5f",

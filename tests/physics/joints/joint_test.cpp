@@ -236,6 +236,7 @@ TEST(JointSystem, BreakableJointBreaksAboveItsThresholdOnly) {
 TEST(JointSystem, SolveTimeGrowsLinearlyWithLinks) {
   std::printf("[scaling] links  rows   nnz(A)  nnz(L)  fill  solve_ms  us/link\n");
   double perLink10 = 0, perLink1000 = 0;
+  double factorPerLink10 = 0, factorPerLink1000 = 0;
   for (int n : {10, 100, 1000}) {
     World world(quietSettings());
     JointSystem joints(world);
@@ -253,11 +254,19 @@ TEST(JointSystem, SolveTimeGrowsLinearlyWithLinks) {
     std::printf("[scaling] %5d %6d %8ld %7ld %5ld %9.4f %8.3f\n", n, s.rows, s.nonZerosA, s.nonZerosL, s.fillIn, ms,
                 1000 * ms / n);
     EXPECT_EQ(s.fillIn, 0);
-    if (n == 10) perLink10 = best / n;
-    if (n == 1000) perLink1000 = best / n;
+    if (n == 10) perLink10 = best / n, factorPerLink10 = double(s.nonZerosL + s.rows) / n;
+    if (n == 1000) perLink1000 = best / n, factorPerLink1000 = double(s.nonZerosL + s.rows) / n;
   }
   std::printf("[scaling] per-link cost ratio 1000 links / 10 links = %.2f (1 = linear, 100 = quadratic)\n",
               perLink1000 / perLink10);
+  // The factor's size per link is the same for 10 and 1000 links (a chain
+  // is a tree: no fill-in, a constant number of rows per joint), within the
+  // end effects of the first and last link.
+  EXPECT_NEAR(factorPerLink1000, factorPerLink10, 0.2 * factorPerLink10);
+  // And the time: linear growth keeps the per-link cost ratio near 1,
+  // quadratic would make it 100. 10 (their geometric middle) tells the two
+  // apart even on a loaded machine (best of the repetitions).
+  EXPECT_LT(perLink1000 / perLink10, 10.0);
 }
 
 /// Largest stable dt of integrateFree for a 5-link chain released at 45
