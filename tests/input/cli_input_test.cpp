@@ -42,7 +42,7 @@ TEST(InputCli, CheckReportsBindingProblemsWithFileAndLine) {
 TEST(InputCli, ListShowsEachModsActionsByContext) {
   auto r = runTumble("list");
   EXPECT_NE(r.output.find("actions    ui: ui_up, ui_down, ui_select; game: pause_menu, pause, restart, debug_panel, "
-                          "screenshot, menu; vehicle: throttle, brake, steer (axis), handbrake, "),
+                          "screenshot, menu, console, hud; vehicle: throttle, brake, steer (axis), handbrake, "),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("steer (axis)"), std::string::npos) << r.output;
