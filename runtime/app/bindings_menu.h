@@ -59,6 +59,9 @@ class BindingsMenu {
 /// What the player asked play for in a frame beyond render::Controls.
 struct FrameRequests {
   bool restart = false;  ///< the restart key or the pause menu's Restart
+  bool changeVehicle = false;  ///< the pause menu's Change vehicle
+  bool settings = false;       ///< the pause menu's Settings
+  bool mainMenu = false;       ///< the pause menu's Main menu
 };
 
 /// Once per rendered frame, after Renderer::processEvents: the app's own
