@@ -232,6 +232,15 @@ void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Cont
         if (requests) requests->restart = true;
         break;
       case PauseMenu::Choice::Quit: controls.quitRequested = true; break;
+      case PauseMenu::Choice::ChangeVehicle:
+        if (requests) requests->changeVehicle = true;
+        break;
+      case PauseMenu::Choice::Settings:
+        if (requests) requests->settings = true;
+        break;
+      case PauseMenu::Choice::MainMenu:
+        if (requests) requests->mainMenu = true;
+        break;
       case PauseMenu::Choice::Resume:
       case PauseMenu::Choice::None: break;
     }

@@ -72,6 +72,9 @@ struct FrameRequests {
   bool restart = false;  ///< the restart key or the pause menu's Restart
   bool toggleConsole = false;  ///< the console key: the script-error console (app/script_console.h)
   bool toggleHud = false;      ///< the hud key: the driving HUD on or off (app/driving_hud.h)
+  bool changeVehicle = false;  ///< the pause menu's Change vehicle
+  bool settings = false;       ///< the pause menu's Settings
+  bool mainMenu = false;       ///< the pause menu's Main menu
 };
 
 /// Once per rendered frame, after Renderer::processEvents: the app's own

@@ -24,7 +24,7 @@ struct CommandState {
   std::vector<std::string> modDirs;
   RunOptions run;
   PlayOptions play;
-  std::string playScenarioRef = "base:drop";
+  std::string playScenarioRef;  // empty: the main menu
   std::string runScenarioRef;
   std::vector<std::string> runSets, playSets;
   std::string checkDir;
@@ -129,7 +129,7 @@ void addCommands(CLI::App& cli, int* exitCode) {
   cli.fallthrough();
 
   CLI::App* play = cli.add_subcommand("play", "play a scenario in a window (offscreen when there is no display)");
-  play->add_option("scenario", st->playScenarioRef, "MOD:SCENARIO (default base:drop)");
+  play->add_option("scenario", st->playScenarioRef, "MOD:SCENARIO (default: the main menu)");
   play->add_option("--width", st->play.width, "window width, px")->check(CLI::Range(64, 16384));
   play->add_option("--height", st->play.height, "window height, px")->check(CLI::Range(64, 16384));
   play->add_option("--screenshot", st->play.screenshotPath,
@@ -145,9 +145,14 @@ void addCommands(CLI::App& cli, int* exitCode) {
                    "write what the player saw (JSON): scenario, pause menu, vehicle speed and distance, "
                    "frame times, state hash");
   play->add_flag("--mute", st->play.mute, "no sound: open no audio device");
+  play->add_option("--quality", st->play.quality, "rendering quality preset: low, medium or high (default: the saved setting)")
+      ->check(CLI::IsMember({"low", "medium", "high"}));
   addSceneOptions(play, st->play.scene, st->playSets);
   play->callback([st, exitCode, play] {
     st->play.screenshotGiven = play->count("--screenshot") > 0;
+    st->play.sizeGiven = play->count("--width") > 0 || play->count("--height") > 0;
+    st->play.menu = st->playScenarioRef.empty();
+    if (st->play.menu) st->playScenarioRef = "base:drop";  // what play shows without a display
     if (auto s = finishSceneOptions(st->play.scene, st->playScenarioRef, *st, st->playSets); !s) {
       log::error(s.error());
       *exitCode = 1;

@@ -17,8 +17,16 @@ const ImVec4 kItemHover(0.30f, 0.34f, 0.40f, 1.0f);
 
 }  // namespace
 
-PauseMenu::PauseMenu()
-    : m_items{{"Resume", Choice::Resume}, {"Restart", Choice::Restart}, {"Quit to desktop", Choice::Quit}} {}
+PauseMenu::PauseMenu() { setVehicleChoice(false); }
+
+void PauseMenu::setVehicleChoice(bool offered) {
+  m_items = {{"Resume", Choice::Resume}, {"Restart", Choice::Restart}};
+  if (offered) m_items.push_back({"Change vehicle", Choice::ChangeVehicle});
+  m_items.push_back({"Settings", Choice::Settings});
+  m_items.push_back({"Main menu", Choice::MainMenu});
+  m_items.push_back({"Quit to desktop", Choice::Quit});
+  m_selected = std::min(m_selected, int(m_items.size()) - 1);
+}
 
 void PauseMenu::setInput(input::InputSystem* input) {
   m_input = input;
@@ -111,7 +119,10 @@ void PauseMenu::draw() {
         m_selected = i;
         choose(item.choice);
       }
-      if (ImGui::IsItemHovered()) m_selected = i;
+      // The pointer picks what it moves over; resting on an item does not
+      // undo the keyboard's choice.
+      const ImVec2 moved = ImGui::GetIO().MouseDelta;
+      if (ImGui::IsItemHovered() && (moved.x != 0 || moved.y != 0)) m_selected = i;
       ImGui::PopStyleColor(3);
       m_layout.push_back({item.label, at.x, at.y, kItemWidth_px, kItemHeight_px});
     }

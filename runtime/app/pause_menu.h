@@ -1,6 +1,7 @@
 #pragma once
 // The pause menu (Escape or the pad's Start button in a scene): Resume,
-// Restart, Quit to desktop. The game waits while it is open; Escape again
+// Restart, Change vehicle (driving scenarios: the vehicle picker, then a
+// restart with the new car), Settings, Main menu, Quit to desktop. The game waits while it is open; Escape again
 // resumes. Mouse: click an item. Keyboard and pad: the `ui` input context
 // (ui_up, ui_down, ui_select; base's bindings.lua) is on while the menu is
 // open and moves the highlight / picks the item.
@@ -19,7 +20,7 @@ namespace tumble::app {
 
 class PauseMenu {
  public:
-  enum class Choice { None, Resume, Restart, Quit };
+  enum class Choice { None, Resume, Restart, ChangeVehicle, Settings, MainMenu, Quit };
   struct Item {
     std::string label;
     Choice choice;
@@ -36,6 +37,8 @@ class PauseMenu {
   /// The input system whose `ui` context the menu switches (a restart makes
   /// a new scene, hence a new input system). Null: keyboard navigation off.
   void setInput(input::InputSystem* input);
+  /// Offers "Change vehicle" (the scenario takes a vehicle, app/game_catalog.h).
+  void setVehicleChoice(bool offered);
 
   void open();
   void close();

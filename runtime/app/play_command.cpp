@@ -13,6 +13,11 @@
 #include "app/bindings_menu.h"
 #include "app/driving_hud.h"
 #include "app/fixed_step.h"
+#include "app/game_catalog.h"
+#include "app/main_menu.h"
+#include "app/paths.h"
+#include "app/player_settings.h"
+#include "app/thumbnails.h"
 #include "app/pause_menu.h"
 #include "app/play_events.h"
 #include "app/run_report.h"
@@ -24,8 +29,9 @@
 #include "input/overrides_file.h"
 #include "render/camera_rig.h"
 #include "app/scene_audio.h"
-#include "audio/volume_settings.h"
 #include "script/hot_reload.h"
+#include "script/mod_bindings.h"
+#include "script/tunables.h"
 #include "vehicle/vehicle_system.h"
 
 namespace tumble::app {
@@ -84,7 +90,12 @@ struct VehicleTrack {
     });
     const physics::Body& b = scene.world().body(chassis);
     const Vec3 up = b.orientation * Vec3::UnitY();
-    return {{"speed_kmh", speed_mps * 3.6},
+    std::string name;
+    vs->forEach([&](vehicle::VehicleId id) {
+      if (vs->chassis(id) == chassis) name = vs->def(id).name;
+    });
+    return {{"name", name},
+            {"speed_kmh", speed_mps * 3.6},
             {"distance_m", distance_m},
             {"start_heading_deg", startHeading_deg},
             {"heading_deg", heading_deg(b)},
@@ -129,7 +140,6 @@ std::unique_ptr<PlaySession> startSession(std::unique_ptr<Scene> scene, render::
   input::InputSystem& in = sc.input();
   s->bindings = std::make_unique<BindingsMenu>(in, input::bindingsConfigPath());
   if (Status st = in.enableGamepads(); !st) log::info("input: " + st.error());
-  renderer.setEventHook([&in](const SDL_Event& e, bool hudWants) { return in.handleEvent(e, hudWants); });
   pauseMenu.setInput(&in);
   // Live editing: saved .lua files of the mod take effect (polled at 4 Hz).
   // Emitter files change the running emitters made from them; bindings.lua
@@ -206,17 +216,54 @@ int playOffscreenSnapshot(const PlayOptions& o, Scene& scene, render::Renderer& 
   return 0;
 }
 
+// The renderer's share of a quality preset.
+render::RenderQuality renderQuality(const QualityPreset& p) {
+  render::RenderQuality q;
+  q.resolutionScale = p.resolutionScale;
+  q.farPlane_m = p.farPlane_m;
+  q.fogDistance_m = p.fogStart_m;
+  q.terrainLodPixels = p.terrainLodPixels;
+  q.msaaSamples = p.msaaSamples;
+  q.shadows = p.shadows;
+  return q;
+}
+
+// At most `budget` particles are drawn: beyond it an evenly spaced subset
+// (every k-th), so a dense cloud thins out rather than losing one end. The
+// simulation keeps every particle.
+void thinParticles(render::FrameSnapshot& snap, int budget) {
+  auto thin = [](std::vector<render::DrawParticle>& v, std::size_t keep) {
+    if (v.size() <= keep) return;
+    const double stride = double(v.size()) / double(std::max<std::size_t>(1, keep));
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < keep; ++i) v[out++] = v[std::size_t(double(i) * stride)];
+    v.resize(out);
+  };
+  const std::size_t total = snap.particles.size() + snap.additiveParticles.size();
+  if (budget < 0 || total <= std::size_t(budget)) return;
+  const double share = double(budget) / double(total);
+  thin(snap.particles, std::size_t(double(snap.particles.size()) * share));
+  thin(snap.additiveParticles, std::size_t(double(snap.additiveParticles.size()) * share));
+}
+
+// The window for the main menu, before any scene exists.
+Result<std::unique_ptr<render::Renderer>> makeMenuRenderer(int w, int h, bool offscreen) {
+  render::WindowConfig cfg;
+  cfg.width = w;
+  cfg.height = h;
+  cfg.title = "Tumble";
+  cfg.forceOffscreen = offscreen;
+  auto r = render::Renderer::create(cfg);
+  if (!r) return makeError("cannot open a window or an offscreen GL context: " + r.error());
+  return r;
+}
+
 }  // namespace
 
 int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   PlayOptions o = options;
-  // Sound: the default device unless --mute; the player's volumes.
+  // Sound: the default device unless --mute.
   o.scene.audioOutput = o.mute ? audio::AudioOutput::Silent : audio::AudioOutput::Device;
-  if (const std::string bindings = input::bindingsConfigPath(); !bindings.empty()) {
-    const std::string settings = (std::filesystem::path(bindings).parent_path() / "settings.json").string();
-    if (auto v = audio::readVolumes(settings); v) o.scene.volumes = *v;
-    else log::warn("settings: " + v.error());
-  }
   const bool scripted = o.frames >= 0;
   std::vector<PlayEvent> events;
   if (!o.eventsPath.empty()) {
@@ -231,36 +278,150 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     }
     events = std::move(*loaded);
   }
-  auto first = createPlayScene(o.scene);
-  if (!first) {
-    log::error(first.error());
-    return 1;
+  // The player's settings; a broken file is reported and the defaults used.
+  const std::string settingsFile = settingsPath();
+  PlayerSettings settings;
+  std::string settingsProblem;
+  if (auto loaded = loadPlayerSettings(settingsFile)) {
+    settings = *loaded;
+  } else {
+    settingsProblem = loaded.error() + " -- using the default settings; the file is rewritten when you change one";
+    log::error("settings: " + settingsProblem);
+  }
+  // The player's volumes (the settings page changes them while playing).
+  o.scene.volumes = audio::AudioVolumes{float(settings.volume_master), float(settings.volume_effects),
+                                        float(settings.volume_engine)};
+  QualityLevel quality = settings.quality;
+  if (!o.quality.empty()) {
+    auto q = parseQuality(o.quality);
+    if (!q) {
+      log::error("--quality: " + q.error());
+      return 1;
+    }
+    quality = *q;
+  }
+  const int width = o.sizeGiven ? o.width : settings.width, height = o.sizeGiven ? o.height : settings.height;
+
+  std::unique_ptr<Scene> first;
+  if (!o.menu) {
+    auto created = createPlayScene(o.scene);
+    if (!created) {
+      log::error(created.error());
+      return 1;
+    }
+    first = std::move(*created);
   }
   // --frames always renders offscreen, so a test gives the same pictures and
   // events with or without a display.
-  auto r = makeRenderer(**first, o.width, o.height, scripted, true);
+  auto r = first ? makeRenderer(*first, width, height, scripted, true) : makeMenuRenderer(width, height, scripted);
   if (!r) {
     log::error(r.error());
     return 1;
   }
   render::Renderer& renderer = *r.value();
-  if (renderer.offscreen() && !scripted) return playOffscreenSnapshot(o, **first, renderer, processClock);
+  auto applyQuality = [&] { renderer.setQuality(renderQuality(qualityPreset(quality))); };
+  applyQuality();
+  if (renderer.offscreen() && !scripted) {
+    if (!first) {  // nobody can see a menu: show the default scenario as before
+      std::printf("No display for the main menu: playing %s.\n", o.scene.scenarioRef.c_str());
+      auto created = createPlayScene(o.scene);
+      if (!created) {
+        log::error(created.error());
+        return 1;
+      }
+      first = std::move(*created);
+      first->noteSubsystem("render");
+    }
+    return playOffscreenSnapshot(o, *first, renderer, processClock);
+  }
+  if (!o.sizeGiven && settings.fullscreen && !scripted) renderer.setWindowMode(width, height, true);
+
+  GameCatalog catalog(modSearchDirs(o.scene.modDirs));
+  ThumbnailCache thumbnails(renderer, o.scene.modDirs);
+  MainMenu mainMenu(catalog, settings, settingsFile, &thumbnails);
+  if (!settingsProblem.empty()) mainMenu.setStatus(settingsProblem);
+  // The menu's own keys and pad buttons (no mod needs to be loaded).
+  input::InputSystem menuInput(menuBindings());
+  if (Status st = menuInput.enableGamepads(); !st) log::info("input: " + st.error());
+  // The bindings menu reached from the main menu's settings (no scene): the
+  // actions of every mod found, the player's overrides.
+  std::unique_ptr<input::InputSystem> looseInput;
+  std::unique_ptr<BindingsMenu> looseBindings;
 
   PauseMenu pauseMenu;
-  std::unique_ptr<PlaySession> session = startSession(std::move(*first), renderer, pauseMenu);
+  SceneOptions current = o.scene;  // what the session plays (the menu's choice of scenario and vehicle)
+  std::unique_ptr<PlaySession> session;
+  auto offersVehicle = [&](const std::string& ref) {
+    const ScenarioEntry* e = catalog.scenario(ref);
+    return e != nullptr && e->takesVehicle;
+  };
+  if (first) {
+    session = startSession(std::move(first), renderer, pauseMenu);
+    pauseMenu.setVehicleChoice(offersVehicle(current.scenarioRef));
+  } else {
+    mainMenu.openRoot();
+  }
   GameHud gameHud;  // speed, rpm, gear, lap, minimap, messages, script-error console
-  renderer.addHudPanel([&gameHud] { gameHud.draw(); });
+  renderer.addHudPanel([&gameHud, &session] {
+    if (session) gameHud.draw();
+  });
+  auto openBindingsMenu = [&]() -> BindingsMenu* {
+    if (session) return session->bindings->isOpen() ? session->bindings.get() : nullptr;
+    return looseBindings && looseBindings->isOpen() ? looseBindings.get() : nullptr;
+  };
+  // Events go to what the player is looking at: the bindings menu's actions
+  // while it is open, else the main menu's keys, else the game's actions.
+  renderer.setEventHook([&](const SDL_Event& e, bool hudWants) {
+    if (openBindingsMenu()) return session ? session->scene->input().handleEvent(e, hudWants)
+                                           : looseInput->handleEvent(e, hudWants);
+    // Every input hears a release: a key pressed in one (Return choosing a
+    // pause menu item) and let go in another (the menu page it opened) must
+    // not stay held there and fire again when that one listens again.
+    if (e.type == SDL_KEYUP || e.type == SDL_MOUSEBUTTONUP || e.type == SDL_CONTROLLERBUTTONUP) {
+      menuInput.handleEvent(e, hudWants);
+      if (looseInput) looseInput->handleEvent(e, hudWants);
+      if (session) session->scene->input().handleEvent(e, hudWants);
+    }
+    if (e.type == SDL_QUIT || e.type == SDL_WINDOWEVENT) {  // closing and resizing the window always work
+      if (session) session->scene->input().handleEvent(e, hudWants);
+      return false;
+    }
+    if (mainMenu.isOpen()) {
+      menuInput.handleEvent(e, hudWants);
+      return true;  // nothing of the game (camera, pause keys) under the menu
+    }
+    if (session) return session->scene->input().handleEvent(e, hudWants);
+    return true;
+  });
   // The HUD's extra windows follow the current session (a restart replaces it).
-  renderer.addHudPanel([&session] { session->bindings->draw(); });
+  renderer.addHudPanel([&mainMenu] { mainMenu.draw(); });
   renderer.addHudPanel([&pauseMenu] { pauseMenu.draw(); });
+  renderer.addHudPanel([&] {
+    if (session) session->bindings->draw();
+    else if (looseBindings) looseBindings->draw();
+  });
   render::TuningPanel tuning;
   auto setUpTuning = [&] {
     tuning = render::TuningPanel{};
+    if (!session) return;
     tuning.title = session->scene->name();
     tuning.overridesPath = script::tuneOverridesPath(session->scene->host().mod().name);
   };
   setUpTuning();
   renderer.setTuningPanel(&tuning);
+  // Replaces the session with a fresh one from `options`; false (and the
+  // message on the HUD or the menu) if the scenario cannot start.
+  auto startFresh = [&](const SceneOptions& options) -> Status {
+    auto fresh = createPlayScene(options);
+    if (!fresh) return makeError(fresh.error());
+    session.reset();  // the old scene's systems go before the new ones start
+    session = startSession(std::move(*fresh), renderer, pauseMenu);
+    gameHud.newSession();
+    current = options;
+    pauseMenu.setVehicleChoice(offersVehicle(current.scenarioRef));
+    setUpTuning();
+    return Ok{};
+  };
 
   RunTimings frame;
   render::Controls controls;
@@ -271,10 +432,11 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   double fps = 0;
   int shots = 0;
   double lastRender_s = 0;
-  std::vector<double> frameMs;
+  std::vector<double> frameMs, simulationMs, renderMs;  // per frame: all, the fixed steps, drawFrame
   std::size_t nextEvent = 0;
   float pointer[2] = {0, 0};
   long long frameNo = 0;
+  bool menuPausedGame = false, pausedBeforeMenu = false;
   for (; !controls.quitRequested && (!scripted || frameNo < o.frames); ++frameNo) {
     Stopwatch frameClock;
     // Scripted input goes into SDL's own queue, then takes the player's path.
@@ -283,63 +445,131 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       if (SDL_PushEvent(&e) < 0) log::warn(std::string("events: SDL_PushEvent failed: ") + SDL_GetError());
     }
     renderer.processEvents(controls);
+    for (int a : menuInput.takeFramePresses())
+      if (mainMenu.isOpen() && !openBindingsMenu()) mainMenu.onAction(menuInput.action(a).name);
     FrameRequests requests;
-    applyFrameInput(session->scene->input(), *session->bindings, controls, renderer, &pauseMenu, &requests);
+    if (session) applyFrameInput(session->scene->input(), *session->bindings, controls, renderer, &pauseMenu, &requests);
+    else if (looseBindings) applyFrameInput(*looseInput, *looseBindings, controls, renderer);
     if (requests.toggleConsole) gameHud.console().toggle();
     if (requests.toggleHud) gameHud.toggleVisible();
-    if (requests.restart) {
+    if (requests.changeVehicle) mainMenu.openVehicles(current.scenarioRef);
+    if (requests.settings) mainMenu.openSettings();
+    if (requests.mainMenu) {  // the scene goes; the menu's root comes back
+      session.reset();
+      pauseMenu.setInput(nullptr);
+      setUpTuning();
+      controls.paused = false;
+      menuPausedGame = false;
+      mainMenu.openRoot();
+    }
+    MainMenu::Requests menuRequests = mainMenu.takeRequests();
+    if (menuRequests.quit) controls.quitRequested = true;
+    if (menuRequests.backToGame && session) pauseMenu.open();
+    if (menuRequests.openBindings) {
+      if (session) {
+        session->bindings->toggle();
+      } else {
+        if (!looseBindings) {
+          looseInput = std::make_unique<input::InputSystem>(script::loadBindings(catalog.mods()).set);
+          looseBindings = std::make_unique<BindingsMenu>(*looseInput, input::bindingsConfigPath());
+        }
+        looseBindings->toggle();
+      }
+    }
+    if (menuRequests.settingsChanged) {
+      if (!scripted) renderer.setWindowMode(settings.width, settings.height, settings.fullscreen);
+      // The volumes apply at once, and to every scene started from now on.
+      o.scene.volumes = audio::AudioVolumes{float(settings.volume_master), float(settings.volume_effects),
+                                            float(settings.volume_engine)};
+      current.volumes = o.scene.volumes;
+      if (session)
+        if (audio::AudioSystem* a = session->scene->audioIfAny()) a->setVolumes(o.scene.volumes);
+      if (o.quality.empty()) quality = settings.quality;  // --quality wins for this session
+      applyQuality();
+    }
+    if (menuRequests.startScenario) {
+      SceneOptions next = o.scene;
+      next.scenarioRef = *menuRequests.startScenario;
+      if (menuRequests.vehicle) next.sets[kVehicleParam] = *menuRequests.vehicle;
+      if (Status st = startFresh(next); !st) {
+        log::error("start: " + st.error());
+        if (session) {
+          session->scene->host().addMessage("cannot start: " + st.error(), 5);
+        } else {
+          mainMenu.openRoot();
+          mainMenu.setStatus("cannot start " + next.scenarioRef + ": " + st.error());
+        }
+      }
+      menuPausedGame = false;
+      controls.paused = false;
+      controls.stepOnce = false;
+    }
+    if (requests.restart && session) {
       // A fresh scene from the same options: the start state again. If the
       // scenario cannot start now (a broken edit), the current one goes on.
-      auto fresh = createPlayScene(o.scene);
-      if (fresh) {
-        session.reset();  // the old scene's systems go before the new ones start
-        session = startSession(std::move(*fresh), renderer, pauseMenu);
-        setUpTuning();
-        gameHud.newSession();
+      if (Status st = startFresh(current); st) {
         ++restarts;
         controls.paused = false;
         controls.stepOnce = false;
       } else {
-        log::error("restart: " + fresh.error());
-        session->scene->host().addMessage("restart failed: " + fresh.error(), 5);
+        log::error("restart: " + st.error());
+        session->scene->host().addMessage("restart failed: " + st.error(), 5);
       }
     }
-    Scene& scene = *session->scene;
+    // The game waits while a menu page is over it.
+    if (session && mainMenu.isOpen() && !menuPausedGame) {
+      menuPausedGame = true;
+      pausedBeforeMenu = controls.paused;
+      controls.paused = true;
+    } else if (menuPausedGame && !mainMenu.isOpen()) {
+      menuPausedGame = false;
+      controls.paused = pausedBeforeMenu;
+    }
+    if (session) pauseMenu.syncPause(controls);  // back from a page to the pause menu: still no step
     double now = clock.seconds();
-    for (const script::ReloadEvent& e : session->hotReload->poll(now, session->time_s, session->step))
-      if (e.ok) {
-        scene.host().addMessage(e.message, 3);  // failures are already on the HUD as errors
-        gameHud.reloaded();                     // ... and leave it once the fix is in
-      }
-    // Scripted frames each take one fixed step (the same steps on any
-    // machine); a window takes the steps due in the wall time that passed.
-    double elapsed = scripted ? scene.dt_s() : std::min(now - last, 0.25);  // avoid the spiral of death after a stall
+    double elapsed = std::min(now - last, 0.25);  // avoid the spiral of death after a stall
     last = now;
-    if (!controls.paused) session->accumulator += elapsed * (scripted ? 1.0 : controls.timeScale);
-    if (controls.stepOnce) {
-      session->accumulator += scene.dt_s();
-      controls.stepOnce = false;
+    if (session) {
+      Scene& scene = *session->scene;
+      for (const script::ReloadEvent& e : session->hotReload->poll(now, session->time_s, session->step))
+        if (e.ok) {
+          scene.host().addMessage(e.message, 3);  // failures are already on the HUD as errors
+          gameHud.reloaded();                     // ... and leave it once the fix is in
+        }
+      // Scripted frames each take one fixed step (the same steps on any
+      // machine); a window takes the steps due in the wall time that passed.
+      if (scripted) elapsed = scene.dt_s();
+      if (!controls.paused) session->accumulator += elapsed * (scripted ? 1.0 : controls.timeScale);
+      if (controls.stepOnce) {
+        session->accumulator += scene.dt_s();
+        controls.stepOnce = false;
+      }
+      frame = RunTimings{};
+      Stopwatch simulationClock;
+      while (session->accumulator >= scene.dt_s() - (scripted ? 1e-9 : 0.0)) {  // the step may change (world.set_dt)
+        const double h = scene.dt_s();
+        scene.savePreviousState();
+        stepScene(scene, StepTime{session->time_s, session->step}, frame);
+        session->vehicle.afterStep(scene);
+        ++session->step;
+        session->time_s += h;
+        session->accumulator = std::max(0.0, session->accumulator - h);
+      }
+      simulationMs.push_back(simulationClock.seconds() * 1000);
+      const double alpha = std::clamp(session->accumulator / scene.dt_s(), 0.0, 1.0);
+      session->director.update(scene, alpha, float(elapsed), renderer.camera());
+      scene.setListener(listenerAtCamera(renderer.camera()));  // heard where it is seen (next step's audio)
+      if (!session->director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
+        renderer.camera().target = dynamicCentroid(scene);
+      }
+      scene.setCollisionView(controls.collisionView);  // F3
+      scene.snapshot(snap, alpha);
+      session->director.decorate(scene, alpha, renderer.camera(), snap);
+      thinParticles(snap, qualityPreset(quality).particleBudget);
+      snap.simTime_s = session->time_s;
+    } else {
+      snap = render::FrameSnapshot{};  // the menu over the sky
     }
-    frame = RunTimings{};
-    while (session->accumulator >= scene.dt_s() - (scripted ? 1e-9 : 0.0)) {  // the step may change (world.set_dt)
-      const double h = scene.dt_s();
-      scene.savePreviousState();
-      stepScene(scene, StepTime{session->time_s, session->step}, frame);
-      session->vehicle.afterStep(scene);
-      ++session->step;
-      session->time_s += h;
-      session->accumulator = std::max(0.0, session->accumulator - h);
-    }
-    const double alpha = std::clamp(session->accumulator / scene.dt_s(), 0.0, 1.0);
-    session->director.update(scene, alpha, float(elapsed), renderer.camera());
-    scene.setListener(listenerAtCamera(renderer.camera()));  // heard where it is seen (next step's audio)
-    if (!session->director.hasTarget() && renderer.camera().mode == render::CameraMode::Follow) {
-      renderer.camera().target = dynamicCentroid(scene);
-    }
-    scene.setCollisionView(controls.collisionView);  // F3
-    scene.snapshot(snap, alpha);
-    session->director.decorate(scene, alpha, renderer.camera(), snap);
-    snap.simTime_s = session->time_s;
     std::string shot;
     if (controls.screenshotRequested) {
       shot = "tumble-screenshot-" + std::to_string(++shots) + ".png";
@@ -348,13 +578,17 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     if (scripted && o.screenshotGiven && frameNo + 1 == o.frames) shot = o.screenshotPath;  // the last frame
     Stopwatch rs;
     frame.render_s = lastRender_s;
-    if (controls.tuningPanelVisible) fillTuningPanel(scene.host().tunables(), tuning);
-    gameHud.update(scene, session->time_s);
-    render::HudStats stats = hudStats(scene, fps, frame, session->time_s);
-    stats.messages.clear();  // the game HUD shows them, coloured by kind
-    Status st = renderer.drawFrame(snap, stats, controls, shot.empty() ? nullptr : shot.c_str());
-    applyTuningPanel(tuning, scene.host().tunables(), scene.host().mod().name);
+    if (session && controls.tuningPanelVisible) fillTuningPanel(session->scene->host().tunables(), tuning);
+    render::HudStats hud;
+    if (session) {
+      gameHud.update(*session->scene, session->time_s);
+      hud = hudStats(*session->scene, fps, frame, session->time_s);
+      hud.messages.clear();  // the game HUD shows them, coloured by kind
+    }
+    Status st = renderer.drawFrame(snap, hud, controls, shot.empty() ? nullptr : shot.c_str());
+    if (session) applyTuningPanel(tuning, session->scene->host().tunables(), session->scene->host().mod().name);
     lastRender_s = rs.seconds();
+    renderMs.push_back(lastRender_s * 1000);
     if (!shot.empty()) {
       if (st) log::info("screenshot saved: " + shot);
       else log::error("screenshot: " + st.error());
@@ -367,48 +601,84 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     }
     frameMs.push_back(frameClock.seconds() * 1000);
   }
-  Scene& scene = *session->scene;
   if (!o.reportPath.empty()) {
     nlohmann::json items = nlohmann::json::array();
     for (const PauseMenu::ItemRect& it : pauseMenu.lastLayout())
       items.push_back({{"label", it.label}, {"x_px", it.x_px}, {"y_px", it.y_px}, {"w_px", it.w_px}, {"h_px", it.h_px}});
+    nlohmann::json menuItems = nlohmann::json::array();
+    for (const MainMenu::ItemRect& it : mainMenu.lastLayout())
+      menuItems.push_back({{"label", it.label}, {"x_px", it.x_px}, {"y_px", it.y_px}, {"w_px", it.w_px}, {"h_px", it.h_px}});
     nlohmann::json errors = nlohmann::json::array();
-    for (const auto& e : scene.host().errors())
-      errors.push_back({{"mod", e.mod}, {"file", e.file}, {"line", e.line}, {"message", e.message}});
+    if (session)
+      for (const auto& e : session->scene->host().errors())
+        errors.push_back({{"mod", e.mod}, {"file", e.file}, {"line", e.line}, {"message", e.message}});
     const auto& selectedItem = pauseMenu.items()[std::size_t(pauseMenu.selected())];
     nlohmann::json bindingButtons = nlohmann::json::array();
-    for (const BindingsMenu::ButtonRect& b : session->bindings->lastLayout())
-      bindingButtons.push_back({{"action", b.action}, {"slot", b.slot}, {"label", b.label}, {"x_px", b.x_px},
-                                {"y_px", b.y_px}, {"w_px", b.w_px}, {"h_px", b.h_px}});
+    if (BindingsMenu* bm = session ? session->bindings.get() : looseBindings.get())
+      for (const BindingsMenu::ButtonRect& b : bm->lastLayout())
+        bindingButtons.push_back({{"action", b.action}, {"slot", b.slot}, {"label", b.label}, {"x_px", b.x_px},
+                                  {"y_px", b.y_px}, {"w_px", b.w_px}, {"h_px", b.h_px}});
+    const QualityPreset preset = qualityPreset(quality);
+    nlohmann::json vehicleDefinition = nullptr;
+    if (session && offersVehicle(current.scenarioRef)) {
+      auto set = current.sets.find(kVehicleParam);
+      vehicleDefinition = set != current.sets.end() ? set->second : catalog.scenario(current.scenarioRef)->defaultVehicle;
+    }
     nlohmann::json report = {
-        {"scenario", scene.name()},
-        {"title", scene.host().title()},
+        {"scenario", session ? nlohmann::json(session->scene->name()) : nlohmann::json(nullptr)},
+        {"title", session ? nlohmann::json(session->scene->host().title()) : nlohmann::json(nullptr)},
         {"frames", frameNo},
-        {"steps", session->step},
-        {"simulated_seconds", session->time_s},
+        {"steps", session ? session->step : 0},
+        {"simulated_seconds", session ? session->time_s : 0.0},
         {"restarts", restarts},
         {"quit", controls.quitRequested},
         {"paused", controls.paused},
+        {"menu", {{"page", MainMenu::pageName(mainMenu.page())},
+                  {"open", mainMenu.isOpen()},
+                  {"selected", mainMenu.isOpen() ? nlohmann::json(mainMenu.selectedLabel()) : nlohmann::json(nullptr)},
+                  {"items", menuItems},
+                  {"thumbnail", mainMenu.thumbnailStatus()}}},
         {"pause_menu", {{"open", pauseMenu.isOpen()}, {"selected", selectedItem.label}, {"items", items}}},
-        {"bindings_menu_open", session->bindings->isOpen()},
+        {"bindings_menu_open", openBindingsMenu() != nullptr},
         {"debug_panel", controls.debugPanelVisible},
         {"camera", render::cameraModeName(renderer.camera().mode)},
-        {"vehicle", session->vehicle.report(scene)},
+        {"vehicle_definition", vehicleDefinition},
+        {"vehicle", session ? session->vehicle.report(*session->scene) : nlohmann::json(nullptr)},
+        {"quality", {{"preset", qualityName(quality)},
+                     {"resolution_scale", preset.resolutionScale},
+                     {"far_plane_m", preset.farPlane_m},
+                     {"fog_start_m", preset.fogStart_m},
+                     {"terrain_lod_pixels", preset.terrainLodPixels},
+                     {"particle_budget", preset.particleBudget},
+                     {"msaa_samples", preset.msaaSamples},
+                     {"shadows", preset.shadows}}},
+        {"settings", {{"file", settingsFile},
+                      {"problem", settingsProblem.empty() ? nlohmann::json(nullptr) : nlohmann::json(settingsProblem)},
+                      {"width", settings.width},
+                      {"height", settings.height},
+                      {"fullscreen", settings.fullscreen},
+                      {"quality", qualityName(settings.quality)},
+                      {"volume_master", settings.volume_master},
+                      {"volume_effects", settings.volume_effects},
+                      {"volume_engine", settings.volume_engine}}},
         {"frame_ms", {{"p50", percentile(frameMs, 0.5)}, {"p95", percentile(frameMs, 0.95)},
-                      {"max", frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end())}}},
-        {"hud_messages", hudStats(scene, fps, frame, session->time_s).messages},
+                      {"max", frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end())},
+                      {"simulation_p50", percentile(simulationMs, 0.5)},
+                      {"render_p50", percentile(renderMs, 0.5)}}},
+        {"hud_messages", session ? nlohmann::json(hudStats(*session->scene, fps, frame, session->time_s).messages)
+                                 : nlohmann::json::array()},
         {"hud", gameHud.report()},
         {"bindings_menu_buttons", bindingButtons},
         {"script_errors", errors},
-        {"state_hash", stateHashText(scene)},
+        {"state_hash", session ? nlohmann::json(stateHashText(*session->scene)) : nlohmann::json(nullptr)},
     };
     if (auto st = writeReport(o.reportPath, report); !st) {
       log::error("report: " + st.error());
-      scene.finish(session->time_s, session->step);
+      if (session) session->scene->finish(session->time_s, session->step);
       return 1;
     }
   }
-  scene.finish(session->time_s, session->step);
+  if (session) session->scene->finish(session->time_s, session->step);
   return 0;
 }
 

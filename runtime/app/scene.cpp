@@ -76,6 +76,14 @@ Result<script::ParamDecls> Scene::declaredParams(const SceneOptions& options) {
   return (*scene)->host().declaredParams();
 }
 
+Result<Scene::Summary> Scene::summarize(const SceneOptions& options) {
+  SceneOptions bare = options;
+  bare.sets.clear();
+  auto scene = build(bare, true);
+  if (!scene) return makeError(scene.error());
+  return Summary{(*scene)->host().title(), (*scene)->host().declaredParams()};
+}
+
 Result<std::unique_ptr<Scene>> Scene::build(const SceneOptions& options, bool scriptOnly) {
   auto ref = script::parseScenarioRef(options.scenarioRef);
   if (!ref) return makeError(ref.error());

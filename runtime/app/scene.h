@@ -82,6 +82,13 @@ class Scene final : public script::SceneSystems {
   /// it has none), read by loading the scenario file without running it:
   /// no terrain, no on_start. Tools check --set names against it.
   static Result<script::ParamDecls> declaredParams(const SceneOptions& options);
+  /// The scenario's title and declared parameters, read the same way (the
+  /// main menu's list of scenarios).
+  struct Summary {
+    std::string title;
+    script::ParamDecls params;
+  };
+  static Result<Summary> summarize(const SceneOptions& options);
   ~Scene();
 
   physics::World& world() override { return *m_world; }

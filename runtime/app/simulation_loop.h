@@ -50,6 +50,10 @@ struct PlayOptions {
   std::string eventsPath;  ///< --events FILE: scripted input (app/play_events.h)
   std::string reportPath;  ///< --report FILE: what the player saw (docs/play-report.md)
   bool mute = false;       ///< --mute: no audio device at all
+  /// No scenario on the command line: the main menu (app/main_menu.h).
+  bool menu = false;
+  bool sizeGiven = false;  ///< --width or --height given: they win over the saved settings
+  std::string quality;     ///< --quality low|medium|high; empty: the saved setting
 };
 
 /// `tumble run`: headless unless a screenshot is asked for. Returns the exit

@@ -12,13 +12,16 @@ namespace tumble::render {
 Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
   auto impl = std::make_unique<Impl>();
   impl->config = config;
+  impl->quality.msaaSamples = config.msaaSamples;
+  impl->quality.terrainLodPixels = config.terrainLodPixels;
+  impl->quality.fogDistance_m = 1.0f / impl->environment.fogDensity_per_m;
   auto context = GlContext::create({config.width, config.height, config.title, config.forceOffscreen});
   if (!context) return makeError("renderer: " + context.error());
   impl->context = std::move(*context);
 
   int width = 0, height = 0;
   impl->context->drawableSize(width, height);
-  if (Status s = impl->targets.resize(width, height, config.msaaSamples); !s) {
+  if (Status s = impl->targets.resize(width, height, config.msaaSamples, impl->quality.resolutionScale); !s) {
     return makeError("renderer: " + s.error());
   }
   if (Status s = impl->sky.init(); !s) return makeError("renderer: " + s.error());
@@ -47,7 +50,7 @@ void drawTerrain(Renderer::Impl& r, const FrameSnapshot& frame, const FrameView&
     return;
   }
   // Pixels per radian near the screen centre: what the LOD rule needs.
-  const float pixelsPerRadian = static_cast<float>(r.targets.height()) / (2.0f * view.tanHalfFovY);
+  const float pixelsPerRadian = static_cast<float>(r.targets.sceneHeight()) / (2.0f * view.tanHalfFovY);
   const Status status = r.terrain.draw(*frame.terrain, view, r.environment, pixelsPerRadian,
                                        r.config.terrainLodPixels, r.terrainStats);
   if (!status && !r.reportedTerrainError) {
@@ -77,14 +80,14 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   // A minimised window has a 0x0 drawable: keep the old targets, draw anyway
   // so a requested screenshot still gets the last good size.
   if (width > 0 && height > 0) {
-    if (Status status = r.targets.resize(width, height, r.config.msaaSamples); !status) {
+    if (Status status = r.targets.resize(width, height, r.config.msaaSamples, r.quality.resolutionScale); !status) {
       return makeError("renderer: " + status.error());
     }
   }
 
   clampCamera(r.camera);
   const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(r.targets.height());
-  const FrameView view = makeFrameView(r.camera, aspect);
+  const FrameView view = makeFrameView(r.camera, aspect, r.quality.farPlane_m);
 
   r.targets.bindScene();
   glClear(GL_DEPTH_BUFFER_BIT);  // the sky covers every pixel, so no colour clear
@@ -123,6 +126,24 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
 }
 
 void Renderer::setTuningPanel(TuningPanel* panel) { m_impl->tuning = panel; }
+
+void Renderer::setQuality(const RenderQuality& quality) {
+  Impl& r = *m_impl;
+  r.quality = quality;
+  r.quality.resolutionScale = std::clamp(quality.resolutionScale, 0.25f, 1.0f);
+  r.quality.farPlane_m = std::max(quality.farPlane_m, 1.0f);
+  r.config.msaaSamples = std::max(1, quality.msaaSamples);
+  r.config.terrainLodPixels = std::max(1.0f, quality.terrainLodPixels);
+  r.environment.fogDensity_per_m = 1.0f / std::max(1.0f, quality.fogDistance_m);
+}
+
+const RenderQuality& Renderer::quality() const { return m_impl->quality; }
+
+void Renderer::setWindowMode(int width, int height, bool fullscreen) {
+  SDL_Window* window = m_impl->context->window();
+  SDL_SetWindowFullscreen(window, fullscreen ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0);
+  if (!fullscreen) SDL_SetWindowSize(window, std::max(64, width), std::max(64, height));
+}
 std::pair<Eigen::Vector3f, Eigen::Vector3f> Renderer::viewRay(float x, float y) const {
   const Impl& r = *m_impl;
   const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(std::max(1, r.targets.height()));

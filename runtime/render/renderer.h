@@ -280,6 +280,23 @@ struct WindowConfig {
   float terrainLodPixels = 16.0f;
 };
 
+/// What a quality preset changes in the renderer (the app's presets:
+/// app/player_settings.h). Applied from the next frame on.
+struct RenderQuality {
+  float resolutionScale = 1.0f;  ///< the 3D scene at this fraction of the window's pixels (0.25..1), HUD sharp
+  float farPlane_m = 2000.0f;    ///< nothing is drawn beyond this distance
+  float fogDistance_m = 250.0f;  ///< fog reaches 63 % here (1 - exp(-(d / this)^2)); terrain beyond 2.5x is culled
+  float terrainLodPixels = 16.0f;  ///< as WindowConfig::terrainLodPixels
+  int msaaSamples = 4;           ///< 1 = off; as WindowConfig::msaaSamples
+  bool shadows = true;           ///< sun shadows may be drawn (a shadow pass reads it)
+};
+
+/// An image uploaded for the HUD's panels (ImGui::Image(ImTextureID(texture), ...)).
+struct UiImage {
+  std::uintptr_t texture = 0;  ///< the GL texture name; 0: none
+  int width = 0, height = 0;   ///< pixels
+};
+
 class Renderer {
  public:
   // Creates the window and a GL 3.3 core context (libepoxy). If no display is
@@ -336,6 +353,18 @@ class Renderer {
   // Instances, culled nodes, draw calls and material switches of the mesh
   // pass in the last drawFrame.
   const MeshStats& meshStats() const;
+
+  /// The quality preset's settings, from the next frame on.
+  void setQuality(const RenderQuality& quality);
+  const RenderQuality& quality() const;
+  /// Window size (px) and fullscreen (the desktop's resolution); offscreen
+  /// only the size changes.
+  void setWindowMode(int width, int height, bool fullscreen);
+
+  /// Decodes an image file (PNG, JPEG; stb_image) into an RGBA texture for
+  /// HUD panels. Free it with freeUiImage while the renderer lives.
+  Result<UiImage> loadUiImage(const std::string& path);
+  void freeUiImage(UiImage& image);
 
   struct Impl;  // SDL, GL and ImGui state; kept out of this header
 

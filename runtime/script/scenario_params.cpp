@@ -15,6 +15,7 @@ namespace tumble::script {
 
 /// @class ParamDeclaration
 /// One entry of a scenario's `params` table: `params = {speed = {default = 16, unit = "m/s", description = "..."}}`.
+/// The vehicle picker: a scenario that declares a string parameter `car` (default: a vehicle definition, MOD:NAME) is a driving scenario. The main menu (`tumble play` without a scenario) then lets the player pick one of the vehicle definitions of base, of the scenario's mod and of its dependencies, with mass, power, drive and grip, and starts the scenario with `--set car=MOD:NAME`; spawn it with `vehicle.spawn(param("car"), ...)`. The pause menu's "Change vehicle" does the same and restarts. The menu lists the scenario by its `title` with the first paragraph of the `--` comment at the top of its file as description.
 /// @field default number|boolean|string the value when --set does not give one; its type is the parameter's type
 /// @field unit string? the unit of a number, e.g. "m/s" (leave out for counts and ratios)
 /// @field description string? what the parameter changes, for designers and sweeps

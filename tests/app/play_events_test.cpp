@@ -82,7 +82,8 @@ TEST(PlayEvents, EscapeOpensThePauseMenuAndTheLoopGoesOn) {
   EXPECT_EQ(r["frames"], 120) << "every frame was drawn: the game did not quit";
   EXPECT_TRUE(r["pause_menu"]["open"].get<bool>());
   EXPECT_EQ(r["pause_menu"]["selected"], "Resume");
-  EXPECT_EQ(r["pause_menu"]["items"].size(), 3u) << r["pause_menu"].dump(2);
+  // Resume, Restart, Change vehicle, Settings, Main menu, Quit to desktop.
+  EXPECT_EQ(r["pause_menu"]["items"].size(), 6u) << r["pause_menu"].dump(2);
   EXPECT_EQ(r["steps"], 30) << "the world stepped until Escape and waits in the menu";
 
   // Escape again resumes: the world steps on.
@@ -92,10 +93,10 @@ TEST(PlayEvents, EscapeOpensThePauseMenuAndTheLoopGoesOn) {
   EXPECT_FALSE(resumed.report["pause_menu"]["open"].get<bool>());
   EXPECT_EQ(resumed.report["steps"], 90);
 
-  // Down twice and Return pick "Quit to desktop": the game ends there.
+  // Up (wrapping to the last item) and Return pick "Quit to desktop": the game ends there.
   auto quit = play(dir, "quit", "base:drive", 120,
-                   "30 down key:Escape\n31 up key:Escape\n40 down key:Down\n41 up key:Down\n"
-                   "42 down key:Down\n43 up key:Down\n50 down key:Return\n51 up key:Return\n");
+                   "30 down key:Escape\n31 up key:Escape\n40 down key:Up\n41 up key:Up\n"
+                   "50 down key:Return\n51 up key:Return\n");
   ASSERT_EQ(quit.process.exitCode, 0) << quit.process.output;
   EXPECT_TRUE(quit.report["quit"].get<bool>()) << quit.report.dump(2);
   EXPECT_LT(quit.report["frames"].get<int>(), 60);

@@ -7,7 +7,6 @@
 #include <fstream>
 
 #include "audio/clip.h"
-#include "audio/volume_settings.h"
 #include "core/file_util.h"
 
 namespace tumble::audio {
@@ -70,25 +69,6 @@ TEST(Clip, BrokenFilesAreClearErrors) {
   auto missing = loadClip((d / "nope.wav").string());
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().find("nope.wav"), std::string::npos);
-}
-
-TEST(VolumeSettings, ReadsTheThreeKeysAndIgnoresTheRest) {
-  const fs::path p = tempDir() / "settings.json";
-  std::ofstream(p) << R"({"resolution": [1280, 720], "volume_master": 0.5, "volume_engine": 0.25, "quality": "high"})";
-  auto v = readVolumes(p.string());
-  ASSERT_TRUE(v) << v.error();
-  EXPECT_FLOAT_EQ(v->master, 0.5f);
-  EXPECT_FLOAT_EQ(v->effects, 1.0f);
-  EXPECT_FLOAT_EQ(v->engine, 0.25f);
-  auto none = readVolumes((tempDir() / "missing.json").string());
-  ASSERT_TRUE(none);
-  EXPECT_FLOAT_EQ(none->master, 1.0f);
-  std::ofstream(p) << R"({"volume_effects": 3})";
-  auto bad = readVolumes(p.string());
-  ASSERT_FALSE(bad);
-  EXPECT_NE(bad.error().find("volume_effects"), std::string::npos);
-  std::ofstream(p) << "{not json";
-  ASSERT_FALSE(readVolumes(p.string()));
 }
 
 }  // namespace

@@ -63,6 +63,10 @@ end
 return {
   title = "Mud: the same car on mud and on grass",
   duration = 4,
+  params = {
+    car = {default = "base:hatchback", description = "the vehicle definition, MOD:NAME (the menu's vehicle picker sets it)"},
+    autopilot = {default = 0, description = "0: the player drives the car on mud; 1: both cars drive themselves"},
+  },
   terrain = {generate = 21, size = 513, height = 2},  -- nearly flat: low ground with mud patches
 
   on_start = function(ctx)

@@ -24,6 +24,11 @@ end
 return {
   title = "Time trial: six gates, beat your best",
   duration = 60,
+  params = {
+    car = {default = "base:hatchback", description = "the vehicle definition, MOD:NAME (the menu's vehicle picker sets it)"},
+    autopilot = {default = 0, description = "0: the player drives; 1: the autopilot drives through the gates"},
+    speed = {default = 22, unit = "m/s", description = "the autopilot's cruising speed"},
+  },
 
   on_start = function(ctx)
     world.plane{friction = 1, color = {0.35, 0.36, 0.38}}

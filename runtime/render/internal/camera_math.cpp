@@ -51,11 +51,11 @@ Eigen::Matrix4f projectionMatrix(float fovY_rad, float aspect, float near_m, flo
   return proj;
 }
 
-FrameView makeFrameView(const Camera& camera, float aspect) {
+FrameView makeFrameView(const Camera& camera, float aspect, float far_m) {
   FrameView view;
   const Eigen::Matrix4f viewMat = viewMatrix(camera);
   view.viewProjection =
-      projectionMatrix(camera.fovY_rad, aspect, kNearPlane_m, kFarPlane_m) * viewMat;
+      projectionMatrix(camera.fovY_rad, aspect, kNearPlane_m, far_m) * viewMat;
   view.eye = eyePosition(camera);
   view.right = viewMat.block<1, 3>(0, 0).transpose();
   view.up = viewMat.block<1, 3>(1, 0).transpose();

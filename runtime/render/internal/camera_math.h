@@ -30,7 +30,7 @@ struct FrameView {
   Eigen::Vector3f eye, right, up, forward;  // forward points from eye to target
   float tanHalfFovX = 1, tanHalfFovY = 1;
 };
-FrameView makeFrameView(const Camera& camera, float aspect);
+FrameView makeFrameView(const Camera& camera, float aspect, float far_m = kFarPlane_m);
 
 /// Keeps pitch and distance in their valid ranges after user input.
 void clampCamera(Camera& camera);

@@ -1,6 +1,7 @@
 #include "render/internal/render_targets.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -30,8 +31,10 @@ Status checkComplete(const char* name) {
 
 }  // namespace
 
-Status RenderTargets::resize(int width, int height, int samples) {
-  if (width == m_width && height == m_height && samples == m_requestedSamples && m_frame.get()) {
+Status RenderTargets::resize(int width, int height, int samples, float sceneScale) {
+  sceneScale = std::clamp(sceneScale, 0.25f, 1.0f);
+  if (width == m_width && height == m_height && samples == m_requestedSamples && sceneScale == m_sceneScale &&
+      m_frame.get()) {
     return Ok{};
   }
   if (width <= 0 || height <= 0) {
@@ -40,7 +43,10 @@ Status RenderTargets::resize(int width, int height, int samples) {
   }
   GLint maxSamples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  const int usedSamples = std::clamp(samples, 1, std::max(1, static_cast<int>(maxSamples)));
+  const int sceneWidth = std::max(1, static_cast<int>(std::lround(width * sceneScale)));
+  const int sceneHeight = std::max(1, static_cast<int>(std::lround(height * sceneScale)));
+  const bool scaled = sceneWidth != width || sceneHeight != height;
+  const int usedSamples = scaled ? 1 : std::clamp(samples, 1, std::max(1, static_cast<int>(maxSamples)));
 
   m_scene.reset();
   m_sceneColor.reset();
@@ -52,17 +58,17 @@ Status RenderTargets::resize(int width, int height, int samples) {
   glBindFramebuffer(GL_FRAMEBUFFER, m_frame.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                             m_frameColor.get());
-  if (usedSamples == 1) {
+  if (usedSamples == 1 && !scaled) {
     m_frameDepth = makeStorage(GL_DEPTH_COMPONENT24, 1, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
                               m_frameDepth.get());
   }
   if (Status s = checkComplete("frame"); !s) return s;
 
-  if (usedSamples > 1) {
+  if (usedSamples > 1 || scaled) {
     m_scene = makeFramebuffer();
-    m_sceneColor = makeStorage(GL_RGBA8, usedSamples, width, height);
-    m_sceneDepth = makeStorage(GL_DEPTH_COMPONENT24, usedSamples, width, height);
+    m_sceneColor = makeStorage(GL_RGBA8, usedSamples, sceneWidth, sceneHeight);
+    m_sceneDepth = makeStorage(GL_DEPTH_COMPONENT24, usedSamples, sceneWidth, sceneHeight);
     glBindFramebuffer(GL_FRAMEBUFFER, m_scene.get());
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                               m_sceneColor.get());
@@ -73,22 +79,26 @@ Status RenderTargets::resize(int width, int height, int samples) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   m_width = width;
   m_height = height;
+  m_sceneWidth = sceneWidth;
+  m_sceneHeight = sceneHeight;
+  m_sceneScale = sceneScale;
   m_samples = usedSamples;
   m_requestedSamples = samples;
   return Ok{};
 }
 
 void RenderTargets::bindScene() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, m_samples > 1 ? m_scene.get() : m_frame.get());
-  glViewport(0, 0, m_width, m_height);
+  glBindFramebuffer(GL_FRAMEBUFFER, m_scene.get() ? m_scene.get() : m_frame.get());
+  glViewport(0, 0, m_sceneWidth, m_sceneHeight);
 }
 
 void RenderTargets::resolve() const {
-  if (m_samples > 1) {
+  if (m_scene.get()) {
+    const bool scaled = m_sceneWidth != m_width || m_sceneHeight != m_height;
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m_scene.get());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_frame.get());
-    glBlitFramebuffer(0, 0, m_width, m_height, 0, 0, m_width, m_height, GL_COLOR_BUFFER_BIT,
-                      GL_NEAREST);
+    glBlitFramebuffer(0, 0, m_sceneWidth, m_sceneHeight, 0, 0, m_width, m_height, GL_COLOR_BUFFER_BIT,
+                      scaled ? GL_LINEAR : GL_NEAREST);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, m_frame.get());
   glViewport(0, 0, m_width, m_height);

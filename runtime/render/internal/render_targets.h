@@ -14,10 +14,17 @@ class RenderTargets {
  public:
   /// (Re)creates the targets at this size; a no-op if nothing changed.
   /// samples is clamped to [1, GL_MAX_SAMPLES]; 1 means no multisampling.
-  Status resize(int width, int height, int samples);
+  /// sceneScale (0.25..1): the scene is drawn at this fraction of the
+  /// frame's width and height and scaled up (linear) into the frame, the
+  /// HUD stays at full size. Below 1 the scene is not multisampled: a
+  /// multisampled image cannot be resolved and scaled in one blit, and the
+  /// point of scaling is to spend fewer samples.
+  Status resize(int width, int height, int samples, float sceneScale = 1.0f);
 
   int width() const { return m_width; }
   int height() const { return m_height; }
+  int sceneWidth() const { return m_sceneWidth; }
+  int sceneHeight() const { return m_sceneHeight; }
   int samples() const { return m_samples; }
 
   /// Binds the target the scene is drawn into and sets the viewport.
@@ -30,7 +37,9 @@ class RenderTargets {
 
  private:
   int m_width = 0, m_height = 0, m_samples = 0, m_requestedSamples = 0;
-  GlFramebuffer m_scene;      // empty when samples == 1: the scene draws into m_frame
+  int m_sceneWidth = 0, m_sceneHeight = 0;
+  float m_sceneScale = 1.0f;
+  GlFramebuffer m_scene;      // empty when samples == 1 and unscaled: the scene draws into m_frame
   GlRenderbuffer m_sceneColor, m_sceneDepth;
   GlFramebuffer m_frame;
   GlRenderbuffer m_frameColor, m_frameDepth;

@@ -44,6 +44,7 @@ struct Renderer::Impl {
   bool dragging = false;         // mouse button held down on the scene
   EventHook eventHook;           // the app's (input); may be empty
   TuningPanel* tuning = nullptr;  // see Renderer::setTuningPanel
+  RenderQuality quality;          // see Renderer::setQuality (created from config)
 };
 
 }  // namespace tumble::render

@@ -1,0 +1,50 @@
+// Images for the HUD's panels (menu thumbnails): decoded with stb_image,
+// uploaded as RGBA textures that Dear ImGui's OpenGL backend draws by name.
+#include <stb_image.h>  // libstb provides the implementation
+
+#include "render/internal/gl_util.h"
+#include "render/internal/renderer_impl.h"
+#include "render/renderer.h"
+
+namespace tumble::render {
+
+namespace {
+constexpr int kMaxUiImageSide = 4096;
+}
+
+Result<UiImage> Renderer::loadUiImage(const std::string& path) {
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  if (data == nullptr) return makeError(path + ": not a readable image (" + stbi_failure_reason() + ")");
+  if (w <= 0 || h <= 0 || w > kMaxUiImageSide || h > kMaxUiImageSide) {
+    stbi_image_free(data);
+    return makeError(path + ": image is " + std::to_string(w) + "x" + std::to_string(h) + ", expected 1.." +
+                     std::to_string(kMaxUiImageSide) + " pixels a side");
+  }
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, data);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  stbi_image_free(data);
+  if (std::string errors = drainGlErrors(); !errors.empty()) {
+    glDeleteTextures(1, &tex);
+    return makeError(path + ": texture upload failed: " + errors);
+  }
+  return UiImage{std::uintptr_t(tex), w, h};
+}
+
+void Renderer::freeUiImage(UiImage& image) {
+  if (image.texture != 0) {
+    const GLuint tex = GLuint(image.texture);
+    glDeleteTextures(1, &tex);
+  }
+  image = UiImage{};
+}
+
+}  // namespace tumble::render
