@@ -52,7 +52,7 @@ TEST(Report, EveryFieldIsPresentAndMeasured) {
   EXPECT_LT(j["error"]["penetration_max_m"].get<double>(), 0.1);
   EXPECT_EQ(j["error"]["nan_events"], 0);
   EXPECT_EQ(j["state_hash"].get<std::string>().size(), 16u);
-  ASSERT_EQ(j["expectations"].size(), 3u);
+  ASSERT_EQ(j["expectations"].size(), 4u);
   for (const auto& e : j["expectations"]) {
     EXPECT_TRUE(e["ok"].get<bool>()) << e.dump();
     for (const char* key : {"name", "ok", "value", "limit"}) EXPECT_TRUE(e.contains(key)) << key;
