@@ -14,6 +14,7 @@
 #include "app/fixed_step.h"
 #include "app/pause_menu.h"
 #include "app/play_events.h"
+#include "app/replay.h"
 #include "app/run_report.h"
 #include "app/scene_models.h"
 #include "app/scene_view.h"
@@ -248,6 +249,12 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
   };
   setUpTuning();
   renderer.setTuningPanel(&tuning);
+  // --record: what the scripts read of the input, step by step (a restart
+  // starts the recording over: a replay is one session from its start).
+  std::optional<ReplayRecorder> recorder;
+  SceneOptions recordedOptions = o.scene;
+  recordedOptions.tuneOverrides = true;  // as createPlayScene
+  if (!o.recordPath.empty()) recorder.emplace().start(*session->scene, recordedOptions);
 
   RunTimings frame;
   render::Controls controls;
@@ -280,6 +287,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
         session.reset();  // the old scene's systems go before the new ones start
         session = startSession(std::move(*fresh), renderer, pauseMenu);
         setUpTuning();
+        if (recorder) recorder->start(*session->scene, recordedOptions);
         ++restarts;
         controls.paused = false;
         controls.stepOnce = false;
@@ -307,6 +315,7 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
       scene.savePreviousState();
       stepScene(scene, StepTime{session->time_s, session->step}, frame);
       session->vehicle.afterStep(scene);
+      if (recorder) recorder->afterStep(scene);
       ++session->step;
       session->time_s += h;
       session->accumulator = std::max(0.0, session->accumulator - h);
@@ -346,6 +355,14 @@ int playScenario(const PlayOptions& o, const Stopwatch& processClock) {
     frameMs.push_back(frameClock.seconds() * 1000);
   }
   Scene& scene = *session->scene;
+  if (recorder) {
+    if (Status st = recorder->write(scene, session->time_s, o.recordPath); !st) {
+      log::error(st.error());
+      scene.finish(session->time_s, session->step);
+      return 1;
+    }
+    log::info("replay of " + std::to_string(session->step) + " steps written to " + o.recordPath);
+  }
   if (!o.reportPath.empty()) {
     nlohmann::json items = nlohmann::json::array();
     for (const PauseMenu::ItemRect& it : pauseMenu.lastLayout())

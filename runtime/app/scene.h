@@ -57,6 +57,9 @@ struct SceneOptions {
   /// dependencies (their bindings.lua). Tools and tests that drive a
   /// scenario with their own actions set it.
   std::optional<input::BindingSet> bindings;
+  /// A tunables overrides file to read instead of the mod's own (a replay's
+  /// recorded values); empty: the mod's, when tuneOverrides is set.
+  std::string tuneOverridesFile;
 };
 
 class TerrainScene;

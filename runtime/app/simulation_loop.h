@@ -26,6 +26,9 @@ struct RunOptions {
   /// throw-away folder removed at exit, so a run never changes the player's
   /// saves and two identical runs read the same (no) saves.
   std::string saveDir;
+  /// --replay FILE: run a replay written by `play --record` (app/replay.h)
+  /// and check that it ends in the recorded state.
+  std::string replayPath;
 };
 
 struct PlayOptions {
@@ -41,6 +44,7 @@ struct PlayOptions {
   long long frames = -1;
   std::string eventsPath;  ///< --events FILE: scripted input (app/play_events.h)
   std::string reportPath;  ///< --report FILE: what the player saw (docs/play-report.md)
+  std::string recordPath;  ///< --record FILE: a replay of the session (app/replay.h, docs/replays.md)
 };
 
 /// `tumble run`: headless unless a screenshot is asked for. Returns the exit
