@@ -3,8 +3,8 @@
 // instruction budget: each counts the steps its match takes (PatternCost,
 // pattern_cost.h) and charges them to the running call before Lua's own
 // function does the match. A match that does not fit in what is left is not
-// run: the call raises "string.find: the pattern match needs more than N
-// steps ..." and the budget is marked as hit, as a runaway loop's.
+// run: the budget is marked as hit, as a runaway loop's, so the callback
+// stops with the budget's message (LuaVm::call) naming the line.
 struct lua_State;
 
 namespace tumble::script {
