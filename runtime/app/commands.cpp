@@ -147,6 +147,9 @@ void addCommands(CLI::App& cli, int* exitCode) {
   play->add_flag("--mute", st->play.mute, "no sound: open no audio device");
   play->add_option("--quality", st->play.quality, "rendering quality preset: low, medium or high (default: the saved setting)")
       ->check(CLI::IsMember({"low", "medium", "high"}));
+  play->add_option("--record", st->play.recordPath,
+                   "write a replay of the session: the input its scripts read each step, the seed, scenario, "
+                   "settings and versions (`run --replay FILE` plays it back; docs/replays.md)");
   addSceneOptions(play, st->play.scene, st->playSets);
   play->callback([st, exitCode, play] {
     st->play.screenshotGiven = play->count("--screenshot") > 0;
@@ -162,7 +165,10 @@ void addCommands(CLI::App& cli, int* exitCode) {
   });
 
   CLI::App* run = cli.add_subcommand("run", "run a scenario headless and check its expectations");
-  run->add_option("scenario", st->runScenarioRef, "MOD:SCENARIO")->required();
+  run->add_option("scenario", st->runScenarioRef, "MOD:SCENARIO (not with --replay: the replay names it)");
+  run->add_option("--replay", st->run.replayPath,
+                  "play back a replay written by `play --record` headless and check that it ends in the recorded "
+                  "state hash (exit 4 if not; docs/replays.md)");
   run->add_option("--seconds", st->run.seconds, "simulated seconds (default: the scenario's duration)")
       ->check(kFinite)->check(CLI::NonNegativeNumber);
   run->add_option("--steps", st->run.steps, "number of fixed steps (instead of --seconds)")
@@ -187,6 +193,17 @@ void addCommands(CLI::App& cli, int* exitCode) {
       ->check(CLI::NonNegativeNumber);
   addSceneOptions(run, st->run.scene, st->runSets);
   run->callback([st, exitCode] {
+    if (st->run.replayPath.empty() == st->runScenarioRef.empty()) {
+      log::error(st->run.replayPath.empty() ? "run: give MOD:SCENARIO (or --replay FILE)"
+                                             : "run --replay: the replay names its scenario; leave MOD:SCENARIO out");
+      *exitCode = 1;
+      return;
+    }
+    if (!st->run.replayPath.empty() && !st->runSets.empty()) {
+      log::error("run --replay: the replay holds the session's --set values; give none");
+      *exitCode = 1;
+      return;
+    }
     if (auto s = finishSceneOptions(st->run.scene, st->runScenarioRef, *st, st->runSets); !s) {
       log::error(s.error());
       *exitCode = 1;

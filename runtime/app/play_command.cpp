@@ -20,6 +20,7 @@
 #include "app/thumbnails.h"
 #include "app/pause_menu.h"
 #include "app/play_events.h"
+#include "app/replay.h"
 #include "app/run_report.h"
 #include "app/scene_models.h"
 #include "app/scene_view.h"
@@ -409,6 +410,18 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   };
   setUpTuning();
   renderer.setTuningPanel(&tuning);
+  // --record: what the scripts read of the input, step by step, from the
+  // start of the scenario played (a restart, or another scenario from the
+  // menu, starts the recording over: a replay is one session from its start).
+  std::optional<ReplayRecorder> recorder;
+  auto startRecording = [&](const SceneOptions& options) {
+    if (o.recordPath.empty() || !session) return;
+    SceneOptions recordedOptions = options;
+    recordedOptions.tuneOverrides = true;  // as createPlayScene
+    if (!recorder) recorder.emplace();
+    recorder->start(*session->scene, recordedOptions);
+  };
+  startRecording(current);
   // Replaces the session with a fresh one from `options`; false (and the
   // message on the HUD or the menu) if the scenario cannot start.
   auto startFresh = [&](const SceneOptions& options) -> Status {
@@ -420,6 +433,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     current = options;
     pauseMenu.setVehicleChoice(offersVehicle(current.scenarioRef));
     setUpTuning();
+    startRecording(options);
     return Ok{};
   };
 
@@ -551,6 +565,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
         scene.savePreviousState();
         stepScene(scene, StepTime{session->time_s, session->step}, frame);
         session->vehicle.afterStep(scene);
+        if (recorder) recorder->afterStep(scene);
         ++session->step;
         session->time_s += h;
         session->accumulator = std::max(0.0, session->accumulator - h);
@@ -600,6 +615,15 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       fpsTime = now;
     }
     frameMs.push_back(frameClock.seconds() * 1000);
+  }
+  if (recorder && session) {
+    Scene& scene = *session->scene;
+    if (Status st = recorder->write(scene, session->time_s, o.recordPath); !st) {
+      log::error(st.error());
+      scene.finish(session->time_s, session->step);
+      return 1;
+    }
+    log::info("replay of " + std::to_string(session->step) + " steps written to " + o.recordPath);
   }
   if (!o.reportPath.empty()) {
     nlohmann::json items = nlohmann::json::array();

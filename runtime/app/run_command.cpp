@@ -10,10 +10,12 @@
 #include <system_error>
 
 #include "app/fixed_step.h"
+#include "app/replay.h"
 #include "app/run_report.h"
 #include "app/scene_models.h"
 #include "app/scene_view.h"
 #include "app/simulation_loop.h"
+#include "core/file_util.h"
 #include "core/log.h"
 #include "physics/deformable.h"
 #include "physics/joints/joint_system.h"
@@ -93,6 +95,31 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
     o.scene.saveDir = o.saveDir;
   }
   if (!o.audioOutPath.empty()) o.scene.audioOutput = audio::AudioOutput::Loopback;
+  // --replay: the recorded session's scenario, settings and input.
+  std::optional<Replay> replay;
+  if (!o.replayPath.empty()) {
+    auto loaded = loadReplay(o.replayPath);
+    if (!loaded) {
+      log::error(loaded.error());
+      return 1;
+    }
+    replay.emplace(std::move(loaded.value()));
+    o.scene.scenarioRef = replay->scenario;
+    o.scene.seed = replay->seed;
+    o.scene.dt_s = replay->dt_s;
+    o.scene.substeps = replay->substeps;
+    o.scene.integrator = replay->integrator;
+    o.scene.sets = replay->sets;
+    o.steps = (long long)replay->steps.size();
+    if (!replay->tuneOverrides.is_null()) {
+      // The player's tunable values as recorded, read from the run's own folder.
+      o.scene.tuneOverridesFile = o.scene.saveDir + "/recorded-tune-overrides.json";
+      if (Status st = writeFileAtomic(o.scene.tuneOverridesFile, replay->tuneOverrides.dump()); !st) {
+        log::error("replay: " + st.error());
+        return 1;
+      }
+    }
+  }
   auto created = Scene::create(o.scene);
   if (!created) {
     log::error(created.error());
@@ -104,6 +131,8 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
     log::error("--audio-out: cannot render sound offline (see the message above)");
     return 1;
   }
+  if (replay)
+    for (const std::string& w : replayVersionWarnings(*replay, scene)) log::warn("replay " + o.replayPath + ": " + w);
   RunTimings t;
   RunCounts counts;
   const double dt = o.scene.dt_s;
@@ -154,8 +183,10 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
     if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
     if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
     if (i == o.injectNanAtStep) injectNan(scene);
+    if (replay) playBackStep(*replay, i, scene);
     stepScene(scene, StepTime{time_s, i}, t);
-    time_s = baseTime_s + double(i + 1 - baseStep) * stepDt;
+    // A replay keeps time as play does (a sum of the steps).
+    time_s = replay ? time_s + stepDt : baseTime_s + double(i + 1 - baseStep) * stepDt;
     done = i + 1;
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
     if (const physics::JointSystem* joints = scene.jointsIfAny())
@@ -164,6 +195,8 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
   }
   steps = done;
   if (renderer && !shotTaken) takeShot(time_s);
+  // A replay's state is taken where play took it: before on_finish.
+  const std::string replayedHash = replay ? stateHashText(scene) : std::string();
   {
     Stopwatch sw;
     scene.finish(time_s, steps);
@@ -216,6 +249,16 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
               scene.host().errors().size(), report["state_hash"].get<std::string>().c_str());
   for (const auto& e : scene.host().expectations())
     if (!e.ok) std::printf("  expectation failed: %s (value %g)\n", e.name.c_str(), e.value);
+  if (replay) {
+    const std::string& hash = replayedHash;
+    if (hash != replay->stateHash) {
+      std::printf("replay %s: DIVERGED: the recorded session ended in state %s, this run in %s\n",
+                  o.replayPath.c_str(), replay->stateHash.c_str(), hash.c_str());
+      return 4;
+    }
+    std::printf("replay %s: reproduced the recorded state %s after %lld steps\n", o.replayPath.c_str(), hash.c_str(),
+                steps);
+  }
   return status;
 }
 

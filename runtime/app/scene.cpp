@@ -121,6 +121,7 @@ Result<std::unique_ptr<Scene>> Scene::build(const SceneOptions& options, bool sc
   so.scriptsDir = scriptsDir();
   so.mods = registry.mods();  // emitters may come from other mods ("base:dust")
   if (options.tuneOverrides) so.tuneOverridesFile = script::tuneOverridesPath(mod->name);
+  if (!options.tuneOverridesFile.empty()) so.tuneOverridesFile = options.tuneOverridesFile;
   std::map<std::string, std::string> terrainSettings = options.terrainDefaults;
   std::optional<physics::JointSolverKind> forcedJointSolver;
   for (const auto& [key, value] : options.sets) {

@@ -67,6 +67,9 @@ struct SceneOptions {
   /// simulation system steps (bodies, joints, vehicles, ropes, cloth), so a
   /// scenario's expectations can be checked against a world that never moves.
   bool freezePhysics = false;
+  /// A tunables overrides file to read instead of the mod's own (a replay's
+  /// recorded values); empty: the mod's, when tuneOverrides is set.
+  std::string tuneOverridesFile;
 };
 
 class TerrainScene;

@@ -34,6 +34,9 @@ struct RunOptions {
   /// the body and counts it (error.nan_events), and the run then fails the
   /// expectation "physics state stayed finite".
   long long injectNanAtStep = -1;
+  /// --replay FILE: run a replay written by `play --record` (app/replay.h)
+  /// and check that it ends in the recorded state.
+  std::string replayPath;
 };
 
 struct PlayOptions {
@@ -54,6 +57,7 @@ struct PlayOptions {
   bool menu = false;
   bool sizeGiven = false;  ///< --width or --height given: they win over the saved settings
   std::string quality;     ///< --quality low|medium|high; empty: the saved setting
+  std::string recordPath;  ///< --record FILE: a replay of the session (app/replay.h, docs/replays.md)
 };
 
 /// `tumble run`: headless unless a screenshot is asked for. Returns the exit

@@ -198,8 +198,31 @@ void InputSystem::updateLive() {
   }
 }
 
+std::vector<InputSystem::StepState> InputSystem::stepStates() const {
+  std::vector<StepState> out;
+  out.reserve(m_state.size());
+  for (const ActionState& s : m_state) out.push_back(StepState{s.value, s.down, s.pressed, s.released});
+  return out;
+}
+
 void InputSystem::step() {
   ++m_steps;
+  if (m_playBack) {
+    // A replay: the recorded states, and the devices' edges are dropped.
+    for (std::size_t a = 0; a < m_state.size(); ++a) {
+      ActionState& s = m_state[a];
+      const StepState r = a < m_playBack->size() ? (*m_playBack)[a] : StepState{};
+      s.value = r.value;
+      s.down = r.down;
+      s.pressed = r.pressed;
+      s.released = r.released;
+      s.latchPress = s.latchRelease = false;
+    }
+    m_playBack.reset();
+    m_motion[0] = m_motion[1] = 0;
+    m_wheel[0] = m_wheel[1] = 0;
+    return;
+  }
   for (int a = 0; a < actionCount(); ++a) {
     ActionState& s = m_state[std::size_t(a)];
     const bool prevDown = s.down;

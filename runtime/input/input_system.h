@@ -95,6 +95,20 @@ class InputSystem {
   void clearInjection(int action);
   bool injected(int action) const { return m_state[std::size_t(action)].injected; }
 
+  /// What scripts read of one action in one step: recorded by `play
+  /// --record` after each step, played back by `run --replay`.
+  struct StepState {
+    double value = 0;
+    bool down = false, pressed = false, released = false;
+    bool operator==(const StepState&) const = default;
+  };
+  /// Every action's state in the current step, in action order.
+  std::vector<StepState> stepStates() const;
+  /// The next step() takes exactly these states (in action order; missing
+  /// actions read as released) instead of the devices and injections; the
+  /// step after that is back to normal unless this is called again.
+  void playBack(std::vector<StepState> states) { m_playBack = std::move(states); }
+
   /// Actions that went down since the last call, per rendered frame, in the
   /// order pressed (for the app's own actions: pause, menu, screenshot; they
   /// must work while the simulation is paused and no step runs).
@@ -137,6 +151,7 @@ class InputSystem {
     bool injected = false, injectedNow = false;
     double injectValue = 0;
   };
+  std::optional<std::vector<StepState>> m_playBack;  ///< playBack(): the next step's states
   struct BoundSource {
     bool owned = true, ownedPositive = true;  ///< not shadowed by a higher-priority context
   };

@@ -1,5 +1,6 @@
 #include "script/lua_vm.h"
 #include "script/internal/raw_access.h"
+#include "script/internal/pattern_budget.h"
 
 #include "core/assert.h"
 #include "core/file_util.h"
@@ -61,6 +62,9 @@ LuaVm::LuaVm(const VmLimits& limits) : m_limits(limits) {
   lua_pushlightuserdata(m_L, this);
   lua_rawsetp(m_L, LUA_REGISTRYINDEX, &kVmKey);
   luaL_openlibs(m_L);
+  // Pattern matching counts its steps against the budget (pattern_budget.h);
+  // before the copies of `string` below and in the sandbox are made.
+  installPatternBudget(m_L, this);
   // The string metatable is shared by every string in the state. Protect it
   // (getmetatable("") returns false, so it cannot be changed) and point its
   // __index at a private copy of the string library without string.dump:
@@ -175,6 +179,12 @@ bool LuaVm::charge(lua_State* L, std::uint64_t instructions) {
   lua_sethook(L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
   lua_sethook(m_L, &LuaVm::countHook, LUA_MASKCOUNT, 1);
   return false;
+}
+
+std::uint64_t LuaVm::instructionsLeft() const {
+  if (m_callDepth == 0) return m_limits.instructionsPerCall;
+  if (m_budgetHit) return 0;
+  return m_limits.instructionsPerCall - std::min(m_instructions, m_limits.instructionsPerCall);
 }
 
 bool LuaVm::wasStoppedByBudget(lua_State* thread) {

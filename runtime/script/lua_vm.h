@@ -64,6 +64,9 @@ class LuaVm {
   /// Returns false, and marks the budget as hit so the script stops at its
   /// next instruction, if that work does not fit in what is left.
   bool charge(lua_State* L, std::uint64_t instructions);
+  /// Instructions left of the running call's budget (0 once it is hit); a
+  /// whole budget outside any call.
+  std::uint64_t instructionsLeft() const;
 
   /// True if the instruction budget stopped `thread` (a coroutine): Lua
   /// leaves hooks off in it, so its <close> handlers must not run.
