@@ -17,6 +17,7 @@
 #include "core/result.h"
 #include "physics/body.h"
 #include "physics/shape.h"
+#include "script/environment_request.h"
 
 namespace tumble::script {
 
@@ -77,6 +78,7 @@ struct Presentation {
   std::vector<ModelAttachment> attachments;  ///< at most one per body (a new one replaces)
   std::vector<StaticModel> statics;
   CameraRequest camera;
+  EnvironmentRequest environment;  ///< environment.set (bind_environment.cpp)
   std::uint64_t revision = 0;  ///< bumped whenever attachments or statics change
 
   /// Display colour (linear RGB 0..1) of a body the script made or coloured.

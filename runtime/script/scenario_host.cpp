@@ -93,6 +93,7 @@ void ScenarioHost::buildEnvironment() {
   openSaveBindings(L, env);
   openModelBindings(L, env);
   openCameraBindings(L, env);
+  openEnvironmentBindings(L, env);
   openDeformableBindings(L, env);
   openOdeBindings(L, env);
   openSpringBindings(L, env);
