@@ -303,6 +303,14 @@ function Emitter:count() end
 ---@return boolean # false once removed, or stopped with no particles left
 function Emitter:alive() end
 
+---@class EnvironmentSettings
+---@field time_of_day? number|false local solar time, hours 0..24: the sun rises in +X at 6, stands highest towards +Z at 12, sets in -X at 18; false: the fixed lab sun
+---@field sun? Vec3Arg|false direction towards the sun (any length > 0), wins over time_of_day; false: clears it
+---@field fog? number|false|string distance where fog hides 63 %, m (> 0); false: no fog; "auto": the weather's (clear 250, cloudy 180, storm 70)
+---@field clouds? number|false cloud cover 0..1 (false: 0); cloudy weather raises it to at least 0.75, a storm to 1
+---@field weather? string "clear", "cloudy" or "storm" (darker sky, denser fog, lightning)
+---@field wind? table {x, z} wind moving the clouds, m/s
+
 ---What world.joint takes. Angles in rad, lengths in m.
 ---@class JointDef
 ---@field type string "ball", "hinge", "cone_twist" or "fixed"
@@ -936,6 +944,22 @@ function particles.burst(name, count, at, overrides) end
 
 ---@return integer # live particles of every emitter (0 before the first spawn)
 function particles.count() end
+
+---The sky, sun, fog, clouds and weather of the scene. Only drawn: physics,
+---state hashes and expectations do not change with it.
+environment = {}
+
+---Changes the named settings; the others keep their values.
+---
+---```lua
+---environment.set{time_of_day = 19, clouds = 0.6}
+---environment.set{weather = "storm"}
+---```
+---@param settings EnvironmentSettings
+function environment.set(settings) end
+
+---@return table # the current settings: {time_of_day, sun, fog, clouds, weather, wind}; unset ones are nil (fog 0: none)
+function environment.get() end
 
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
