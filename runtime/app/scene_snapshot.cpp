@@ -9,6 +9,7 @@
 #include "app/paths.h"
 #include "app/scene.h"
 #include "app/scene_models.h"
+#include "app/scene_sky.h"
 #include "particles/particle_system.h"
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
@@ -82,6 +83,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
   out.shapes.clear();
   out.models.clear();
   out.lines.clear();  // ropes, cloth and script lines follow in snapshotVehiclesAndLines
+  out.sky = skySettingsOf(m_host->presentation().environment);
   // Bodies drawn with a model (body:set_model, static models' collision
   // boxes) are not also drawn as their plain shape; in the collision view
   // the shapes are drawn and the models are not.

@@ -46,6 +46,11 @@ Status MeshPass::init() {
   m_diffuse = uniformLocation(m_program, "uDiffuse");
   m_hasTexture = uniformLocation(m_program, "uHasTexture");
   m_texture = uniformLocation(m_program, "uTexture");
+  auto depth = buildProgram("mesh shadow shader", shaders::kMeshVertex, shaders::kDepthFragment);
+  if (!depth) return makeError(depth.error());
+  m_depthProgram = std::move(*depth);
+  m_depthViewProjection = uniformLocation(m_depthProgram, "uViewProjection");
+  m_depthModel = uniformLocation(m_depthProgram, "uModel");
   return Ok{};
 }
 
@@ -93,6 +98,35 @@ MeshPass::GpuModel& MeshPass::upload(const std::shared_ptr<const Model>& model) 
   return gpu;
 }
 
+bool MeshPass::ready(const std::vector<ModelInstance>& instances) {
+  if (instances.empty()) return false;
+  if (!m_initialised) {
+    m_initialised = true;
+    if (Status s = init(); !s) m_error = s.error();
+  }
+  if (!m_program.get() || !m_depthProgram.get()) return false;
+  for (const ModelInstance& instance : instances) {
+    if (instance.model) upload(instance.model);
+  }
+  return true;
+}
+
+void MeshPass::drawDepth(const std::vector<ModelInstance>& instances, const Eigen::Matrix4f& lightViewProjection) {
+  if (!ready(instances)) return;
+  MeshStats ignored;
+  buildMeshDrawList(instances, lightViewProjection, m_depthDraws, ignored);
+  if (m_depthDraws.empty()) return;
+  glUseProgram(m_depthProgram.get());
+  glUniformMatrix4fv(m_depthViewProjection, 1, GL_FALSE, lightViewProjection.data());
+  for (const MeshDraw& d : m_depthDraws) {
+    glUniformMatrix4fv(m_depthModel, 1, GL_FALSE, d.toWorld.data());
+    const GpuMesh& mesh = m_models.at(d.model).meshes[d.mesh];
+    glBindVertexArray(mesh.vao.get());
+    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+}
+
 void MeshPass::draw(const std::vector<ModelInstance>& instances, const FrameView& view,
                     const Environment& environment, MeshStats& stats) {
   // Free models nobody but this cache holds any more.
@@ -101,15 +135,7 @@ void MeshPass::draw(const std::vector<ModelInstance>& instances, const FrameView
   }
   stats = MeshStats{};
   stats.modelsResident = static_cast<int>(m_models.size());
-  if (instances.empty()) return;
-  if (!m_initialised) {
-    m_initialised = true;
-    if (Status s = init(); !s) m_error = s.error();
-  }
-  if (!m_program.get()) return;
-  for (const ModelInstance& instance : instances) {
-    if (instance.model) upload(instance.model);
-  }
+  if (!ready(instances)) return;
   stats.modelsResident = static_cast<int>(m_models.size());
   buildMeshDrawList(instances, view.viewProjection, m_draws, stats);
   if (m_draws.empty()) return;

@@ -1,11 +1,13 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/log.h"
 #include "render/internal/camera_math.h"
 #include "render/internal/renderer_impl.h"
 #include "render/internal/screenshot.h"
+#include "render/internal/sky_model.h"
 
 namespace tumble::render {
 
@@ -59,6 +61,62 @@ void drawTerrain(Renderer::Impl& r, const FrameSnapshot& frame, const FrameView&
   }
 }
 
+// Sun shadows: depth maps of everything that casts (shapes, convex meshes,
+// models) for each cascade, then the cascades' matrices into the
+// environment the lit passes read. Off (config, or the light too dim to
+// cast a visible shadow): the lit shaders skip every shadow lookup.
+void drawShadowMaps(Renderer::Impl& r, const FrameSnapshot& frame, const FrameView& view) {
+  Environment& e = r.environment;
+  e.shadowCascades = 0;
+  e.shadowTexture = 0;
+  e.viewForward = view.forward;
+  if (!r.config.shadows || e.lightColor.maxCoeff() < 0.03f || e.lightDirection.y() <= 0.0f) return;
+  if (Status s = r.shadowMaps.resize(r.config.shadowMapSize, r.config.shadowCascades); !s) {
+    if (!r.reportedShadowError) log::warn("render: no shadows: " + s.error() + " (reported once)");
+    r.reportedShadowError = true;
+    return;
+  }
+  const ShadowCascades cascades = fitShadowCascades(view, e.lightDirection, r.config.shadowCascades,
+                                                    r.config.shadowDistance_m, r.shadowMaps.size());
+  const float pixelsPerRadian = static_cast<float>(r.targets.height()) / (2.0f * view.tanHalfFovY);
+  Eigen::Matrix4f toTexture = Eigen::Matrix4f::Identity() * 0.5f;
+  toTexture.col(3) = Eigen::Vector4f(0.5f, 0.5f, 0.5f, 1.0f);
+  for (int i = 0; i < cascades.count; ++i) {
+    r.shadowMaps.bindCascade(i);
+    r.shapes.drawDepth(cascades.lightViewProjection[i]);
+    r.convexMeshes.drawDepth(cascades.lightViewProjection[i]);
+    r.meshes.drawDepth(frame.models, cascades.lightViewProjection[i]);
+    if (frame.terrain != nullptr) {
+      // Failures are reported by the terrain's own draw.
+      (void)r.terrain.drawDepth(*frame.terrain, cascades.lightViewProjection[i], view.eye, pixelsPerRadian,
+                                r.config.terrainLodPixels);
+    }
+    e.shadowMatrices[i] = toTexture * cascades.lightViewProjection[i];
+    e.shadowFar_m[i] = cascades.far_m[i];
+    e.shadowTexel_m[i] = cascades.texel_m[i];
+  }
+  r.shadowMaps.finish();
+  e.shadowCascades = cascades.count;
+  e.shadowTexture = r.shadowMaps.texture();
+}
+
+// Lightning of a storm at this frame's time: the bolts still flickering
+// (segment pairs) and the brightest flash, 0..1.
+float activeLightning(const FrameSnapshot& frame, std::vector<Eigen::Vector3f>& bolts) {
+  bolts.clear();
+  float flash = 0;
+  for (const LightningStrike& s : lightningStrikes(frame.sky, frame.simTime_s - 1.0, frame.simTime_s + 1e-6)) {
+    const float age = float(frame.simTime_s - s.time_s);
+    if (age < 0 || age >= s.duration_s) continue;
+    // Return strokes: a bright start, two flickers, fading.
+    const float flicker = (1.0f - age / s.duration_s) * (0.6f + 0.4f * std::cos(age * 45.0f));
+    flash = std::max(flash, flicker);
+    const std::vector<Eigen::Vector3f> bolt = lightningBolt(s);
+    bolts.insert(bolts.end(), bolt.begin(), bolt.end());
+  }
+  return flash;
+}
+
 }  // namespace
 
 Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
@@ -67,6 +125,7 @@ Renderer::~Renderer() = default;
 bool Renderer::offscreen() const { return m_impl->context->offscreen(); }
 std::uint32_t Renderer::windowId() const { return SDL_GetWindowID(m_impl->context->window()); }
 Camera& Renderer::camera() { return m_impl->camera; }
+WindowConfig& Renderer::settings() { return m_impl->config; }
 
 Eigen::Vector2i Renderer::framebufferSize() const {
   return {m_impl->targets.width(), m_impl->targets.height()};
@@ -89,22 +148,41 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(r.targets.height());
   const FrameView view = makeFrameView(r.camera, aspect, r.quality.farPlane_m);
 
+  r.environment = environmentFor(frame.sky, frame.simTime_s);
+  std::vector<Eigen::Vector3f> bolts;
+  const float flash = r.config.lightning ? activeLightning(frame, bolts) : 0.0f;
+  r.environment.skyAmbient += Eigen::Vector3f(0.25f, 0.27f, 0.35f) * flash;
+  r.shapes.prepare(frame.shapes);
+  r.convexMeshes.prepare(frame.shapes);
+  drawShadowMaps(r, frame, view);
+
   r.targets.bindScene();
   glClear(GL_DEPTH_BUFFER_BIT);  // the sky covers every pixel, so no colour clear
-  r.sky.draw(view, r.environment);
+  r.sky.draw(view, r.environment, r.config.skyCubeSize, r.config.clouds, 0.35f * flash);
   drawTerrain(r, frame, view);
-  r.shapes.draw(frame.shapes, view, r.environment);
+  r.shapes.draw(view, r.environment);
   r.meshes.draw(frame.models, view, r.environment, r.meshStats);
   if (!r.meshes.lastError().empty() && !r.reportedMeshError) {
     log::warn("render: models not drawn: " + r.meshes.lastError() + " (reported once)");
     r.reportedMeshError = true;
   }
-  r.convexMeshes.draw(frame.shapes, view, r.environment);
+  r.convexMeshes.draw(view, r.environment);
   r.lines.draw(frame.lines, view);
   // Last in the scene: transparent, depth-tested, no depth writes.
   if (Status s = r.particles.draw(frame.particles, frame.additiveParticles, view); !s && !r.reportedParticleError) {
     log::warn("render: particles not drawn: " + s.error() + " (reported once)");
     r.reportedParticleError = true;
+  }
+  // Effects over the scene: lightning (hidden by what stands in front), then
+  // the lens flare (faded by the depth test of the sun).
+  Status effects = r.effects.drawLightning(bolts, flash, view);
+  if (effects && r.config.lensFlare) {
+    auto visible = r.effects.drawFlare(view, r.environment);
+    if (!visible) effects = makeError(visible.error());
+  }
+  if (!effects && !r.reportedEffectsError) {
+    log::warn("render: effects not drawn: " + effects.error() + " (reported once)");
+    r.reportedEffectsError = true;
   }
   r.targets.resolve();
   if (r.hud) r.hud->draw(hud, controls, r.camera.mode, r.tuning);

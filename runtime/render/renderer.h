@@ -28,6 +28,7 @@
 
 #include "core/math.h"
 #include "core/result.h"
+#include "render/sky.h"
 
 union SDL_Event;  // render.h does not include SDL; hooks get events by reference
 
@@ -130,6 +131,7 @@ struct FrameSnapshot {
   std::vector<DrawParticle> particles;
   std::vector<DrawParticle> additiveParticles;
   std::vector<ModelInstance> models;        // textured meshes (mesh pass); empty: no mesh GPU memory
+  SkySettings sky;                          // time of day, sun, fog, clouds, weather (render/sky.h)
 };
 
 /// What the mesh pass did in the last drawFrame (Renderer::meshStats).
@@ -278,6 +280,16 @@ struct WindowConfig {
   // (coarse) blocks are at most this many pixels wide on screen at the
   // chunk's nearest point. Smaller: more triangles, less popping.
   float terrainLodPixels = 16.0f;
+  // The look (sky.h, README "Sky, weather and shadows"). Quality presets set
+  // these; Renderer::settings() changes them between frames.
+  bool clouds = true;              // the two moving cloud layers (off: the clear sky cube only)
+  int skyCubeSize = 128;           // texels per sky cube face edge (16..1024)
+  bool shadows = true;             // cascaded sun shadows (off: no shadow pass, no shadow lookups)
+  int shadowMapSize = 1024;        // texels per cascade's depth map edge (64..4096)
+  int shadowCascades = 3;          // 1..3 slices of the view, each with its own map
+  float shadowDistance_m = 60.0f;  // shadows end (fading out over the last tenth) this far along the view
+  bool lensFlare = true;           // the sun's flare (an occlusion query and 7 sprites when the sun is in view)
+  bool lightning = true;           // bolts and sky flashes in Weather::Storm
 };
 
 /// What a quality preset changes in the renderer (the app's presets:
@@ -312,6 +324,10 @@ class Renderer {
   /// SDL's id of the window (events sent to it carry this id).
   std::uint32_t windowId() const;
   Camera& camera();
+  /// The configuration, for changes between frames: the look fields (clouds,
+  /// skyCubeSize, shadows, shadowMapSize, shadowCascades, shadowDistance_m),
+  /// msaaSamples and terrainLodPixels take effect on the next drawFrame.
+  WindowConfig& settings();
   /// Size in pixels of the frame drawFrame renders and screenshots store.
   Eigen::Vector2i framebufferSize() const;
   /// The ray from the eye through view point (x, y), both -1..1 with y up
@@ -329,7 +345,7 @@ class Renderer {
   /// See HudPanel. Panels are built in the order added, after the HUD's own windows.
   void addHudPanel(HudPanel panel);
 
-  // Draws sky gradient, the terrain if any (chunked geomipmaps, per-block
+  // Draws the sky (cube, clouds), the terrain if any (chunked geomipmaps, per-block
   // textures, bump detail, fog), lit shapes (directional light + ambient,
   // checkered plane), debug lines and the HUD, then presents. If screenshotPath is
   // non-null the finished frame is written as an RGB PNG (see saveScreenshot);

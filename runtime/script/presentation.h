@@ -17,6 +17,7 @@
 #include "core/result.h"
 #include "physics/body.h"
 #include "physics/shape.h"
+#include "script/environment_request.h"
 
 namespace tumble::script {
 
@@ -89,6 +90,7 @@ struct Presentation {
   std::vector<ModelAttachment> attachments;  ///< at most one per body (a new one replaces)
   std::vector<StaticModel> statics;
   CameraRequest camera;
+  EnvironmentRequest environment;  ///< environment.set (bind_environment.cpp)
   std::uint64_t revision = 0;  ///< bumped whenever attachments or statics change
   LapDisplay lap;               ///< hud.set_lap
   std::vector<Vec3> gates_m;    ///< hud.set_gates: gate centres in order (minimap), m, world

@@ -94,6 +94,7 @@ void ScenarioHost::buildEnvironment() {
   openModelBindings(L, env);
   openCameraBindings(L, env);
   openSoundBindings(L, env);
+  openEnvironmentBindings(L, env);
   openDeformableBindings(L, env);
   openOdeBindings(L, env);
   openSpringBindings(L, env);

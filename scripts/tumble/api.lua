@@ -987,6 +987,22 @@ function particles.burst(name, count, at, overrides) end
 ---@return integer # live particles of every emitter (0 before the first spawn)
 function particles.count() end
 
+---The sky, sun, fog, clouds and weather of the scene. Only drawn: physics,
+---state hashes and expectations do not change with it.
+environment = {}
+
+---Changes the named settings; the others keep their values.
+---
+---```lua
+---environment.set{time_of_day = 19, clouds = 0.6}
+---environment.set{weather = "storm"}
+---```
+---@param settings EnvironmentSettings
+function environment.set(settings) end
+
+---@return table # the current settings: {time_of_day, sun, fog, clouds, weather, wind}; unset ones are nil (fog 0: none)
+function environment.get() end
+
 ---Messages for the player, a score and the outcome (win or lose). The
 ---runtime shows them on the HUD and writes them into the run report; the
 ---first game.win or game.lose decides, later calls are ignored.

@@ -11,6 +11,10 @@
 --                                center = function() return x, z end}
 --
 -- center() gives the drop zone's middle (m); it may read param().
+-- def.time_of_day and def.weather set the sky (environment.set); --set
+-- time_of_day=H and --set weather=storm override them. Rocks are drawn with
+-- the shipped rock model over their collision boxes, and trees (drawn only,
+-- collision = "none") stand around the zone: neither changes the physics.
 
 local terrain_drop = {}
 
@@ -74,7 +78,22 @@ function terrain_drop.scenario(def)
   local bodies = {}
 
 
+  -- The shipped rock model (tools/meshgen) spans x -0.88..0.92, y -0.21..0.89,
+  -- z -0.72..0.77 m; scaled over a rock's box with 15 % to spare, so the
+  -- box's corners stay inside the rounder rock.
+  local rock_min, rock_max = {-0.87769, -0.21122, -0.72266}, {0.92194, 0.89165, 0.76573}
+  local function rock_look(body, size)
+    local scale, offset = {}, {}
+    for k = 1, 3 do
+      scale[k] = 1.15 * size[k] / (rock_max[k] - rock_min[k])
+      offset[k] = -scale[k] * 0.5 * (rock_min[k] + rock_max[k])
+    end
+    body:set_model("base:assets/models/rock.obj", {scale = scale, offset = offset})
+  end
+
   function scenario.on_start(ctx)
+    environment.set{time_of_day = param("time_of_day", def.time_of_day or 15.5),
+                    weather = param("weather", def.weather or "clear"), clouds = def.clouds or 0.4}
     local cx, cz = center()
     if not ground(cx, cz) then
       expect("terrain present", false)
@@ -86,8 +105,22 @@ function terrain_drop.scenario(def)
       local a = i * 2.4
       local x, z = cx + math.cos(a) * (14 + i * 0.7), cz + math.sin(a) * (14 + i * 0.7)
       local s = 0.8 + math.random() * 1.2
-      world.box{type = "static", size = {s, s * 0.7, s * 1.1}, position = {x, ground(x, z) + s * 0.15, z},
-                rotation = {0, math.random() * 3, 0}, friction = 0.8, color = {0.45, 0.43, 0.4}}
+      local size = {s, s * 0.7, s * 1.1}
+      local rock = world.box{type = "static", size = size, position = {x, ground(x, z) + s * 0.15, z},
+                             rotation = {0, math.random() * 3, 0}, friction = 0.8, color = {0.45, 0.43, 0.4}}
+      rock_look(rock, size)
+    end
+    -- Trees on a wider ring (fixed positions: no random numbers drawn, so
+    -- the bodies below are placed exactly as before).
+    for i = 1, param("trees", 10) do
+      local a = i * 0.63 + 0.3
+      local r = 24 + (i % 3) * 5
+      local x, z = cx + math.cos(a) * r, cz + math.sin(a) * r
+      local y = ground(x, z)
+      if y then
+        world.add_static_model("base:assets/models/tree.obj", {position = {x, y - 0.1, z}, rotation = {0, a * 2.7, 0},
+                                                               scale = 0.9 + (i % 4) * 0.15, collision = "none"})
+      end
     end
     local palette = {{0.85, 0.35, 0.25}, {0.25, 0.55, 0.85}, {0.95, 0.75, 0.2}, {0.4, 0.75, 0.4}}
     local count = param("count", 24)

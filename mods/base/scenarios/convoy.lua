@@ -21,6 +21,8 @@ return {
   terrain = {generate = 5, size = 513, height = 14},
 
   on_start = function(ctx)
+    -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
+    environment.set{time_of_day = param("time_of_day", 17.2), weather = param("weather", "clear"), clouds = 0.4}
     local count = param("count", 50)
     local rings = math.max(1, math.ceil(count / 10))
     for i = 1, count do

@@ -53,6 +53,8 @@ return {
   },
 
   on_start = function(ctx)
+    -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
+    environment.set{time_of_day = param("time_of_day", 16.5), weather = param("weather", "clear"), clouds = 0.45}
     local h0 = ground(0, 0)
     if not h0 then
       expect("terrain present", false)

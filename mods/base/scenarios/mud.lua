@@ -70,6 +70,8 @@ return {
   terrain = {generate = 21, size = 513, height = 2},  -- nearly flat: low ground with mud patches
 
   on_start = function(ctx)
+    -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
+    environment.set{time_of_day = param("time_of_day", 11.0), weather = param("weather", "clear"), clouds = 0.6}
     local m = find_lane(0.3)
     local g = m and find_lane(0.6, m)
     expect("a mud lane and a grass lane found", m ~= nil and g ~= nil)

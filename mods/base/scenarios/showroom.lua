@@ -20,6 +20,8 @@ return {
   title = "Showroom: models on bodies, static scenery, chase camera",
   duration = 5,
   on_start = function(ctx)
+    -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
+    environment.set{time_of_day = param("time_of_day", 15.0), weather = param("weather", "clear"), clouds = 0.3}
     world.plane{color = {0.42, 0.48, 0.38}}
     if sliding then
       -- The car: a 1.6 x 1.2 x 4.1 m box whose centre is 0.87 m above the model's origin.

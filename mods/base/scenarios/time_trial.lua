@@ -31,6 +31,8 @@ return {
   },
 
   on_start = function(ctx)
+    -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
+    environment.set{time_of_day = param("time_of_day", 13.5), weather = param("weather", "clear"), clouds = 0.35}
     world.plane{friction = 1, color = {0.35, 0.36, 0.38}}
     best = (save.read("time_trial") or {}).best_s
     for i, g in ipairs(gates) do

@@ -29,6 +29,10 @@ Status ConvexMeshPass::init() {
   if (!program) return makeError(program.error());
   m_program = std::move(*program);
   m_lit.locate(m_program);
+  auto depth = buildProgram("convex mesh shadow shader", shaders::kShapeVertex, shaders::kDepthFragment);
+  if (!depth) return makeError(depth.error());
+  m_depthProgram = std::move(*depth);
+  m_depthViewProjection = uniformLocation(m_depthProgram, "uViewProjection");
   m_checker = uniformLocation(m_program, "uChecker");
   return Ok{};
 }
@@ -74,8 +78,7 @@ ConvexMeshPass::Mesh ConvexMeshPass::upload(const ConvexMeshData& data) {
   return mesh;
 }
 
-void ConvexMeshPass::draw(const std::vector<DrawShape>& shapes, const FrameView& view,
-                          const Environment& environment) {
+void ConvexMeshPass::prepare(const std::vector<DrawShape>& shapes) {
   ++m_frame;
   bool any = false;
   for (const DrawShape& shape : shapes) {
@@ -92,7 +95,31 @@ void ConvexMeshPass::draw(const std::vector<DrawShape>& shapes, const FrameView&
     if (m_frame - it->second.lastUsedFrame > kEvictFrames) it = m_meshes.erase(it);
     else ++it;
   }
+  m_any = any;
   if (!any) return;
+  for (auto& [id, mesh] : m_meshes) {
+    if (mesh.lastUsedFrame != m_frame || mesh.pending.empty() || mesh.vertexCount == 0) continue;
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.instances.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.pending.size() * sizeof(ShapeInstance)),
+                 mesh.pending.data(), GL_STREAM_DRAW);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void ConvexMeshPass::drawDepth(const Eigen::Matrix4f& lightViewProjection) const {
+  if (!m_any) return;
+  glUseProgram(m_depthProgram.get());
+  glUniformMatrix4fv(m_depthViewProjection, 1, GL_FALSE, lightViewProjection.data());
+  for (const auto& [id, mesh] : m_meshes) {
+    if (mesh.lastUsedFrame != m_frame || mesh.pending.empty() || mesh.vertexCount == 0) continue;
+    glBindVertexArray(mesh.vao.get());
+    glDrawArraysInstanced(GL_TRIANGLES, 0, mesh.vertexCount, static_cast<GLsizei>(mesh.pending.size()));
+  }
+  glBindVertexArray(0);
+}
+
+void ConvexMeshPass::draw(const FrameView& view, const Environment& environment) {
+  if (!m_any) return;
 
   glUseProgram(m_program.get());
   m_lit.apply(view, environment);
@@ -105,9 +132,6 @@ void ConvexMeshPass::draw(const std::vector<DrawShape>& shapes, const FrameView&
   for (auto& [id, mesh] : m_meshes) {
     if (mesh.lastUsedFrame != m_frame || mesh.pending.empty() || mesh.vertexCount == 0) continue;
     glBindVertexArray(mesh.vao.get());
-    glBindBuffer(GL_ARRAY_BUFFER, mesh.instances.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.pending.size() * sizeof(ShapeInstance)),
-                 mesh.pending.data(), GL_STREAM_DRAW);
     glDrawArraysInstanced(GL_TRIANGLES, 0, mesh.vertexCount, static_cast<GLsizei>(mesh.pending.size()));
   }
   glBindVertexArray(0);

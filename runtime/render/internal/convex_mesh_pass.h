@@ -25,7 +25,11 @@ class ConvexMeshPass {
   static constexpr std::uint64_t kEvictFrames = 300;
 
   Status init();
-  void draw(const std::vector<DrawShape>& shapes, const FrameView& view, const Environment& environment);
+  /// Collects and uploads this frame's instances (once per frame, before drawDepth and draw).
+  void prepare(const std::vector<DrawShape>& shapes);
+  /// Depth only into the bound shadow map.
+  void drawDepth(const Eigen::Matrix4f& lightViewProjection) const;
+  void draw(const FrameView& view, const Environment& environment);
   /// Meshes resident on the GPU (for tests).
   std::size_t residentMeshes() const { return m_meshes.size(); }
 
@@ -40,10 +44,11 @@ class ConvexMeshPass {
   Mesh upload(const ConvexMeshData& data);
 
   std::unordered_map<std::uint64_t, Mesh> m_meshes;
-  GlProgram m_program;
+  GlProgram m_program, m_depthProgram;
   LitUniforms m_lit;
-  GLint m_checker = -1;
+  GLint m_checker = -1, m_depthViewProjection = -1;
   std::uint64_t m_frame = 0;
+  bool m_any = false;  // this frame has convex meshes
 };
 
 }  // namespace tumble::render

@@ -11,6 +11,12 @@ void LitUniforms::locate(const GlProgram& program) {
   groundAmbient = uniformLocation(program, "uGroundAmbient");
   fogColor = uniformLocation(program, "uFogColor");
   fogDensity = uniformLocation(program, "uFogDensity");
+  shadowCascades = uniformLocation(program, "uShadowCascades");
+  shadowMap = uniformLocation(program, "uShadowMap");
+  shadowMatrix = uniformLocation(program, "uShadowMatrix");
+  shadowFar = uniformLocation(program, "uShadowFar");
+  shadowTexel = uniformLocation(program, "uShadowTexel");
+  viewForward = uniformLocation(program, "uViewForward");
 }
 
 void LitUniforms::apply(const FrameView& view, const Environment& environment) const {
@@ -22,6 +28,18 @@ void LitUniforms::apply(const FrameView& view, const Environment& environment) c
   glUniform3fv(groundAmbient, 1, environment.groundAmbient.data());
   glUniform3fv(fogColor, 1, environment.horizonColor.data());
   glUniform1f(fogDensity, environment.fogDensity_per_m);
+  const int cascades = environment.shadowTexture != 0 ? environment.shadowCascades : 0;
+  glUniform1i(shadowCascades, cascades);
+  glUniform1i(shadowMap, kShadowUnit);
+  glUniform3fv(viewForward, 1, view.forward.data());
+  if (cascades > 0) {
+    glUniformMatrix4fv(shadowMatrix, cascades, GL_FALSE, environment.shadowMatrices[0].data());
+    glUniform3fv(shadowFar, 1, environment.shadowFar_m.data());
+    glUniform3fv(shadowTexel, 1, environment.shadowTexel_m.data());
+  }
+  glActiveTexture(GL_TEXTURE0 + kShadowUnit);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, cascades > 0 ? environment.shadowTexture : 0);
+  glActiveTexture(GL_TEXTURE0);
 }
 
 }  // namespace tumble::render

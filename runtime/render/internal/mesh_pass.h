@@ -34,6 +34,9 @@ class MeshPass {
   /// Compiles the shader lazily: a scene without models costs nothing.
   void draw(const std::vector<ModelInstance>& instances, const FrameView& view, const Environment& environment,
             MeshStats& stats);
+  /// Depth only into the bound shadow map: every instance's meshes inside
+  /// the light's box (uploads models seen for the first time).
+  void drawDepth(const std::vector<ModelInstance>& instances, const Eigen::Matrix4f& lightViewProjection);
   /// The first GL or upload problem, reported once by the renderer.
   const std::string& lastError() const { return m_error; }
 
@@ -52,8 +55,11 @@ class MeshPass {
   GpuModel& upload(const std::shared_ptr<const Model>& model);
 
   bool m_initialised = false;
-  GlProgram m_program;
+  bool ready(const std::vector<ModelInstance>& instances);  // lazy init and uploads; false: cannot draw
+  GlProgram m_program, m_depthProgram;
   LitUniforms m_lit;
+  GLint m_depthViewProjection = -1, m_depthModel = -1;
+  std::vector<MeshDraw> m_depthDraws;
   GLint m_model = -1, m_normalMatrix = -1, m_diffuse = -1, m_hasTexture = -1, m_texture = -1;
   std::unordered_map<const Model*, GpuModel> m_models;
   std::vector<MeshDraw> m_draws;  // reused every frame

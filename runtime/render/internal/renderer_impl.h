@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "render/internal/convex_mesh_pass.h"
+#include "render/internal/effects_pass.h"
 #include "render/internal/environment.h"
 #include "render/internal/gl_context.h"
 #include "render/internal/hud.h"
@@ -13,6 +14,7 @@
 #include "render/internal/particles_pass.h"
 #include "render/internal/mesh_pass.h"
 #include "render/internal/render_targets.h"
+#include "render/internal/shadow_maps.h"
 #include "render/internal/shape_pass.h"
 #include "render/internal/sky_pass.h"
 #include "render/internal/terrain_pass.h"
@@ -25,11 +27,15 @@ struct Renderer::Impl {
   std::unique_ptr<GlContext> context;
   RenderTargets targets;
   SkyPass sky;
+  ShadowMaps shadowMaps;     // no GPU memory until a frame with shadows on
+  bool reportedShadowError = false;
   ShapePass shapes;
   ConvexMeshPass convexMeshes;  // no GPU memory until a frame has a ConvexMesh
   LinePass lines;
   TerrainPass terrain;       // creates nothing until the first frame with a terrain
   ParticlesPass particles;   // creates nothing until the first frame with particles
+  EffectsPass effects;       // lightning and lens flare; creates nothing until needed
+  bool reportedEffectsError = false;
   TerrainStats terrainStats;
   MeshPass meshes;           // creates nothing until the first frame with a model
   MeshStats meshStats;

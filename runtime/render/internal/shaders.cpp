@@ -22,11 +22,42 @@ uniform vec3 uSkyAmbient;
 uniform vec3 uGroundAmbient;
 uniform vec3 uFogColor;
 uniform float uFogDensity;      // 1/m
+uniform int uShadowCascades;    // 0: no shadows (and no shadow map fetches)
+uniform sampler2DArrayShadow uShadowMap;
+uniform mat4 uShadowMatrix[3];  // world -> shadow texture coordinates and depth (0..1)
+uniform vec3 uShadowFar;        // m along uViewForward where each cascade ends
+uniform vec3 uShadowTexel;      // m per shadow texel in each cascade
+uniform vec3 uViewForward;
+
+// How much of the sun reaches this point, 0..1: the cascade by view depth,
+// the point pushed out along the normal by a texel or two (no acne on
+// slopes), 4 comparisons half a texel apart, each bilinear (hardware PCF),
+// faded out over the last tenth of the shadowed distance.
+float sunVisibility(vec3 position, vec3 n) {
+  if (uShadowCascades == 0) return 1.0;
+  float depth = dot(position - uEye, uViewForward);
+  int c = 0;
+  while (c < uShadowCascades && depth > uShadowFar[c]) ++c;
+  if (c >= uShadowCascades) return 1.0;
+  float slope = 1.0 - abs(dot(n, uLightDirection));
+  vec4 p = uShadowMatrix[c] * vec4(position + n * uShadowTexel[c] * (0.6 + 1.5 * slope), 1.0);
+  if (any(lessThan(p.xyz, vec3(0.0))) || any(greaterThan(p.xyz, vec3(1.0)))) return 1.0;
+  float texel = 1.0 / float(textureSize(uShadowMap, 0).x);
+  float lit = 0.0;
+  lit += texture(uShadowMap, vec4(p.xy + vec2(-0.5, -0.5) * texel, float(c), p.z));
+  lit += texture(uShadowMap, vec4(p.xy + vec2(0.5, -0.5) * texel, float(c), p.z));
+  lit += texture(uShadowMap, vec4(p.xy + vec2(-0.5, 0.5) * texel, float(c), p.z));
+  lit += texture(uShadowMap, vec4(p.xy + vec2(0.5, 0.5) * texel, float(c), p.z));
+  lit *= 0.25;
+  float last = uShadowFar[uShadowCascades - 1];
+  return mix(lit, 1.0, smoothstep(0.9 * last, last, depth));
+}
 
 // Lambert sun + hemisphere ambient + a Blinn-Phong highlight of the given
 // strength (0: none) and shininess.
 vec3 sunAndSky(vec3 albedo, vec3 n, vec3 position, float highlight, float shininess) {
   float diffuse = max(dot(n, uLightDirection), 0.0);
+  if (diffuse > 0.0) diffuse *= sunVisibility(position, n);
   vec3 ambient = mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5);
   vec3 color = albedo * (ambient + uLightColor * diffuse);
   if (highlight > 0.0 && diffuse > 0.0) {
@@ -134,27 +165,39 @@ uniform vec3 uRight;       // camera basis, world space
 uniform vec3 uUp;
 uniform vec3 uForward;
 uniform vec2 uTanHalfFov;  // (tan(fovX / 2), tan(fovY / 2))
-uniform vec3 uZenithColor;
+uniform samplerCube uSky;  // clear sky: gradient, sun glow and disc (linear RGB)
+uniform sampler2D uClouds; // tiling plasma, 0..1
+uniform float uCloudCover; // 0: no clouds (and no cloud texture fetches)
+uniform vec2 uCloudOffset; // m the wind has moved the lower layer
+uniform vec3 uCloudColor;  // lit cloud tops
+uniform vec3 uCloudShadow; // dense cloud undersides
 uniform vec3 uHorizonColor;
-uniform vec3 uGroundColor;
-uniform vec3 uLightDirection;
-uniform vec3 uLightColor;
+uniform float uFlash;      // lightning, 0..1
 
 out vec4 fragColor;
 
 void main() {
   vec3 dir = normalize(uForward + vNdc.x * uTanHalfFov.x * uRight +
                        vNdc.y * uTanHalfFov.y * uUp);
-  vec3 color;
-  if (dir.y >= 0.0) {
-    color = mix(uHorizonColor, uZenithColor, pow(dir.y, 0.6));
-  } else {
-    color = mix(uHorizonColor, uGroundColor, min(1.0, -dir.y * 6.0));
+  vec3 color = texture(uSky, dir).rgb;
+  if (uCloudCover > 0.0 && dir.y > 0.0) {
+    // Two layers on flat planes, 1 km up: a thin, slow upper one and a
+    // denser lower one. They thin out towards the horizon, so the horizon
+    // keeps exactly the fog's colour.
+    vec2 onPlane = dir.xz * (1000.0 / (dir.y + 0.02));
+    float threshold = mix(0.85, -0.1, uCloudCover);
+    float upper = texture(uClouds, (onPlane + 0.5 * uCloudOffset) * (1.0 / 7000.0) + vec2(0.37, 0.11)).r;
+    float lower = texture(uClouds, (onPlane + uCloudOffset) * (1.0 / 2600.0)).r;
+    float fade = smoothstep(0.0, 0.15, dir.y);
+    float upperAlpha = 0.55 * smoothstep(threshold - 0.1, threshold + 0.2, upper) * fade;
+    float lowerAlpha = smoothstep(threshold - 0.08, threshold + 0.12, lower) * fade;
+    vec3 lowerColor = mix(uCloudColor, uCloudShadow, smoothstep(threshold, threshold + 0.45, lower));
+    float haze = 1.0 - smoothstep(0.0, 0.35, dir.y);  // far clouds take the horizon's colour
+    color = mix(color, mix(uCloudColor, uHorizonColor, haze), upperAlpha);
+    color = mix(color, mix(lowerColor, uHorizonColor, haze), lowerAlpha);
   }
-  // A soft glow around the sun shows where the light comes from.
-  float sun = max(dot(dir, uLightDirection), 0.0);
-  color += uLightColor * (0.25 * pow(sun, 64.0) + 0.6 * pow(sun, 2048.0));
-  fragColor = vec4(pow(color, vec3(1.0 / 2.2)), 1.0);
+  color += uFlash * vec3(0.75, 0.8, 1.0);
+  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
 }
 )glsl";
 
@@ -335,5 +378,42 @@ void main() {
 }
 )glsl");
 const char* const kMeshFragment = kMeshFragmentSource.c_str();
+
+// Shadow depth: nothing to shade; the depth buffer is the output.
+const char* const kDepthFragment = R"glsl(
+#version 330 core
+void main() {}
+)glsl";
+
+// Effects: additive strips and sprites. Lightning strips fade across their
+// width (uv.y -1..1); flare sprites read a generated one-channel image.
+// Colours are written as they are (already display values), times alpha.
+const char* const kEffectsVertex = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec2 aUv;
+layout(location = 2) in vec4 aColor;
+uniform mat4 uViewProjection;  // identity for screen-space sprites
+out vec2 vUv;
+out vec4 vColor;
+void main() {
+  vUv = aUv;
+  vColor = aColor;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)glsl";
+
+const char* const kEffectsFragment = R"glsl(
+#version 330 core
+in vec2 vUv;
+in vec4 vColor;
+uniform sampler2D uSprites;
+uniform int uUseTexture;
+out vec4 fragColor;
+void main() {
+  float a = uUseTexture != 0 ? texture(uSprites, vUv).r : pow(1.0 - abs(vUv.y), 2.0);
+  fragColor = vec4(vColor.rgb * (vColor.a * a), 1.0);
+}
+)glsl";
 
 }  // namespace tumble::render::shaders

@@ -16,6 +16,11 @@ extern const char* const kTerrainVertex;
 extern const char* const kTerrainFragment;
 extern const char* const kMeshVertex;
 extern const char* const kMeshFragment;
+// Shadow maps: depth only, paired with each pass's own vertex shader.
+extern const char* const kDepthFragment;
+// Lightning strips and lens flare sprites (effects_pass.h).
+extern const char* const kEffectsVertex;
+extern const char* const kEffectsFragment;
 
 // Vertex attribute locations shared by the shape shader and its VAOs.
 inline constexpr unsigned kAttribPosition = 0;

@@ -95,6 +95,10 @@ Status ShapePass::init() {
   m_program = std::move(*program);
   m_lit.locate(m_program);
   m_checker = uniformLocation(m_program, "uChecker");
+  auto depth = buildProgram("shape shadow shader", shaders::kShapeVertex, shaders::kDepthFragment);
+  if (!depth) return makeError(depth.error());
+  m_depthProgram = std::move(*depth);
+  m_depthViewProjection = uniformLocation(m_depthProgram, "uViewProjection");
 
   for (ShapeKind kind : {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule, ShapeKind::Plane}) {
     Batch& batch = m_batches[kindIndex(kind)];
@@ -128,14 +132,38 @@ Status ShapePass::init() {
   return Ok{};
 }
 
-void ShapePass::draw(const std::vector<DrawShape>& shapes, const FrameView& view,
-                     const Environment& environment) {
+void ShapePass::prepare(const std::vector<DrawShape>& shapes) {
   for (Batch& batch : m_batches) batch.pending.clear();
   for (const DrawShape& shape : shapes) {
     if (kindIndex(shape.kind) >= kKindCount) continue;  // ConvexMesh: ConvexMeshPass
     m_batches[kindIndex(shape.kind)].pending.push_back(makeInstance(shape));
   }
+  for (Batch& batch : m_batches) {
+    if (batch.pending.empty()) continue;
+    glBindBuffer(GL_ARRAY_BUFFER, batch.instances.get());
+    // Re-specifying the whole store each frame lets the driver hand out fresh
+    // memory instead of waiting for last frame's draw to finish reading it.
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(batch.pending.size() * sizeof(ShapeInstance)),
+                 batch.pending.data(), GL_STREAM_DRAW);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
 
+void ShapePass::drawDepth(const Eigen::Matrix4f& lightViewProjection) const {
+  glUseProgram(m_depthProgram.get());
+  glUniformMatrix4fv(m_depthViewProjection, 1, GL_FALSE, lightViewProjection.data());
+  for (std::size_t k = 0; k < kKindCount; ++k) {
+    const Batch& batch = m_batches[k];
+    if (batch.pending.empty() || k == kindIndex(ShapeKind::Plane)) continue;
+    glBindVertexArray(batch.vao.get());
+    glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
+                            static_cast<GLsizei>(batch.pending.size()));
+  }
+  glBindVertexArray(0);
+}
+
+void ShapePass::draw(const FrameView& view, const Environment& environment) {
   glUseProgram(m_program.get());
   m_lit.apply(view, environment);
 
@@ -149,12 +177,6 @@ void ShapePass::draw(const std::vector<DrawShape>& shapes, const FrameView& view
     if (batch.pending.empty()) continue;
     glUniform1i(m_checker, k == kindIndex(ShapeKind::Plane) ? 1 : 0);
     glBindVertexArray(batch.vao.get());
-    glBindBuffer(GL_ARRAY_BUFFER, batch.instances.get());
-    // Re-specifying the whole store each frame lets the driver hand out fresh
-    // memory instead of waiting for last frame's draw to finish reading it.
-    glBufferData(GL_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(batch.pending.size() * sizeof(ShapeInstance)),
-                 batch.pending.data(), GL_STREAM_DRAW);
     glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
                             static_cast<GLsizei>(batch.pending.size()));
   }

@@ -37,8 +37,12 @@ ShapeInstance makeInstance(const DrawShape& shape);
 class ShapePass {
  public:
   Status init();
-  void draw(const std::vector<DrawShape>& shapes, const FrameView& view,
-            const Environment& environment);
+  /// Collects this frame's instances per kind and uploads them (once per
+  /// frame, before drawDepth and draw).
+  void prepare(const std::vector<DrawShape>& shapes);
+  /// Depth only into the bound shadow map (planes excluded: they only receive).
+  void drawDepth(const Eigen::Matrix4f& lightViewProjection) const;
+  void draw(const FrameView& view, const Environment& environment);
 
  private:
   static constexpr std::size_t kKindCount = 4;
@@ -49,9 +53,9 @@ class ShapePass {
     std::vector<ShapeInstance> pending;
   };
   std::array<Batch, kKindCount> m_batches;
-  GlProgram m_program;
+  GlProgram m_program, m_depthProgram;
   LitUniforms m_lit;
-  GLint m_checker = -1;
+  GLint m_checker = -1, m_depthViewProjection = -1;
 };
 
 }  // namespace tumble::render

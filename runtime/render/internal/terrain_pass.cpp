@@ -35,6 +35,10 @@ Status TerrainPass::init() {
   if (!program) return makeError(program.error());
   m_program = std::move(*program);
   m_lit.locate(m_program);
+  auto depth = buildProgram("terrain shadow shader", shaders::kTerrainVertex, shaders::kDepthFragment);
+  if (!depth) return makeError(depth.error());
+  m_depthProgram = std::move(*depth);
+  m_depthViewProjection = uniformLocation(m_depthProgram, "uViewProjection");
   m_origin = uniformLocation(m_program, "uOrigin");
   m_spacing = uniformLocation(m_program, "uSpacing");
   m_blocks = uniformLocation(m_program, "uBlocks");
@@ -168,14 +172,7 @@ void TerrainPass::evictUnused() {
   }
 }
 
-Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
-                         const Environment& environment, float pixelsPerRadian, float lodPixels,
-                         TerrainStats& stats) {
-  std::vector<TerrainChunkDraw> drawn = std::move(stats.drawn);  // keep its capacity
-  drawn.clear();
-  stats = TerrainStats{};
-  stats.drawn = std::move(drawn);
-  if (chunkGrid(surface).chunksX == 0) return Ok{};
+Status TerrainPass::sync(const TerrainSurface& surface, TerrainStats& stats) {
   if (!m_initialised) {
     if (Status s = init(); !s) return s;
   }
@@ -188,6 +185,42 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
     m_hasSurface = true;
     stats.materialsUploaded = true;
   }
+  return Ok{};
+}
+
+Status TerrainPass::drawDepth(const TerrainSurface& surface, const Eigen::Matrix4f& lightViewProjection,
+                              const Eigen::Vector3f& eye, float pixelsPerRadian, float lodPixels) {
+  if (chunkGrid(surface).chunksX == 0) return Ok{};
+  // Uploads made here are reported by this frame's draw (m_depthUploads).
+  TerrainStats& uploads = m_depthUploads;
+  if (Status s = sync(surface, uploads); !s) return s;
+  const FrustumPlanes planes = frustumPlanes(lightViewProjection);
+  glUseProgram(m_depthProgram.get());
+  glUniformMatrix4fv(m_depthViewProjection, 1, GL_FALSE, lightViewProjection.data());
+  for (int c = 0; c < static_cast<int>(m_chunks.size()); ++c) {
+    const ChunkBounds& bounds = m_chunks[static_cast<std::size_t>(c)].bounds;
+    if (!boxInFrustum(planes, bounds)) continue;
+    const int lod = chooseLod(distanceToBox(eye, bounds), surface.spacing_m, pixelsPerRadian, lodPixels);
+    const ChunkLevel& level = ensureLevel(surface, c, lod, uploads);
+    glBindVertexArray(level.vao.get());
+    glDrawElements(GL_TRIANGLES, level.triangles * 3, GL_UNSIGNED_SHORT, nullptr);
+  }
+  glBindVertexArray(0);
+  return Ok{};
+}
+
+Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
+                         const Environment& environment, float pixelsPerRadian, float lodPixels,
+                         TerrainStats& stats) {
+  std::vector<TerrainChunkDraw> drawn = std::move(stats.drawn);  // keep its capacity
+  drawn.clear();
+  stats = TerrainStats{};
+  stats.drawn = std::move(drawn);
+  if (chunkGrid(surface).chunksX == 0) return Ok{};
+  if (Status s = sync(surface, stats); !s) return s;
+  stats.materialsUploaded = stats.materialsUploaded || m_depthUploads.materialsUploaded;
+  stats.chunksUploaded += m_depthUploads.chunksUploaded;
+  m_depthUploads = TerrainStats{};
   ++m_frame;
 
   // Cull and choose levels.

@@ -36,6 +36,11 @@ class TerrainPass {
   /// first call, re-uploads when the surface's revision (or shape) changed.
   Status draw(const TerrainSurface& surface, const FrameView& view, const Environment& environment,
               float pixelsPerRadian, float lodPixels, TerrainStats& stats);
+  /// Depth only into the bound shadow map: the chunks inside the light's box,
+  /// each at the level draw gives it (the same rule, from the eye), so the
+  /// ground's shadow depth matches the drawn ground.
+  Status drawDepth(const TerrainSurface& surface, const Eigen::Matrix4f& lightViewProjection,
+                   const Eigen::Vector3f& eye, float pixelsPerRadian, float lodPixels);
 
  private:
   struct ChunkLevel {
@@ -70,6 +75,8 @@ class TerrainPass {
   };
 
   Status init();
+  /// Creates the GPU objects on the first call and resets when the surface changed.
+  Status sync(const TerrainSurface& surface, TerrainStats& stats);
   void reset(const TerrainSurface& surface);
   void uploadMaterials(const TerrainSurface& surface);
   ChunkLevel& ensureLevel(const TerrainSurface& surface, int chunk, int lod, TerrainStats& stats);
@@ -77,7 +84,8 @@ class TerrainPass {
   void evictUnused();
 
   bool m_initialised = false;
-  GlProgram m_program;
+  GlProgram m_program, m_depthProgram;
+  GLint m_depthViewProjection = -1;
   GlTexture m_textures;  // 2D array, one layer per material
   GlTexture m_materials; // RG8UI, one texel per block
   LitUniforms m_lit;
@@ -94,6 +102,7 @@ class TerrainPass {
   std::vector<std::uint8_t> m_materialScratch;
   std::uint64_t m_frame = 0;
   std::size_t m_residentBytes = 0;
+  TerrainStats m_depthUploads;  // uploads drawDepth made, reported by the next draw
 };
 
 }  // namespace tumble::render

@@ -39,6 +39,8 @@ void openSaveBindings(lua_State* L, int envIndex);
 /// openWorldBindings and openBodyType), and the camera table (bind_camera.cpp).
 void openModelBindings(lua_State* L, int envIndex);
 void openCameraBindings(lua_State* L, int envIndex);
+/// The environment table: sky, sun, fog, clouds, weather (bind_environment.cpp).
+void openEnvironmentBindings(lua_State* L, int envIndex);
 /// deformable table (bind_deformable.cpp); ode table and draw_line (bind_ode.cpp).
 void openDeformableBindings(lua_State* L, int envIndex);
 void openOdeBindings(lua_State* L, int envIndex);
