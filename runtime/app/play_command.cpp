@@ -226,6 +226,9 @@ render::RenderQuality renderQuality(const QualityPreset& p) {
   q.terrainLodPixels = p.terrainLodPixels;
   q.msaaSamples = p.msaaSamples;
   q.shadows = p.shadows;
+  q.shadowMapSize = p.shadowMapSize;
+  q.shadowCascades = p.shadowCascades;
+  q.lensFlare = p.lensFlare;
   return q;
 }
 
@@ -675,7 +678,10 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
                      {"terrain_lod_pixels", preset.terrainLodPixels},
                      {"particle_budget", preset.particleBudget},
                      {"msaa_samples", preset.msaaSamples},
-                     {"shadows", preset.shadows}}},
+                     {"shadows", preset.shadows},
+                     {"shadow_map_size", preset.shadowMapSize},
+                     {"shadow_cascades", preset.shadowCascades},
+                     {"lens_flare", preset.lensFlare}}},
         {"settings", {{"file", settingsFile},
                       {"problem", settingsProblem.empty() ? nlohmann::json(nullptr) : nlohmann::json(settingsProblem)},
                       {"width", settings.width},

@@ -43,6 +43,7 @@ QualityPreset qualityPreset(QualityLevel level) {
       p.particleBudget = 2000;
       p.msaaSamples = 1;
       p.shadows = false;
+      p.lensFlare = false;
       break;
     case QualityLevel::Medium:
       p.resolutionScale = 0.75f;
@@ -52,6 +53,8 @@ QualityPreset qualityPreset(QualityLevel level) {
       p.particleBudget = 8000;
       p.msaaSamples = 1;
       p.shadows = true;
+      p.shadowMapSize = 512;
+      p.shadowCascades = 2;
       break;
     case QualityLevel::High:
       p.resolutionScale = 1.0f;

@@ -37,7 +37,10 @@ struct QualityPreset {
   float terrainLodPixels = 16.0f;
   int particleBudget = 20000;    ///< particles drawn per frame at most (evenly thinned beyond)
   int msaaSamples = 4;           ///< 1 = off
-  bool shadows = true;           ///< the renderer may draw sun shadows (off on low)
+  bool shadows = true;           ///< cascaded sun shadows (off on low)
+  int shadowMapSize = 1024;      ///< texels per cascade's depth map edge
+  int shadowCascades = 3;        ///< slices of the view with their own shadow map
+  bool lensFlare = true;         ///< the sun's flare (an occlusion query and 7 sprites)
 };
 
 const char* qualityName(QualityLevel level);

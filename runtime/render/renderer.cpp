@@ -213,6 +213,10 @@ void Renderer::setQuality(const RenderQuality& quality) {
   r.config.msaaSamples = std::max(1, quality.msaaSamples);
   r.config.terrainLodPixels = std::max(1.0f, quality.terrainLodPixels);
   r.environment.fogDensity_per_m = 1.0f / std::max(1.0f, quality.fogDistance_m);
+  r.config.shadows = quality.shadows;
+  r.config.shadowMapSize = std::clamp(quality.shadowMapSize, 64, 4096);
+  r.config.shadowCascades = std::clamp(quality.shadowCascades, 1, 3);
+  r.config.lensFlare = quality.lensFlare;
 }
 
 const RenderQuality& Renderer::quality() const { return m_impl->quality; }

@@ -300,7 +300,10 @@ struct RenderQuality {
   float fogDistance_m = 250.0f;  ///< fog reaches 63 % here (1 - exp(-(d / this)^2)); terrain beyond 2.5x is culled
   float terrainLodPixels = 16.0f;  ///< as WindowConfig::terrainLodPixels
   int msaaSamples = 4;           ///< 1 = off; as WindowConfig::msaaSamples
-  bool shadows = true;           ///< sun shadows may be drawn (a shadow pass reads it)
+  bool shadows = true;           ///< cascaded sun shadows (WindowConfig::shadows)
+  int shadowMapSize = 1024;      ///< texels per cascade's map edge (WindowConfig::shadowMapSize)
+  int shadowCascades = 3;        ///< WindowConfig::shadowCascades
+  bool lensFlare = true;         ///< WindowConfig::lensFlare
 };
 
 /// An image uploaded for the HUD's panels (ImGui::Image(ImTextureID(texture), ...)).

@@ -303,6 +303,14 @@ function Emitter:count() end
 ---@return boolean # false once removed, or stopped with no particles left
 function Emitter:alive() end
 
+---@class EnvironmentSettings
+---@field time_of_day? number|false local solar time, hours 0..24: the sun rises in +X at 6, stands highest towards +Z at 12, sets in -X at 18; false: the fixed lab sun
+---@field sun? Vec3Arg|false direction towards the sun (any length > 0), wins over time_of_day; false: clears it
+---@field fog? number|false|string distance where fog hides 63 %, m (> 0); false: no fog; "auto": the weather's (clear 250, cloudy 180, storm 70)
+---@field clouds? number|false cloud cover 0..1 (false: 0); cloudy weather raises it to at least 0.75, a storm to 1
+---@field weather? string "clear", "cloudy" or "storm" (darker sky, denser fog, lightning)
+---@field wind? table {x, z} wind moving the clouds, m/s
+
 ---@class LapFigures
 ---@field time number the lap being driven, s (>= 0)
 ---@field last? number the previous lap, s
