@@ -71,40 +71,6 @@
 // step time, boxes_3000 0.67x (penetration 0.40 vs 0.65 m), highspeed_1000
 // 0.68x with no escapes.
 //
-// Manifold sweeps (2026-11-26). A 100 kg box on a column of ten 1 kg boxes
-// swayed, its sway growing until the column fell (sleep off: within 33 s;
-// with sleep, 38 mm drift over 60 s), and an 8-box column alternating 1 kg
-// and 100 kg did the same; so did 1:10 columns at some settings. The mode
-// was rocking: each box tilting on its contacts, the top moving 3x the
-// middle, amplitude growing. Cause: the four normal rows of a face contact
-// were solved one after the other, once per iteration. They share one
-// body pair, so each row's impulse undoes part of the others'; under a
-// heavy load a light box's rows disagree, and what they leave is a torque
-// on the light box (I = m/6: 1/100 of the heavy box's rows' scale) that
-// rocks it. More iterations, more substeps, more relax sweeps, the other
-// sweep order, another Baumgarte factor or slop did not remove it (each
-// measured: chaotic, 1:10 columns fell at some of them). Fix: the normal
-// rows of one manifold are swept until they agree (at most 8 sweeps, until
-// a sweep changes them by at most 1e-4 RMS relative; their K matrix is
-// singular for four coplanar points, so an exact 4x4 block solve as in
-// Box2D v2's two-point block solver does not apply, and projected
-// Gauss-Seidel finds one of the equivalent distributions), then friction
-// once. A manifold's rows then act as one contact, and the global
-// iterations only have to carry the load between manifolds. Measured
-// (tests/physics/mass_ratio_test.cpp, 60 s, sleep off, largest sideways
-// drift of any box):
-//   stack                              before            after
-//   100 kg on ten 1 kg boxes           fell (13.3 m)     0.39 mm
-//   alternating 1 / 100 kg, 8 boxes    30 mm             1.7 mm
-//   alternating 1 / 10 kg, 8 boxes     52 mm             0.01 mm
-//   pyramid of 5, top 2 rows 100 kg    1.1 mm            0.69 mm
-//   1:1000, 1000 kg on ten 1 kg        fell              fell
-//   1:1000, 1000 kg on one 1 kg        -                 1.1 mm drift, 15 mm penetration
-// Sweeping the rows a fixed 2, 3, 4, 8 times: 6.9, 0.66, 0.08, 0.00 mm at
-// 1:100; the tolerance stops after 1-2 sweeps where rows already agree.
-// At 1:1000 the light boxes of a column still rock over (the global
-// iterations do not carry a 1000 kg load through ten 1 kg boxes): columns
-// of 1:1000 do not stand; one 1 kg box under 1000 kg does.
 // Data layout (after measuring the first version: solveContacts 36%,
 // applyImpulse 21%, relativeVelocity 7% of a pyramid_20 run, Bullet's solver
 // loop 4%): the substeps read a compact array of body velocities (gathered
@@ -178,12 +144,6 @@ namespace tumble::physics {
 namespace {
 
 bool takesImpulses(const Body& b) { return b.isDynamic() && b.awake; }
-
-/// Manifold sweeps (see the top of this file): at most this many sweeps of
-/// one manifold's normal rows per solver iteration, stopping once a sweep
-/// changes them by at most kManifoldTolerance (RMS, relative to their size).
-constexpr int kMaxManifoldSweeps = 8;
-constexpr Real kManifoldTolerance = Real(1e-4);
 
 /// Coulomb's cone: scales the tangential impulse (l0, l1) back onto the
 /// circle of radius maxF (friction x normal impulse) when it lies outside.
@@ -435,45 +395,30 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
   const Vec4r n = c.normal;
   ConstraintPoint* pts = &m_points[c.firstPoint];
   const int count = c.count;
-  // The normal rows of one manifold are swept until they agree with each
-  // other (see "Manifold sweeps" at the top of this file), then friction
-  // once against the converged normal impulses.
-  Real bias[kMaxManifoldPoints], massScale[kMaxManifoldPoints], impulseScale[kMaxManifoldPoints];
-  for (int i = 0; i < count; ++i) {
-    const Real sep = pts[i].separation_m;
-    bias[i] = 0, massScale[i] = 1, impulseScale[i] = 0;
-    if (sep > 0) {
-      bias[i] = sep * k.invH;  // speculative
-    } else if (k.soft) {
-      bias[i] = std::max(k.biasRate * std::min<Real>(sep + k.linearSlop_m, 0), -k.maxPushout_mps);
-      massScale[i] = k.softMassScale;
-      impulseScale[i] = k.softImpulseScale;
-    }
-  }
-  const int sweeps = count > 1 ? kMaxManifoldSweeps : 1;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    Real change = 0, size = 0;
-    for (int i = 0; i < count; ++i) {
-      ConstraintPoint& p = pts[i];
-      const Real vn = rowDotFixed<kFixedSide>(n, vA, vB, p.rnB, wB, p.rnA, wA);
-      Real impulse = -p.normalMass * massScale[i] * (vn + bias[i]) - impulseScale[i] * p.normalImpulse;
-      const Real newImpulse = std::max<Real>(p.normalImpulse + impulse, 0);
-      impulse = newImpulse - p.normalImpulse;
-      p.normalImpulse = newImpulse;
-      p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
-      change += impulse * impulse;
-      size += newImpulse * newImpulse;
-      const Vec4r P = impulse * n;
-      if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
-      if constexpr (moveB) vB += mB * P, wB += impulse * p.inB;
-    }
-    residual += change;
-    if (change <= kManifoldTolerance * kManifoldTolerance * size) break;
-  }
   Real totalNormal = 0;
   for (int i = 0; i < count; ++i) {
-    totalNormal += pts[i].normalImpulse;
-    magnitude += pts[i].normalImpulse * pts[i].normalImpulse;
+    ConstraintPoint& p = pts[i];
+    const Real sep = p.separation_m;
+    Real bias = 0, massScale = 1, impulseScale = 0;
+    if (sep > 0) {
+      bias = sep * k.invH;  // speculative
+    } else if (k.soft) {
+      bias = std::max(k.biasRate * std::min<Real>(sep + k.linearSlop_m, 0), -k.maxPushout_mps);
+      massScale = k.softMassScale;
+      impulseScale = k.softImpulseScale;
+    }
+    const Real vn = rowDotFixed<kFixedSide>(n, vA, vB, p.rnB, wB, p.rnA, wA);
+    Real impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+    const Real newImpulse = std::max<Real>(p.normalImpulse + impulse, 0);
+    impulse = newImpulse - p.normalImpulse;
+    p.normalImpulse = newImpulse;
+    p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
+    totalNormal += newImpulse;
+    residual += impulse * impulse;
+    magnitude += newImpulse * newImpulse;
+    const Vec4r P = impulse * n;
+    if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
+    if constexpr (moveB) vB += mB * P, wB += impulse * p.inB;
   }
   // Friction, clamped to the cone.
   const Vec4r t0 = c.tangent[0], t1 = c.tangent[1];
