@@ -220,7 +220,7 @@ double differing(const Picture& a, const Picture& b, double x0, double y0, doubl
       const std::size_t i = (std::size_t(y) * std::size_t(a.w) + std::size_t(x)) * 3;
       ++n;
       for (int c = 0; c < 3; ++c)
-        if (std::abs(int(a.rgb[i + c]) - int(b.rgb[i + c])) > 24) {
+        if (std::abs(int(a.rgb[i + c]) - int(b.rgb[i + c])) > 4) {
           ++diff;
           break;
         }
@@ -246,6 +246,9 @@ TEST(HudPlay, TheHudIsDrawnInTheCornersAndHKeyHidesIt) {
   ASSERT_EQ(b.w, 640);
   // The speedometer panel (330 x 236 px at 1280 x 720, scaled) in the bottom
   // right, the minimap (210 px) in the bottom left: most of their pixels change.
+  // A change is more than 4 of 255 in a channel: the same state draws the same
+  // 3D picture (the middle below), and a minimap of grassy terrain over grass
+  // can be close to the grass it covers.
   EXPECT_GT(differing(a, b, 0.78, 0.72, 0.98, 0.97), 0.5);
   EXPECT_GT(differing(a, b, 0.03, 0.72, 0.16, 0.97), 0.5);
   // The middle of the road has no HUD: the same picture.
