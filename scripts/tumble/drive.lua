@@ -18,6 +18,10 @@
 --                                 `vehicle` input context on and reads its actions
 --                                 throttle, brake, steer, handbrake, gear_up,
 --                                 gear_down, reset (bindings.lua)
+--                                 and brings a car that drove off the terrain's edge
+--                                 back (drive.rescue)
+--   drive.rescue(car, point)      the car at rest, upright, on `point` {x, z}, facing
+--                                 the centre of the terrain
 --   drive.upright(car, opts)      a car on its roof or stuck back on its wheels where
 --                                 it is, facing the same way, at rest, lifted clear
 --   drive.effects(car)            tyre dust and exhaust smoke rates from slip and throttle;
@@ -179,6 +183,16 @@ function Player:update(dt)
   controls.throttle = self.traction:filter(dt, controls.throttle)
   car:set_controls(controls)
   if input.pressed("reset") then drive.upright(car) end
+  -- Off the edge of the terrain the car would fall for ever: once it is
+  -- off the map and 10 m below where it left it, it comes back there.
+  local p = car:position()
+  local ground = vehicle.surface(p.x, p.z)
+  if ground then
+    self.last_on_map = {x = p.x, z = p.z, y = ground}
+  elseif self.last_on_map and p.y < self.last_on_map.y - 10 then
+    drive.rescue(car, self.last_on_map)
+    if type(game) == "table" then game.message("Off the map: back at the edge", 3, "warning") end
+  end
   if self.automatic then
     self.gearbox:update(dt, reverse and -1 or 1)
   else
@@ -187,6 +201,18 @@ function Player:update(dt)
     if input.pressed("gear_down") then car:set_controls{gear = g - 1} end
   end
   return true
+end
+
+-- Puts the car at rest, upright, 0.5 m above the ground at point {x, z},
+-- 4 m inside the terrain from there and facing the terrain's centre (the
+-- origin), so a car that left the map drives back onto it.
+function drive.rescue(car, point)
+  local len = math.sqrt(point.x * point.x + point.z * point.z)
+  local ux, uz = 0, 0
+  if len > 1e-6 then ux, uz = -point.x / len, -point.z / len end
+  local x, z = point.x + 4 * ux, point.z + 4 * uz
+  local ground = vehicle.surface(x, z) or point.y
+  car:reset{position = {x, ground + 0.5, z}, heading = (len > 1e-6) and math.atan(ux, uz) or 0}
 end
 
 -- Puts a car that is on its roof or stuck back on its wheels where it is:

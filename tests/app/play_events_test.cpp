@@ -151,6 +151,28 @@ TEST(PlayEvents, ResetPutsACarOnItsRoofBackOnItsWheels) {
   EXPECT_LT(std::hypot(dx, dz), 1.0) << "upright where it lay";
 }
 
+TEST(PlayEvents, ACarThatDrivesOffTheMapComesBackOntoIt) {
+  const std::string dir = outDir("play_events_off_map");
+  // A 128 m map (edges at +-64 m): the buggy starts at x = 60 facing +z and
+  // W is held, so it leaves the map within seconds and would fall for ever
+  // (nearly flat: 1 m from the lowest point to the highest).
+  const std::string ref = "base:drive --set car=base:buggy --set terrain.size=129 --set terrain.height=1";
+  auto off = play(dir, "off", ref, 600, "0 down key:W\n200 up key:W\n");
+  ASSERT_EQ(off.process.exitCode, 0) << off.process.output;
+  const auto& car = off.report["vehicle"];
+  ASSERT_TRUE(car.is_object()) << off.report.dump(2);
+  const double x = car["position_m"][0].get<double>(), y = car["position_m"][1].get<double>(),
+               z = car["position_m"][2].get<double>();
+  EXPECT_GT(car["distance_m"].get<double>(), 20.0) << "it drove: " << car.dump(2);
+  EXPECT_LE(std::fabs(x), 64.0) << car.dump(2);
+  EXPECT_LE(std::fabs(z), 64.0) << car.dump(2);
+  EXPECT_GT(y, -5.0) << "on the map, not falling: " << car.dump(2);
+  EXPECT_GT(car["up_y"].get<double>(), 0.9) << car.dump(2);
+  bool told = false;
+  for (const auto& m : off.report["hud"]["messages"]) told |= m["text"].get<std::string>().find("Off the map") == 0;
+  EXPECT_TRUE(told) << off.report["hud"].dump(2);
+}
+
 TEST(PlayEvents, ABadEventsFileNamesTheLine) {
   const std::string dir = outDir("play_events_bad");
   const std::string path = dir + "/bad.events";
