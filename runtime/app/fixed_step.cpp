@@ -84,9 +84,9 @@ void stepScene(Scene& scene, const StepTime& at, RunTimings& t) {
     t.particles_s += clock.seconds() - stepDone_s;
   }
 
-  // 9. Audio: vehicles, the step's impacts, sounds on bodies; the audio
+  // 9. Audio: vehicles, the step's impacts, thunder, sounds on bodies; the audio
   //    clock advances one step (offline output renders it). Nothing without audio.
-  stepAudio(scene, dt);
+  stepAudio(scene, at.start_s, dt);
 
   t.script_s += scriptDone_s + (stepDone_s - physicsDone_s);
   t.physics_s += physicsDone_s - scriptDone_s;

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <set>
 
+#include "app/scene_sky.h"
 #include "core/log.h"
+#include "render/sky.h"
 #include "vehicle/vehicle_system.h"
 #ifdef TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
@@ -121,12 +123,16 @@ Scene::Listener listenerAtCamera(const render::Camera& c) {
   return l;
 }
 
-void stepAudio(Scene& scene, double dt_s) {
+void stepAudio(Scene& scene, double start_s, double dt_s) {
   audio::AudioSystem* a = scene.audioIfAny();
   vehicle::VehicleSystem* vehicles = scene.vehiclesIfAny();
+  // The storm's lightning (the schedule the renderer draws): thunder for
+  // each flash of this step, heard distance / 343 m/s later.
+  const std::vector<render::LightningStrike> strikes =
+      render::lightningStrikes(skySettingsOf(scene.host().presentation().environment), start_s, start_s + dt_s);
   if (!a) {
     if (scene.options().audioOutput == audio::AudioOutput::Silent) return;
-    if (!(vehicles && vehicles->count() > 0) && scene.world().contactEvents().empty()) return;
+    if (!(vehicles && vehicles->count() > 0) && scene.world().contactEvents().empty() && strikes.empty()) return;
     a = &scene.audio();
   }
   const bool mixing = a->output() != audio::AudioOutput::Silent;
@@ -135,6 +141,7 @@ void stepAudio(Scene& scene, double dt_s) {
     a->setListener(l.position_m, l.forward, l.up, Vec3::Zero());
     if (vehicles) soundVehicles(scene, *a, *vehicles);
     for (const physics::ContactEvent& e : scene.world().contactEvents()) a->impact(e.point_m, float(e.impulse_Ns));
+    for (const render::LightningStrike& s : strikes) a->thunder(s.ground_m.cast<Real>());
   }
   // Script sounds on bodies: moved, or stopped when their body is gone.
   auto& follows = scene.soundBodies();

@@ -9,11 +9,12 @@
 namespace tumble::app {
 
 /// Vehicles' engines, tyres (by the terrain's sound layer) and wind,
-/// impacts from the step's new contacts, script sounds moved with their
-/// bodies. Makes the audio system on the first step that has something to
+/// impacts from the step's new contacts, thunder for the storm's lightning
+/// flashes in [start_s, start_s + dt_s) (render::lightningStrikes, what the
+/// renderer draws), script sounds moved with their bodies. Makes the audio system on the first step that has something to
 /// sound (a vehicle or a contact) unless the output is Silent; nothing at
 /// all without one.
-void stepAudio(Scene& scene, double dt_s);
+void stepAudio(Scene& scene, double start_s, double dt_s);
 
 /// The listener at the camera's eye, looking where it looks.
 Scene::Listener listenerAtCamera(const render::Camera& camera);

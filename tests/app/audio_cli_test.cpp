@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "audio/clip.h"
+#include "render/sky.h"
 #include "tumble_process.h"
 
 namespace tumble::test {
@@ -63,6 +64,40 @@ TEST(AudioCli, AudioOutRendersTheDriveOffline) {
   const double rms = std::sqrt(sum2 / double(clip->samples.size())) / 32768.0;
   EXPECT_GT(rms, 0.01) << "the engine is heard";
   EXPECT_LT(rms, 0.7);
+}
+
+// Thunder follows the lightning drawn: the storm's strike schedule
+// (render::lightningStrikes) gives each flash's time and ground point; the
+// offline render is silent until the first flash's distance / 343 m/s after
+// it (the listener is at the origin: no camera, no vehicle), then loud. The
+// same scene in clear weather is silent throughout.
+TEST(AudioCli, ThunderArrivesTheSpeedOfSoundAfterEachFlash) {
+  const std::string dir = outDir("audio_thunder");
+  auto storm = runTumble("run good:storm_thunder " + testMods() + " --audio-out " + dir + "/storm.wav");
+  ASSERT_EQ(storm.exitCode, 0) << storm.output;
+  auto clear = runTumble("run good:storm_thunder " + testMods() + " --set weather=clear --audio-out " + dir +
+                         "/clear.wav");
+  ASSERT_EQ(clear.exitCode, 0) << clear.output;
+  render::SkySettings sky;
+  sky.weather = render::Weather::Storm;
+  const auto strikes = render::lightningStrikes(sky, 0.0, 30.0);
+  ASSERT_FALSE(strikes.empty()) << "the schedule has flashes in 30 s";
+  auto wav = audio::loadClip(dir + "/storm.wav");
+  ASSERT_TRUE(wav) << wav.error();
+  auto rms = [&](const audio::Clip& c, double from_s, double to_s) {
+    const std::size_t a = std::size_t(std::max(0.0, from_s) * c.rate_hz);  // mono (loadClip averages channels)
+    const std::size_t b = std::min(c.samples.size(), std::size_t(to_s * c.rate_hz));
+    double sum2 = 0;
+    for (std::size_t i = a; i < b; ++i) sum2 += double(c.samples[i]) * c.samples[i];
+    return b > a ? std::sqrt(sum2 / double(b - a)) / 32768.0 : 0.0;
+  };
+  const double arrival_s = strikes[0].time_s + double(strikes[0].ground_m.norm()) / 343.0;
+  ASSERT_LT(arrival_s + 0.5, wav->seconds());
+  EXPECT_LT(rms(*wav, 0.0, arrival_s - 0.03), 1e-4) << "nothing before the first thunder arrives";
+  EXPECT_GT(rms(*wav, arrival_s + 0.03, arrival_s + 0.5), 1e-3) << "the thunder, " << arrival_s << " s in";
+  // (Clear weather may make no audio at all: nothing sounds, so no file.)
+  auto quiet = audio::loadClip(dir + "/clear.wav");
+  if (quiet) EXPECT_LT(rms(*quiet, 0.0, quiet->seconds()), 1e-4) << "no storm, no thunder";
 }
 
 // A mod whose scenario plays sounds: a good file, a missing one, a corrupt
