@@ -34,19 +34,8 @@ int changedPixels(const Image& a, const Image& b, int threshold, int x0 = 0, int
   return n;
 }
 
-class EffectsRender : public ::testing::Test {
+class EffectsRender : public test::OffscreenRenderTest<kWidth, kHeight> {
  protected:
-  void SetUp() override {
-    m_renderer = test::makeOffscreenRenderer(kWidth, kHeight, /*hud=*/false);
-    ASSERT_NE(m_renderer, nullptr) << "no OpenGL: offscreen rendering must work here";
-  }
-  Image render(const FrameSnapshot& frame, const std::string& name) {
-    Controls controls;
-    const std::string path = m_scratch.file(name);
-    const Status status = m_renderer->drawFrame(frame, HudStats{}, controls, path.c_str());
-    EXPECT_TRUE(status.ok()) << (status.ok() ? "" : status.error());
-    return loadPng(path);
-  }
   // The same frame with the flare on and off: pixels it changed.
   int flarePixels(const FrameSnapshot& frame, const std::string& name) {
     m_renderer->settings().lensFlare = false;
@@ -55,8 +44,6 @@ class EffectsRender : public ::testing::Test {
     const Image on = render(frame, name + "_on.png");
     return changedPixels(off, on, 4);
   }
-  test::ScratchDir m_scratch;
-  std::unique_ptr<Renderer> m_renderer;
 };
 
 TEST(FlareSprites, GlowRingHexagonAndStreakAreDistinctSoftShapes) {

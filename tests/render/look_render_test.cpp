@@ -42,22 +42,7 @@ Eigen::Vector3f toScreen(const Eigen::Vector3f& linear) {
   return linear.unaryExpr([](float c) { return 255.0f * std::pow(std::clamp(c, 0.0f, 1.0f), 1.0f / 2.2f); });
 }
 
-class LookRender : public ::testing::Test {
- protected:
-  void SetUp() override {
-    m_renderer = test::makeOffscreenRenderer(kWidth, kHeight, /*hud=*/false);
-    ASSERT_NE(m_renderer, nullptr) << "no OpenGL: offscreen rendering must work here";
-  }
-  Image render(const FrameSnapshot& frame, const std::string& name) {
-    Controls controls;
-    const std::string path = m_scratch.file(name);
-    const Status status = m_renderer->drawFrame(frame, HudStats{}, controls, path.c_str());
-    EXPECT_TRUE(status.ok()) << (status.ok() ? "" : status.error());
-    return loadPng(path);
-  }
-  test::ScratchDir m_scratch;
-  std::unique_ptr<Renderer> m_renderer;
-};
+class LookRender : public test::OffscreenRenderTest<kWidth, kHeight> {};
 
 // A plain grey ground plane and a box floating above it.
 FrameSnapshot boxOverGround(const Eigen::Vector3f& boxCentre) {

@@ -103,4 +103,24 @@ class ScratchDir {
   std::filesystem::path m_path;
 };
 
+/// A test fixture with a Width x Height offscreen renderer (no HUD) and a
+/// scratch folder; render() draws a frame and reads its PNG back.
+template <int Width, int Height>
+class OffscreenRenderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_renderer = makeOffscreenRenderer(Width, Height, /*hud=*/false);
+    ASSERT_NE(m_renderer, nullptr) << "no OpenGL: offscreen rendering must work here";
+  }
+  Image render(const FrameSnapshot& frame, const std::string& name) {
+    Controls controls;
+    const std::string path = m_scratch.file(name);
+    const Status status = m_renderer->drawFrame(frame, HudStats{}, controls, path.c_str());
+    EXPECT_TRUE(status.ok()) << (status.ok() ? "" : status.error());
+    return loadPng(path);
+  }
+  ScratchDir m_scratch;
+  std::unique_ptr<Renderer> m_renderer;
+};
+
 }  // namespace tumble::render::test
