@@ -250,9 +250,8 @@ void World::finishPairManifold(Manifold& m, Real dt) {
   const Body& a = m_bodies[m.a];
   const Body& b = m_bodies[m.b];
   // Compounds: the touching child's shape decides. A round child off the
-  // centre of mass is still treated as round (anchor not turned in the
-  // substeps); its centre's own swing during one step is picked up by the
-  // next step's narrow phase.
+  // centre of mass is still treated as round: the contact solver turns its
+  // rolling centre with the body in each substep (RoundOffsetRows).
   const Shape& shapeA = childShape(a.shape, m.childA);
   const Shape& shapeB = childShape(b.shape, m.childB);
   m.friction = std::sqrt(a.friction * b.friction);

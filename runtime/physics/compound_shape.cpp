@@ -1,5 +1,6 @@
 #include "physics/compound_shape.h"
 
+#include <algorithm>
 #include <string>
 
 #include "physics/convex_hull.h"
@@ -51,6 +52,55 @@ Result<Shape> makeCompoundShape(const std::vector<CompoundChild>& children, Shap
   Shape s;
   s.type = ShapeType::Compound;
   s.compound = std::move(shape);
+  return s;
+}
+
+Result<Shape> offsetCentreOfMass(const Shape& shape, const Vec3& offset_m) {
+  if (!offset_m.allFinite()) return makeError("the centre of mass offset must be finite (metres)");
+  if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh)
+    return makeError(std::string("a ") + shapeTypeName(shape.type) + " has no centre of mass to move (it is static)");
+  if (auto s = validateShape(shape); !s) return makeError(s.error());
+  // Inside the shape, with a relative margin for points on its surface.
+  const Real slack = Real(1e-6) * std::max<Real>(shape.boundingRadius(), 1);
+  bool inside = true;
+  switch (shape.type) {
+    case ShapeType::Sphere: inside = offset_m.norm() <= shape.radius_m + slack; break;
+    case ShapeType::Box: inside = (offset_m.cwiseAbs() - shape.halfExtents_m).maxCoeff() <= slack; break;
+    case ShapeType::Capsule: {
+      const Real y = std::clamp(offset_m.y(), -shape.halfHeight_m, shape.halfHeight_m);
+      inside = (offset_m - Vec3(0, y, 0)).norm() <= shape.radius_m + slack;
+      break;
+    }
+    case ShapeType::Hull:
+      for (const HullFace& f : shape.hull->faces) inside = inside && f.normal.dot(offset_m) <= f.offset_m + slack;
+      break;
+    case ShapeType::Compound: {
+      Vec3 lo, hi;
+      shape.bounds(Vec3::Zero(), Quat::Identity(), &lo, &hi);
+      inside = (offset_m - hi).maxCoeff() <= slack && (lo - offset_m).maxCoeff() <= slack;
+      break;
+    }
+    default: break;
+  }
+  if (!inside)
+    return makeError("the centre of mass {" + std::to_string(offset_m.x()) + ", " + std::to_string(offset_m.y()) + ", " +
+                     std::to_string(offset_m.z()) + "} m is outside the " + shapeTypeName(shape.type) +
+                     " (a body's centre of mass lies within its shape)");
+  auto out = std::make_shared<CompoundShape>();
+  out->volume_m3 = shape.volume();
+  out->unitInertia_m2 = shape.unitInertia();
+  std::vector<CompoundChild> children;
+  if (shape.type == ShapeType::Compound) children = shape.compound->children;
+  else children.push_back(CompoundChild{shape, Vec3::Zero(), Quat::Identity()});
+  for (CompoundChild& c : children) {
+    c.position_m -= offset_m;
+    out->boundingRadius_m = std::max(out->boundingRadius_m, c.position_m.norm() + c.shape.boundingRadius());
+    out->innerRadius_m = std::max(out->innerRadius_m, c.shape.innerRadius() - c.position_m.norm());
+  }
+  out->children = std::move(children);
+  Shape s;
+  s.type = ShapeType::Compound;
+  s.compound = std::move(out);
   return s;
 }
 

@@ -43,6 +43,19 @@ struct CompoundShape {
 /// ShapeFrame).
 Result<Shape> makeCompoundShape(const std::vector<CompoundChild>& children, ShapeFrame* frame = nullptr);
 
+/// The same shape with its centre of mass moved to `offset_m` (in the
+/// shape's own frame): ballast low in a hull, a weighted toy, a car whose
+/// engine sits forward. The principal moments and axes are kept, now taken
+/// about the new centre, as Jolt's OffsetCenterOfMassShape does (the
+/// geometry cannot tell the moments of a body whose density is not
+/// uniform; set them with World::setPrincipalInertia). The result is a
+/// compound whose children sit at -offset_m from the body's origin, so
+/// the body's position is the new centre of mass. Refused: a non-finite
+/// offset, a plane or mesh, and an offset outside the shape (no mass
+/// distribution of one sign puts the centre outside a convex body; for a
+/// compound, outside the box around its children).
+Result<Shape> offsetCentreOfMass(const Shape& shape, const Vec3& offset_m);
+
 /// Children per compound; each child pair is a manifold, keyed by child index.
 constexpr int kMaxCompoundChildren = 64;
 

@@ -139,6 +139,7 @@
 #include <algorithm>
 
 #include "physics/internal/height_field_collision.h"
+#include "physics/internal/narrow_phase.h"
 
 namespace tumble::physics {
 namespace {
@@ -178,6 +179,7 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
   m_constraints.clear();
   m_points.clear();
   m_rolling.clear();
+  m_roundOffset.clear();
   m_external.clear();
   const Mat3 zero = Mat3::Zero();
   for (std::uint32_t mi = 0; mi < manifolds.size(); ++mi) {
@@ -202,6 +204,10 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
     c.firstPoint = std::uint32_t(m_points.size());
     c.roundA = m.roundA;
     c.roundB = m.roundB;
+    c.roundOffsetA = m.roundA && c.movesA && a.shape.type == ShapeType::Compound;
+    c.roundOffsetB = m.roundB && c.movesB && !field && b.shape.type == ShapeType::Compound;
+    const Real radiusA = c.roundOffsetA ? childShape(a.shape, m.childA).radius_m : 0;
+    const Real radiusB = c.roundOffsetB ? childShape(b.shape, m.childB).radius_m : 0;
     c.invMassA = c.movesA ? a.invMass_per_kg : 0;
     c.invMassB = c.movesB ? b.invMass_per_kg : 0;
     const Mat3& IA = c.movesA ? a.invInertiaWorld : zero;
@@ -231,6 +237,11 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
       // v = w (r + s/2) and rolls too slowly after an impact.
       if (a.shape.type == ShapeType::Sphere) p.rA = n * a.shape.radius_m;
       if (b.shape.type == ShapeType::Sphere) p.rB = -n * b.shape.radius_m;
+      // The same for a round child off the centre of mass: the lever runs
+      // from its rolling centre (the manifold point lies midway between the
+      // surfaces: a radius and half the gap inside) out by its radius.
+      if (c.roundOffsetA) p.rA -= n * (mp.separation_m / 2);
+      if (c.roundOffsetB) p.rB += n * (mp.separation_m / 2);
       const Vec3 rnA = p.rA.cross(n), rnB = p.rB.cross(n);
       const Vec3 inA = IA * rnA, inB = IB * rnB;
       p.rnA = wide(rnA);
@@ -250,6 +261,9 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
         p.tangentMass[j] = kt > 0 ? 1 / kt : 0;
         p.tangentImpulse[j] = mp.tangentImpulse[j];
       }
+      // See roundOffsetA: rA / rB now hold the rolling centre.
+      if (c.roundOffsetA) p.rA -= n * radiusA;
+      if (c.roundOffsetB) p.rB += n * radiusB;
       p.normalImpulse = mp.normalImpulse;
       p.separation0_m = mp.separation_m;
       p.separation_m = mp.separation_m;
@@ -269,6 +283,8 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
       m_rolling.push_back(r);
     }
     if (!c.movesA || !c.movesB) m_external.push_back(std::uint32_t(m_constraints.size()));
+    if (c.roundOffsetA || c.roundOffsetB)
+      m_roundOffset.push_back({std::uint32_t(m_constraints.size()), IA, IB, radiusA, radiusB});
     m_constraints.push_back(c);
   }
 }
@@ -297,16 +313,56 @@ void ContactSolver::warmStart(std::vector<SolverVelocity>& vel) const {
   }
 }
 
+void ContactSolver::turnRoundOffsetLevers(const std::vector<SolverPose>& pose) {
+  for (const RoundOffsetRows& r : m_roundOffset) {
+    const Constraint& c = m_constraints[r.constraint];
+    const Vec3 n = narrow(c.normal);
+    const Vec3 t[2] = {narrow(c.tangent[0]), narrow(c.tangent[1])};
+    const Real mass = c.invMassA + c.invMassB;
+    ConstraintPoint* pts = &m_points[c.firstPoint];
+    for (int i = 0; i < c.count; ++i) {
+      ConstraintPoint& p = pts[i];
+      if (c.roundOffsetA) {
+        const Vec3 lever = pose[c.a].dq * p.rA + n * r.radiusA_m;
+        p.rnA = wide(Vec3(lever.cross(n)));
+        p.inA = wide(Vec3(r.invInertiaA * narrow(p.rnA)));
+        for (int j = 0; j < 2; ++j) {
+          p.rtA[j] = wide(Vec3(lever.cross(t[j])));
+          p.itA[j] = wide(Vec3(r.invInertiaA * narrow(p.rtA[j])));
+        }
+      }
+      if (c.roundOffsetB) {
+        const Vec3 lever = pose[c.b].dq * p.rB - n * r.radiusB_m;
+        p.rnB = wide(Vec3(lever.cross(n)));
+        p.inB = wide(Vec3(r.invInertiaB * narrow(p.rnB)));
+        for (int j = 0; j < 2; ++j) {
+          p.rtB[j] = wide(Vec3(lever.cross(t[j])));
+          p.itB[j] = wide(Vec3(r.invInertiaB * narrow(p.rtB[j])));
+        }
+      }
+      const Real k = mass + narrow(p.rnA).dot(narrow(p.inA)) + narrow(p.rnB).dot(narrow(p.inB));
+      p.normalMass = k > 0 ? 1 / k : 0;
+      for (int j = 0; j < 2; ++j) {
+        const Real kt = mass + narrow(p.rtA[j]).dot(narrow(p.itA[j])) + narrow(p.rtB[j]).dot(narrow(p.itB[j]));
+        p.tangentMass[j] = kt > 0 ? 1 / kt : 0;
+      }
+    }
+  }
+}
+
 void ContactSolver::updateSeparations(const std::vector<SolverPose>& pose) {
+  if (!m_roundOffset.empty()) turnRoundOffsetLevers(pose);
   for (const Constraint& c : m_constraints) {
     const SolverPose& PA = pose[c.a];
     const SolverPose& PB = pose[c.b];
     const Vec3 n = narrow(c.normal);
     const Real base = n.dot(PB.dp - PA.dp);
     // n . (dq r - r) = (dq^-1 n - n) . r: one rotation per side per
-    // constraint instead of one per point. Round shapes keep their anchor.
-    const Vec3 nA = c.roundA ? Vec3::Zero() : Vec3(PA.dq.conjugate() * n - n);
-    const Vec3 nB = c.roundB ? Vec3::Zero() : Vec3(PB.dq.conjugate() * n - n);
+    // constraint instead of one per point. Round shapes centred on their
+    // body keep their anchor (they roll on it); a round child off the centre
+    // of mass turns its rolling centre (rA / rB hold it, see roundOffsetA).
+    const Vec3 nA = c.roundA && !c.roundOffsetA ? Vec3::Zero() : Vec3(PA.dq.conjugate() * n - n);
+    const Vec3 nB = c.roundB && !c.roundOffsetB ? Vec3::Zero() : Vec3(PB.dq.conjugate() * n - n);
     ConstraintPoint* pts = &m_points[c.firstPoint];
     for (int i = 0; i < c.count; ++i) {
       ConstraintPoint& p = pts[i];

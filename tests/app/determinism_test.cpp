@@ -45,7 +45,7 @@ constexpr HashCase kCases[] = {
     {"ChainImpulse", "base:chain --set physics.joint_solver=impulse", "5345c580ce4c168d"},
     {"TimeTrial", "base:time_trial --set autopilot=1", "24cce8b24d5f281f"},
     {"Hills", "base:hills", "31f0649e08d98577"},         // terrain contacts
-    {"Spin", "base:spin", "24014880eeec4328"},           // compounds and a hull
+    {"Spin", "base:spin", "eff95f511f45f3d0"},           // compounds and a hull
     {"Springs", "base:springs", "7a0abe7d4504b642"},     // the sdirk2 integrator
     {"Showroom", "base:showroom --set autopilot=1", "19c2269c56bee815"},  // static triangle meshes
     {"Effects", "base:effects", "d741194e818c275e"},     // effect particles

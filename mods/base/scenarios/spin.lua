@@ -25,7 +25,7 @@
 -- I1 Omega cos(theta) / (I3 w) (the slow root of the full precession
 -- equation lies above it) and the nutation the top starts with (it is not
 -- launched with the exact precession), averaged over the 5 s window.
--- Measured: +1.8% at 20 rad/s, +0.5% at 25, +0.3% at 35, identical with 8,
+-- Measured: +2.0% at 20 rad/s, +0.2% at 25, +0.1% at 35, identical with 8,
 -- 16 and 32 substeps (converged). Tolerance 5%: above those, far below the
 -- error of a wrong torque arm or a wrong I3 (tens of percent).
 -- A wide, low top on purpose: Omega / w small needs w^2 >> g r m / I3, and

@@ -92,10 +92,26 @@ struct Constraint {
   /// are mostly one-sided: a third fewer multiply-adds per row).
   std::uint8_t fixedSide = 0;
   bool roundA = false, roundB = false;
+  /// A round side that is a compound's child: its points' rA / rB hold the
+  /// rolling centre (the child sphere's centre, the capsule's segment
+  /// point) relative to the body's centre of mass, which the substeps turn
+  /// with the body (a ball or a weeble weighted off its centre rocks on it).
+  bool roundOffsetA = false, roundOffsetB = false;
   Real invMassA = 0, invMassB = 0;
   Real friction = 0, restitution = 0;
   Real rollingArm_m = 0;
   std::int32_t rolling = -1;  ///< index into the rolling rows, -1 without rolling resistance
+};
+
+/// What a constraint with a round side off its body's centre of mass
+/// (Constraint::roundOffsetA/B) needs to turn that side's lever arms with
+/// the body in each substep: the lever from the centre of mass to the
+/// contact swings as the body rocks, and a lever frozen for the step feeds
+/// energy into a weeble by one step's lag per swing.
+struct RoundOffsetRows {
+  std::uint32_t constraint = 0;
+  Mat3 invInertiaA = Mat3::Zero(), invInertiaB = Mat3::Zero();  ///< world, at the step's start
+  Real radiusA_m = 0, radiusB_m = 0;  ///< the round child's radius, per side (0: that side is not one)
 };
 
 /// Angular rows of rolling / spinning resistance about t0, t1, n.
@@ -153,6 +169,8 @@ class ContactSolver {
   std::vector<Constraint> m_constraints;
   std::vector<ConstraintPoint> m_points;
   std::vector<RollingRows> m_rolling;
+  std::vector<RoundOffsetRows> m_roundOffset;
+  void turnRoundOffsetLevers(const std::vector<SolverPose>& pose);
   std::vector<std::uint32_t> m_external;  ///< constraints with one non-moving side
   struct SweepConstants;
   template <int kFixedSide>
