@@ -35,7 +35,7 @@ physics::World& worldOf(lua_State* L) { return ScenarioHost::from(L)->world(); }
 
 const std::set<std::string> kCommonFields = {"position", "rotation", "orientation", "velocity", "angular_velocity",
                                              "mass", "density", "friction", "restitution", "rolling_resistance", "linear_damping",
-                                             "angular_damping", "type", "color", "sleep", "inertia"};
+                                             "angular_damping", "type", "color", "sleep", "inertia", "center_of_mass"};
 
 // A body definition's fields: the common ones and the shape's own.
 void checkBodyFields(lua_State* L, int t, const char* fn, std::initializer_list<const char*> shapeFields) {
@@ -117,7 +117,30 @@ std::optional<Vec3> readInertia(lua_State* L, int t, const char* fn, const physi
   return I;
 }
 
-int create(lua_State* L, physics::BodyDef d, const char* fn, const Eigen::Vector3f& color) {
+/// The definition's `center_of_mass` field: the centre of mass in the frame
+/// the definition's position and rotation place (the shape's frame; for a
+/// hull or compound the frame its points or children are given in, whose
+/// own centre of mass `frame` gives). Moves the shape so the body's origin
+/// is there (physics::offsetCentreOfMass), and the body with it.
+void applyCentreOfMass(lua_State* L, int t, const char* fn, physics::BodyDef& d, const physics::ShapeFrame& frame) {
+  Vec3 c;
+  try {
+    if (!optVec3Field(L, t, "center_of_mass", &c)) return;
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(fn) + ": " + e.what() + " (the centre of mass {x, y, z} in the shape's frame, m)");
+  }
+  if (d.type != physics::BodyType::Dynamic)
+    throw LuaArgError(std::string(fn) + ": field 'center_of_mass' is for dynamic bodies (static and kinematic ones are not moved by forces)");
+  const Vec3 offset = frame.rotation.conjugate() * (c - frame.centre_m);
+  auto shape = physics::offsetCentreOfMass(d.shape, offset);
+  if (!shape) throw LuaArgError(std::string(fn) + ": field 'center_of_mass': " + shape.error());
+  d.shape = shape.value();
+  d.position_m += d.orientation * offset;
+}
+
+int create(lua_State* L, physics::BodyDef d, const char* fn, const Eigen::Vector3f& color,
+           const physics::ShapeFrame& frame = {}) {
+  if (lua_istable(L, 1)) applyCentreOfMass(L, 1, fn, d, frame);
   const std::optional<Vec3> inertia = lua_istable(L, 1) ? readInertia(L, 1, fn, d) : std::nullopt;
   ScenarioHost::from(L)->countBodiesCreated(1, fn);
   auto r = worldOf(L).createBody(d);
@@ -141,7 +164,7 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 /// @class BodyDef
 /// Fields shared by world.box, world.sphere, world.capsule and world.plane.
 /// Unknown fields are refused, so a typo is an error, not a silent default.
-/// @field position? Vec3Arg centre of mass, m (default {0, 0, 0})
+/// @field position? Vec3Arg the shape's centre, m (default {0, 0, 0}); the body's centre of mass unless center_of_mass moves it
 /// @field rotation? Vec3Arg rotation vector: axis times angle, rad
 /// @field orientation? Quat unit quaternion {w=, x=, y=, z=} (instead of rotation)
 /// @field velocity? Vec3Arg m/s
@@ -157,6 +180,7 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 /// @field color? Vec3Arg display colour {r, g, b}, each 0..1
 /// @field sleep? boolean may the body fall asleep when at rest (default true)
 /// @field inertia? Vec3Arg principal moments of inertia {Ixx, Iyy, Izz} about the body's own axes through its centre of mass, kg m^2 (default: from the shape and mass); each > 0 and at most the sum of the other two; dynamic bodies only
+/// @field center_of_mass? Vec3Arg the centre of mass in the shape's own frame, m (default: the shape's centroid, uniform density): ballast low in a boat, a weighted toy. Inside the shape; the principal moments (computed or given by inertia) are taken about it; body:position() then reports it; dynamic bodies only
 
 /// @class BoxDef: BodyDef
 /// @field size? Vec3Arg full size along x, y, z, m (default {1, 1, 1})
@@ -385,7 +409,7 @@ int worldHull(lua_State* L) {
     throw LuaArgError(std::string("world.hull: ") + e.what());
   }
   placeBody(d, frame);
-  return create(L, d, "world.hull", readColor(L, 1, "world.hull", {0.6f, 0.55f, 0.5f}));
+  return create(L, d, "world.hull", readColor(L, 1, "world.hull", {0.6f, 0.55f, 0.5f}), frame);
 }
 
 /// @function world.compound
@@ -426,7 +450,7 @@ int worldCompound(lua_State* L) {
   if (!shape) throw LuaArgError("world.compound: " + shape.error());
   d.shape = shape.value();
   placeBody(d, frame);
-  return create(L, d, "world.compound", readColor(L, 1, "world.compound", {0.7f, 0.5f, 0.8f}));
+  return create(L, d, "world.compound", readColor(L, 1, "world.compound", {0.7f, 0.5f, 0.8f}), frame);
 }
 
 /// The query shape of world.overlap / world.shape_cast, placed in the world.

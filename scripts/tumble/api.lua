@@ -701,7 +701,7 @@ function Vehicle:remove() end
 ---Fields shared by world.box, world.sphere, world.capsule and world.plane.
 ---Unknown fields are refused, so a typo is an error, not a silent default.
 ---@class BodyDef
----@field position? Vec3Arg centre of mass, m (default {0, 0, 0})
+---@field position? Vec3Arg the shape's centre, m (default {0, 0, 0}); the body's centre of mass unless center_of_mass moves it
 ---@field rotation? Vec3Arg rotation vector: axis times angle, rad
 ---@field orientation? Quat unit quaternion {w=, x=, y=, z=} (instead of rotation)
 ---@field velocity? Vec3Arg m/s
@@ -717,6 +717,7 @@ function Vehicle:remove() end
 ---@field color? Vec3Arg display colour {r, g, b}, each 0..1
 ---@field sleep? boolean may the body fall asleep when at rest (default true)
 ---@field inertia? Vec3Arg principal moments of inertia {Ixx, Iyy, Izz} about the body's own axes through its centre of mass, kg m^2 (default: from the shape and mass); each > 0 and at most the sum of the other two; dynamic bodies only
+---@field center_of_mass? Vec3Arg the centre of mass in the shape's own frame, m (default: the shape's centroid, uniform density): ballast low in a boat, a weighted toy. Inside the shape; the principal moments (computed or given by inertia) are taken about it; body:position() then reports it; dynamic bodies only
 
 ---@class BoxDef: BodyDef
 ---@field size? Vec3Arg full size along x, y, z, m (default {1, 1, 1})
