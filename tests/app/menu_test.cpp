@@ -259,5 +259,69 @@ TEST(MainMenu, TheHighlightedScenarioGetsAThumbnailInTheCacheFolder) {
   EXPECT_EQ(again.report["menu"]["thumbnail"], "cached") << again.report["menu"].dump(2);
 }
 
+// A player with only a gamepad: A twice (Play, base), the d-pad down to
+// drive, A (the picker, on drive's default car), A (start), then the right
+// trigger held as throttle for 5 s.
+std::string pad(const std::string& button, int frame) {
+  return std::to_string(frame) + " down pad:" + button + "\n" + std::to_string(frame + 1) + " up pad:" + button + "\n";
+}
+
+TEST(MainMenu, APadAloneGetsFromTheMenuIntoTheCarAndDrivesIt) {
+  const std::string dir = outDir("menu_pad");
+  std::string keys;
+  toScenarios(keys);
+  auto list = play(dir, "list", "", 20, keys);
+  ASSERT_EQ(list.process.exitCode, 0) << list.process.output;
+  const int drive = indexOf(list.report["menu"], "drive");
+  ASSERT_GE(drive, 0) << list.report["menu"].dump(2);
+
+  std::string events = pad("a", 5) + pad("a", 10);
+  int frame = 14;
+  for (int i = 0; i < drive; ++i, frame += 2) events += pad("dpdown", frame);
+  events += pad("a", frame);
+  auto picker = play(dir, "picker", "", frame + 6, events);
+  ASSERT_EQ(picker.report["menu"]["page"], "vehicles") << picker.report["menu"].dump(2);
+  EXPECT_EQ(picker.report["menu"]["selected"], "Hatchback");
+
+  events += pad("a", frame + 6);
+  const int throttleFrom = frame + 12;
+  events += std::to_string(throttleFrom) + " axis pad_axis:righttrigger 1\n";
+  auto driven = play(dir, "driven", "", throttleFrom + 300, events);
+  ASSERT_EQ(driven.process.exitCode, 0) << driven.process.output;
+  const auto& r = driven.report;
+  EXPECT_EQ(r["scenario"], "base:drive") << r.dump(2);
+  EXPECT_EQ(r["vehicle_definition"], "base:hatchback");
+  ASSERT_TRUE(r["vehicle"].is_object()) << r.dump(2);
+  EXPECT_GE(r["vehicle"]["distance_m"].get<double>(), 5.0) << "the trigger drives the car: " << r["vehicle"].dump(2);
+  // The trigger pressed fully is the throttle pressed fully: the same drive
+  // as W held from the same frame (the simulation is deterministic).
+  const std::string withKey = events.substr(0, events.rfind(std::to_string(throttleFrom) + " axis")) +
+                              std::to_string(throttleFrom) + " down key:W\n";
+  auto keyed = play(dir, "keyed", "", throttleFrom + 300, withKey);
+  ASSERT_TRUE(keyed.report["vehicle"].is_object()) << keyed.report.dump(2);
+  EXPECT_NEAR(r["vehicle"]["distance_m"].get<double>(), keyed.report["vehicle"]["distance_m"].get<double>(), 1e-6);
+}
+
+// A player with a mouse: the pointer onto an item where the menu drew it
+// (the report's item rectangles) and a click chooses it.
+TEST(MainMenu, AClickOnSettingsOpensTheSettingsPage) {
+  const std::string dir = outDir("menu_mouse");
+  auto root = play(dir, "root", "", 10, "");
+  ASSERT_EQ(root.process.exitCode, 0) << root.process.output;
+  const int settings = indexOf(root.report["menu"], "Settings");
+  ASSERT_GE(settings, 0) << root.report["menu"].dump(2);
+  const auto& item = root.report["menu"]["items"][std::size_t(settings)];
+  const int x = int(item["x_px"].get<double>() + item["w_px"].get<double>() / 2);
+  const int y = int(item["y_px"].get<double>() + item["h_px"].get<double>() / 2);
+  const std::string events = "10 move " + std::to_string(x) + " " + std::to_string(y) +
+                             "\n12 down mouse:left\n13 up mouse:left\n";
+  auto clicked = play(dir, "clicked", "", 20, events);
+  ASSERT_EQ(clicked.process.exitCode, 0) << clicked.process.output;
+  EXPECT_EQ(clicked.report["menu"]["page"], "settings") << clicked.report["menu"].dump(2);
+  // A click beside every item changes nothing.
+  auto beside = play(dir, "beside", "", 20, "10 move 5 5\n12 down mouse:left\n13 up mouse:left\n");
+  EXPECT_EQ(beside.report["menu"]["page"], "main") << beside.report["menu"].dump(2);
+}
+
 }  // namespace
 }  // namespace tumble::test
