@@ -69,10 +69,11 @@ void MainMenu::openRoot() {
   go(Page::Root);
 }
 
-void MainMenu::openVehicles(const std::string& scenarioRef) {
+void MainMenu::openVehicles(const std::string& scenarioRef, const std::string& drivenVehicle) {
   m_overGame = true;
   m_history.clear();
   m_scenario = scenarioRef;
+  m_drivenVehicle = drivenVehicle;
   if (auto ref = script::parseScenarioRef(scenarioRef)) m_mod = ref->first;
   go(Page::Vehicles);
 }
@@ -88,12 +89,14 @@ void MainMenu::go(Page page) {
   m_selected = 0;
   m_scrollToSelected = true;
   rebuild();
-  // The vehicle picker starts on the scenario's own default car.
+  // The vehicle picker starts on the car being driven (over a game), else
+  // on the scenario's own default car.
   if (page == Page::Vehicles)
     if (const ScenarioEntry* s = m_catalog.scenario(m_scenario)) {
       const auto& vs = m_catalog.vehiclesFor(m_mod);
+      const std::string& start = m_overGame && !m_drivenVehicle.empty() ? m_drivenVehicle : s->defaultVehicle;
       for (std::size_t i = 0; i < vs.size(); ++i)
-        if (vs[i].ref == s->defaultVehicle) m_selected = int(i);
+        if (vs[i].ref == start) m_selected = int(i);
     }
 }
 

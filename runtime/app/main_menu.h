@@ -51,9 +51,11 @@ class MainMenu {
 
   /// The main menu's root page (no game running).
   void openRoot();
-  /// Over a running game: the vehicle picker for this scenario, or settings.
-  /// Back from there returns to the game (Requests::backToGame).
-  void openVehicles(const std::string& scenarioRef);
+  /// Over a running game: the vehicle picker for this scenario (starting on
+  /// `drivenVehicle`, the car being driven, MOD:NAME; empty: the scenario's
+  /// default), or settings. Back from there returns to the game
+  /// (Requests::backToGame).
+  void openVehicles(const std::string& scenarioRef, const std::string& drivenVehicle = "");
   void openSettings();
   void close() { m_page = Page::Closed; }
   bool isOpen() const { return m_page != Page::Closed; }
@@ -112,6 +114,7 @@ class MainMenu {
   Page m_page = Page::Closed;
   bool m_overGame = false;
   std::string m_mod, m_scenario;  ///< chosen so far
+  std::string m_drivenVehicle;     ///< the picker over a game starts on it (openVehicles)
   std::vector<Item> m_items;
   std::vector<ItemRect> m_layout;
   int m_selected = 0;

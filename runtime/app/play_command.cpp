@@ -469,7 +469,10 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     else if (looseBindings) applyFrameInput(*looseInput, *looseBindings, controls, renderer);
     if (requests.toggleConsole) gameHud.console().toggle();
     if (requests.toggleHud) gameHud.toggleVisible();
-    if (requests.changeVehicle) mainMenu.openVehicles(current.scenarioRef);
+    if (requests.changeVehicle) {
+      const auto set = current.sets.find(kVehicleParam);
+      mainMenu.openVehicles(current.scenarioRef, set != current.sets.end() ? set->second : std::string());
+    }
     if (requests.settings) mainMenu.openSettings();
     if (requests.mainMenu) {  // the scene goes; the menu's root comes back
       session.reset();

@@ -165,6 +165,7 @@ TEST(PauseMenu, ChangeVehicleRestartsTheScenarioWithTheTruck) {
   auto picker = play(dir, "picker", ref, 40, events);
   ASSERT_EQ(picker.report["menu"]["page"], "vehicles") << picker.report.dump(2);
   EXPECT_EQ(picker.report["steps"], 20) << "the game waits while the picker is open";
+  EXPECT_EQ(picker.report["menu"]["selected"], "Buggy") << "the picker starts on the car being driven";
   const int truck = indexOf(picker.report["menu"], "Off-road truck");
   const int at = indexOf(picker.report["menu"], picker.report["menu"]["selected"].get<std::string>());
   ASSERT_GE(truck, 0);
