@@ -339,6 +339,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     return playOffscreenSnapshot(o, *first, renderer, processClock);
   }
   if (!o.sizeGiven && settings.fullscreen && !scripted) renderer.setWindowMode(width, height, true);
+  std::pair<int, int> appliedResolution{settings.width, settings.height};  // the settings' size last applied
 
   GameCatalog catalog(modSearchDirs(o.scene.modDirs));
   ThumbnailCache thumbnails(renderer, o.scene.modDirs);
@@ -497,7 +498,12 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       }
     }
     if (menuRequests.settingsChanged) {
+      // Scripted play keeps its --width/--height until the resolution
+      // itself is changed (offscreen has no desktop to fill).
       if (!scripted) renderer.setWindowMode(settings.width, settings.height, settings.fullscreen);
+      else if (std::pair(settings.width, settings.height) != appliedResolution)
+        renderer.setWindowMode(settings.width, settings.height, false);
+      appliedResolution = {settings.width, settings.height};
       // The volumes apply at once, and to every scene started from now on.
       o.scene.volumes = audio::AudioVolumes{float(settings.volume_master), float(settings.volume_effects),
                                             float(settings.volume_engine)};
@@ -674,6 +680,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
         {"camera", render::cameraModeName(renderer.camera().mode)},
         {"vehicle_definition", vehicleDefinition},
         {"vehicle", session ? session->vehicle.report(*session->scene) : nlohmann::json(nullptr)},
+        {"window", {{"width_px", renderer.windowSize().first}, {"height_px", renderer.windowSize().second}}},
         {"quality", {{"preset", qualityName(quality)},
                      {"resolution_scale", preset.resolutionScale},
                      {"far_plane_m", preset.farPlane_m},

@@ -226,6 +226,11 @@ void Renderer::setWindowMode(int width, int height, bool fullscreen) {
   SDL_SetWindowFullscreen(window, fullscreen ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0);
   if (!fullscreen) SDL_SetWindowSize(window, std::max(64, width), std::max(64, height));
 }
+std::pair<int, int> Renderer::windowSize() const {
+  int w = 0, h = 0;
+  SDL_GetWindowSize(m_impl->context->window(), &w, &h);
+  return {w, h};
+}
 std::pair<Eigen::Vector3f, Eigen::Vector3f> Renderer::viewRay(float x, float y) const {
   const Impl& r = *m_impl;
   const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(std::max(1, r.targets.height()));

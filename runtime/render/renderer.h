@@ -379,6 +379,8 @@ class Renderer {
   /// Window size (px) and fullscreen (the desktop's resolution); offscreen
   /// only the size changes.
   void setWindowMode(int width, int height, bool fullscreen);
+  /// The window's size now (SDL_GetWindowSize), pixels.
+  std::pair<int, int> windowSize() const;
 
   /// Decodes an image file (PNG, JPEG; stb_image) into an RGBA texture for
   /// HUD panels. Free it with freeUiImage while the renderer lives.

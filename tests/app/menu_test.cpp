@@ -324,5 +324,30 @@ TEST(MainMenu, AClickOnSettingsOpensTheSettingsPage) {
   EXPECT_EQ(beside.report["menu"]["page"], "main") << beside.report["menu"].dump(2);
 }
 
+// Settings -> Resolution: Left picks the next smaller offered size; the
+// window takes it at once and the setting is saved.
+TEST(Settings, AResolutionChangeResizesTheWindowAndIsSaved) {
+  const std::string dir = outDir("menu_resolution");
+  auto paused = play(dir, "paused", "base:drop", 26, tap("Escape", 20));
+  ASSERT_EQ(paused.process.exitCode, 0) << paused.process.output;
+  const int settings = indexOf(paused.report["pause_menu"], "Settings");
+  ASSERT_GE(settings, 0) << paused.report["pause_menu"].dump(2);
+  auto before = play(dir, "before", "base:drop", 36, pauseAndPick(settings, 20));
+  ASSERT_EQ(before.process.exitCode, 0) << before.process.output;
+  ASSERT_EQ(before.report["menu"]["page"], "settings") << before.report.dump(2);
+  EXPECT_EQ(before.report["menu"]["selected"], "Resolution");
+  EXPECT_EQ(before.report["window"]["width_px"], 640) << "scripted play keeps --width until the resolution changes";
+  const int width = before.report["settings"]["width"].get<int>();
+  auto after = play(dir, "after", "base:drop", 44, pauseAndPick(settings, 20) + tap("Left", 36));
+  ASSERT_EQ(after.process.exitCode, 0) << after.process.output;
+  const int newWidth = after.report["settings"]["width"].get<int>(), newHeight = after.report["settings"]["height"].get<int>();
+  EXPECT_LT(newWidth, width) << after.report["settings"].dump(2);
+  EXPECT_EQ(after.report["window"]["width_px"], newWidth) << after.report["window"].dump(2);
+  EXPECT_EQ(after.report["window"]["height_px"], newHeight);
+  std::ifstream file(dir + "/config/settings.json");
+  nlohmann::json saved = nlohmann::json::parse(file, nullptr, false);
+  EXPECT_EQ(saved["width"], newWidth) << saved.dump(2);
+}
+
 }  // namespace
 }  // namespace tumble::test
