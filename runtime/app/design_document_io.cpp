@@ -35,6 +35,7 @@ using nlohmann::json;
 namespace {
 
 constexpr int kDesignFormatVersion = 1;
+constexpr terrain::PngEncoding kFastPng{1, 2, true};
 
 // ---- names and numbers ---------------------------------------------------------------
 
@@ -496,13 +497,16 @@ Status DesignDocument::saveAsMod(const std::string& modsDir, const std::string& 
   const script::ModRegistry registry = script::ModRegistry::discover(folders);
   if (Status st = checkReferences(meta, registry, self); !st) return makeError("not saved: " + st.error());
 
-  // Encode the maps (the big part: one thread per image).
+  // Encode the maps, the heights on a thread of their own. One filter for
+  // every row (Up: the row above) and zlib's run-length matching: on a
+  // plasma 4097^2 map 3x faster than the default at 3 % more bytes for the
+  // heights, and smaller for the layers (long runs of one material).
   const std::string map = "maps/" + scenario + ".png";
   const terrain::MaterialMaps* mats = t.materials();
   std::vector<std::uint8_t> heightBytes;
   std::string heightError;
   std::thread encoder([&] {
-    auto png = terrain::encodeHeightMapPng(t.heights());
+    auto png = terrain::encodePngGrey16(t.heights().samples().data(), t.heights().width(), t.heights().height(), kFastPng);
     if (png) heightBytes.swap(png.value());
     else heightError = png.error();
   });
@@ -511,7 +515,7 @@ Status DesignDocument::saveAsMod(const std::string& modsDir, const std::string& 
   if (mats) {
     for (int l = 0; l < terrain::kMaterialLayerCount && layerError.empty(); ++l) {
       const auto layer = terrain::MaterialLayer(l);
-      auto png = terrain::encodePngGrey8(mats->layer(layer).data(), mats->blocksX(), mats->blocksZ());
+      auto png = terrain::encodePngGrey8(mats->layer(layer).data(), mats->blocksX(), mats->blocksZ(), kFastPng);
       if (png) layers.push_back({materialLayerPath(map, layer), std::move(*png)});
       else layerError = materialLayerPath(map, layer) + ": " + png.error();
     }
