@@ -97,6 +97,13 @@ struct PlacedObject {
   bool operator==(const PlacedObject&) const = default;
 };
 
+/// "MOD:path" of every model file (.obj, .3ds, .gltf, .glb, .dae, .fbx,
+/// .ply, .stl) under assets/ of each mod found in `modFolders` (e.g.
+/// modSearchDirs({})), sorted: the object palette. Thumbnails are the UI's.
+std::vector<std::string> listModelAssets(const std::vector<std::string>& modFolders);
+/// "MOD:name" of every emitter definition (emitters/NAME.lua) of those mods, sorted.
+std::vector<std::string> listEmitters(const std::vector<std::string>& modFolders);
+
 struct VehicleStart {
   Vec3 position_m = Vec3::Zero();  ///< on the ground (y from the terrain)
   double heading_rad = 0.0;        ///< 0 faces +Z (vehicle.spawn's heading)

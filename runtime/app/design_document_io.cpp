@@ -457,6 +457,37 @@ void removeAllQuiet(const fs::path& p) {
 
 }  // namespace
 
+// ---- palettes ----------------------------------------------------------------------------------
+
+std::vector<std::string> listModelAssets(const std::vector<std::string>& modFolders) {
+  static const std::set<std::string> kModelExtensions{".obj", ".3ds", ".gltf", ".glb", ".dae", ".fbx", ".ply", ".stl"};
+  std::vector<std::string> out;
+  const script::ModRegistry registry = script::ModRegistry::discover(modFolders);
+  for (const script::ModInfo& mod : registry.mods()) {
+    const fs::path assets = fs::path(mod.dir) / "assets";
+    std::error_code ec;
+    if (!fs::is_directory(assets, ec)) continue;
+    for (auto it = fs::recursive_directory_iterator(assets, fs::directory_options::skip_permission_denied, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      std::string ext = it->path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+      if (it->is_regular_file(ec) && kModelExtensions.count(ext))
+        out.push_back(mod.name + ":" + fs::relative(it->path(), mod.dir, ec).generic_string());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::string> listEmitters(const std::vector<std::string>& modFolders) {
+  std::vector<std::string> out;
+  const script::ModRegistry registry = script::ModRegistry::discover(modFolders);
+  for (const script::ModInfo& mod : registry.mods())
+    for (const std::string& name : script::ModRegistry::listLua(mod, "emitters")) out.push_back(mod.name + ":" + name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 // ---- saving ------------------------------------------------------------------------------------
 
 Status DesignDocument::saveAsMod(const std::string& modsDir, const std::string& modName, const std::string& scenario) {

@@ -4,6 +4,7 @@
 // The saved mod is then checked and run through the real binary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "app/design_document.h"
+#include "app/paths.h"
 #include "app/terrain_scene.h"
 #include "core/file_util.h"
 #include "core/hash.h"
@@ -291,6 +293,25 @@ TEST(DesignSaveCli, TheSavedModPassesCheckAndRunsTheSameTwice) {
   EXPECT_EQ(a["expectations"].size(), 2u) << a["expectations"].dump();
   const auto subsystems = a["subsystems"].dump();
   EXPECT_NE(subsystems.find("terrain"), std::string::npos) << subsystems;
+  // Without a single step the car has no wheel contact yet: the scenario's
+  // expectations fail, so they do measure the stepped world.
+  r = test::runTumble(modsArg + "run mymap:course --steps 0 --report " + (mods / "c.json").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(failedExpectations(readJson((mods / "c.json").string())).find("wheels on the ground"), std::string::npos);
+}
+
+TEST(DesignPalette, ListsTheModelsAndEmittersOfTheLoadedMods) {
+  const std::vector<std::string> folders = {dataDir() + "/mods"};
+  const auto models = listModelAssets(folders);
+  auto has = [](const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+  };
+  EXPECT_TRUE(has(models, "base:assets/models/tree.obj"));
+  EXPECT_TRUE(has(models, "base:assets/models/rock.obj"));
+  EXPECT_FALSE(has(models, "base:assets/models/tree.mtl")) << "materials and textures are not models";
+  EXPECT_TRUE(std::is_sorted(models.begin(), models.end()));
+  const auto emitters = listEmitters(folders);
+  for (const char* e : {"base:smoke", "base:fire", "base:rain"}) EXPECT_TRUE(has(emitters, e)) << e;
 }
 
 // Three gates on flat ground, in a line ahead of the start: the autopilot
