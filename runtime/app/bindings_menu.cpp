@@ -241,6 +241,9 @@ void applyFrameInput(input::InputSystem& input, BindingsMenu& menu, render::Cont
       case PauseMenu::Choice::MainMenu:
         if (requests) requests->mainMenu = true;
         break;
+      case PauseMenu::Choice::BackToDesigner:
+        if (requests) requests->backToDesigner = true;
+        break;
       case PauseMenu::Choice::Resume:
       case PauseMenu::Choice::None: break;
     }

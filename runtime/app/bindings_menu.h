@@ -75,6 +75,7 @@ struct FrameRequests {
   bool changeVehicle = false;  ///< the pause menu's Change vehicle
   bool settings = false;       ///< the pause menu's Settings
   bool mainMenu = false;       ///< the pause menu's Main menu
+  bool backToDesigner = false; ///< the pause menu's Back to designer
 };
 
 /// Once per rendered frame, after Renderer::processEvents: the app's own

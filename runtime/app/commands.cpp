@@ -25,6 +25,7 @@ struct CommandState {
   RunOptions run;
   PlayOptions play;
   std::string playScenarioRef;  // empty: the main menu
+  PlayOptions design;           // `design`: the designer (app/designer_mode.h)
   std::string runScenarioRef;
   std::vector<std::string> runSets, playSets;
   std::string checkDir;
@@ -162,6 +163,31 @@ void addCommands(CLI::App& cli, int* exitCode) {
       return;
     }
     *exitCode = playScenario(st->play, st->clock);
+  });
+
+  CLI::App* design = cli.add_subcommand("design", "the scenario designer in a window: make a map, sculpt, paint, "
+                                                   "place objects, drive it (F5), save it as a mod (docs/designer.md)");
+  design->add_option("scenario", st->design.designRef, "MOD:SCENARIO a designer saved, or new (default: new)");
+  design->add_option("--width", st->design.width, "window width, px")->check(CLI::Range(64, 16384));
+  design->add_option("--height", st->design.height, "window height, px")->check(CLI::Range(64, 16384));
+  design->add_option("--frames", st->design.frames, "play exactly N frames offscreen, then stop (with --events)")
+      ->check(CLI::NonNegativeNumber);
+  design->add_option("--events", st->design.eventsPath, "scripted input, as for play (docs/play-events.md); needs --frames");
+  design->add_option("--report", st->design.reportPath, "write what the player saw (JSON), the designer's state included");
+  design->add_option("--screenshot", st->design.screenshotPath, "with --frames: the last frame");
+  design->add_flag("--mute", st->design.mute, "no sound: open no audio device");
+  design->add_option("--quality", st->design.quality, "rendering quality preset: low, medium or high")
+      ->check(CLI::IsMember({"low", "medium", "high"}));
+  design->callback([st, exitCode, design] {
+    st->design.screenshotGiven = design->count("--screenshot") > 0;
+    st->design.sizeGiven = design->count("--width") > 0 || design->count("--height") > 0;
+    st->design.design = true;
+    if (auto s = finishSceneOptions(st->design.scene, "base:drop", *st, {}); !s) {
+      log::error(s.error());
+      *exitCode = 1;
+      return;
+    }
+    *exitCode = playScenario(st->design, st->clock);
   });
 
   CLI::App* run = cli.add_subcommand("run", "run a scenario headless and check its expectations");

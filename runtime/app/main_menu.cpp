@@ -123,7 +123,10 @@ void MainMenu::rebuild() {
 
 void MainMenu::buildRoot() {
   m_items.push_back({"Play", "", Kind::Button, true, "", [this] { TUMBLE_MENU_PUSH(Page::Mods); }, nullptr});
-  m_items.push_back({"Designer", "", Kind::Button, false, "not yet available", nullptr, nullptr});
+  m_items.push_back({"Designer", "", Kind::Button, true, "", [this] {
+                       m_requests.openDesigner = true;
+                       close();
+                     }, nullptr});
   m_items.push_back({"Settings", "", Kind::Button, true, "", [this] { TUMBLE_MENU_PUSH(Page::Settings); }, nullptr});
   m_items.push_back({"Quit", "", Kind::Button, true, "", [this] { TUMBLE_MENU_PUSH(Page::ConfirmQuit); }, nullptr});
 }

@@ -2,7 +2,7 @@
 // The main menu: what `tumble play` shows when given no scenario, and the
 // pages the pause menu opens over a running game (Change vehicle, Settings).
 //
-//   Root       Play, Designer (not yet available), Settings, Quit
+//   Root       Play, Designer (the scenario designer, app/designer_mode.h), Settings, Quit
 //   Mods       one entry per mod found (mods/, ~/.local/share/tumble/mods, --mods)
 //   Scenarios  the mod's scenarios: title, description and a thumbnail of the
 //              selected one (app/thumbnails.h)
@@ -37,6 +37,7 @@ class MainMenu {
     std::optional<std::string> startScenario;  ///< MOD:NAME to start
     std::optional<std::string> vehicle;        ///< with this vehicle (MOD:NAME), for a driving scenario
     bool quit = false;
+    bool openDesigner = false;     ///< the root page's Designer
     bool backToGame = false;       ///< opened over a game and left with Back: reopen the pause menu
     bool openBindings = false;     ///< the settings page's "Key and pad bindings"
     bool settingsChanged = false;  ///< the window or quality changed: apply (and they were saved)

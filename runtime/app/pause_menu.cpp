@@ -19,8 +19,15 @@ const ImVec4 kItemHover(0.30f, 0.34f, 0.40f, 1.0f);
 
 PauseMenu::PauseMenu() { setVehicleChoice(false); }
 
+void PauseMenu::setDesignerReturn(bool offered) {
+  m_designerReturn = offered;
+  setVehicleChoice(m_vehicleOffered);
+}
+
 void PauseMenu::setVehicleChoice(bool offered) {
+  m_vehicleOffered = offered;
   m_items = {{"Resume", Choice::Resume}, {"Restart", Choice::Restart}};
+  if (m_designerReturn) m_items.push_back({"Back to designer", Choice::BackToDesigner});
   if (offered) m_items.push_back({"Change vehicle", Choice::ChangeVehicle});
   m_items.push_back({"Settings", Choice::Settings});
   m_items.push_back({"Main menu", Choice::MainMenu});

@@ -20,7 +20,7 @@ namespace tumble::app {
 
 class PauseMenu {
  public:
-  enum class Choice { None, Resume, Restart, ChangeVehicle, Settings, MainMenu, Quit };
+  enum class Choice { None, Resume, Restart, ChangeVehicle, Settings, MainMenu, Quit, BackToDesigner };
   struct Item {
     std::string label;
     Choice choice;
@@ -39,6 +39,8 @@ class PauseMenu {
   void setInput(input::InputSystem* input);
   /// Offers "Change vehicle" (the scenario takes a vehicle, app/game_catalog.h).
   void setVehicleChoice(bool offered);
+  /// Offers "Back to designer" (a scene the designer is driving, app/designer_mode.h).
+  void setDesignerReturn(bool offered);
 
   void open();
   void close();
@@ -71,6 +73,7 @@ class PauseMenu {
   int m_selected = 0;
   Choice m_choice = Choice::None;
   bool m_pauseApplied = false, m_pausedBefore = false;
+  bool m_vehicleOffered = false, m_designerReturn = false;
 };
 
 }  // namespace tumble::app

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "app/bindings_menu.h"
+#include "app/designer_mode.h"
 #include "app/driving_hud.h"
 #include "app/fixed_step.h"
 #include "app/game_catalog.h"
@@ -307,7 +308,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   const int width = o.sizeGiven ? o.width : settings.width, height = o.sizeGiven ? o.height : settings.height;
 
   std::unique_ptr<Scene> first;
-  if (!o.menu) {
+  if (!o.menu && !o.design) {
     auto created = createPlayScene(o.scene);
     if (!created) {
       log::error(created.error());
@@ -325,6 +326,10 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   render::Renderer& renderer = *r.value();
   auto applyQuality = [&] { renderer.setQuality(renderQuality(qualityPreset(quality))); };
   applyQuality();
+  if (renderer.offscreen() && !scripted && o.design) {
+    log::error("design: the designer needs a display (or --frames N --events FILE for scripted input)");
+    return 1;
+  }
   if (renderer.offscreen() && !scripted) {
     if (!first) {  // nobody can see a menu: show the default scenario as before
       std::printf("No display for the main menu: playing %s.\n", o.scene.scenarioRef.c_str());
@@ -360,12 +365,26 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     const ScenarioEntry* e = catalog.scenario(ref);
     return e != nullptr && e->takesVehicle;
   };
+  // The designer (design_*.cpp): shown while it exists and no scene is
+  // driven; a scene it drives returns to it (F5, Back to designer).
+  std::unique_ptr<DesignerMode> designer;
+  render::Camera cameraBeforeDrive;
+  auto designerShown = [&] { return designer && !session && !mainMenu.isOpen(); };
   if (first) {
     session = startSession(std::move(first), renderer, pauseMenu);
     pauseMenu.setVehicleChoice(offersVehicle(current.scenarioRef));
+  } else if (o.design) {
+    designer = std::make_unique<DesignerMode>(catalog, o.scene.modDirs);
+    if (o.designRef.empty() || o.designRef == "new") {
+      designer->showNewMap();
+    } else if (Status st = designer->open(o.designRef); !st) {
+      log::error(st.error());
+      return 1;
+    }
   } else {
     mainMenu.openRoot();
   }
+  bool backToDesigner = false;
   GameHud gameHud;  // speed, rpm, gear, lap, minimap, messages, script-error console
   renderer.addHudPanel([&gameHud, &session] {
     if (session) gameHud.draw();
@@ -395,11 +414,19 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       menuInput.handleEvent(e, hudWants);
       return true;  // nothing of the game (camera, pause keys) under the menu
     }
+    if (designerShown()) return designer->handleEvent(e, hudWants);
+    if (designer && session && e.type == SDL_KEYDOWN && e.key.keysym.sym == SDLK_F5 && e.key.repeat == 0) {
+      backToDesigner = true;  // F5 again: back from driving
+      return true;
+    }
     if (session) return session->scene->input().handleEvent(e, hudWants);
     return true;
   });
   // The HUD's extra windows follow the current session (a restart replaces it).
   renderer.addHudPanel([&mainMenu] { mainMenu.draw(); });
+  renderer.addHudPanel([&] {
+    if (designerShown()) designer->draw();
+  });
   renderer.addHudPanel([&pauseMenu] { pauseMenu.draw(); });
   renderer.addHudPanel([&] {
     if (session) session->bindings->draw();
@@ -475,7 +502,20 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       mainMenu.openVehicles(current.scenarioRef, set != current.sets.end() ? set->second : std::string());
     }
     if (requests.settings) mainMenu.openSettings();
+    if ((requests.backToDesigner || backToDesigner) && designer && session) {
+      session.reset();  // the drive ends; the document was never touched
+      pauseMenu.setInput(nullptr);
+      pauseMenu.setDesignerReturn(false);
+      pauseMenu.close();
+      setUpTuning();
+      controls.paused = false;
+      renderer.camera() = cameraBeforeDrive;
+      designer->resume(renderer);
+    }
+    backToDesigner = false;
     if (requests.mainMenu) {  // the scene goes; the menu's root comes back
+      designer.reset();
+      pauseMenu.setDesignerReturn(false);
       session.reset();
       pauseMenu.setInput(nullptr);
       setUpTuning();
@@ -485,6 +525,29 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     }
     MainMenu::Requests menuRequests = mainMenu.takeRequests();
     if (menuRequests.quit) controls.quitRequested = true;
+    if (menuRequests.openDesigner) {
+      designer = std::make_unique<DesignerMode>(catalog, o.scene.modDirs);
+      designer->showNewMap();
+    }
+    if (designer && !session) {
+      DesignerMode::Requests d = designer->takeRequests();
+      if (d.quit) controls.quitRequested = true;
+      if (d.mainMenu) {
+        designer.reset();
+        mainMenu.openRoot();
+      } else if (d.drive) {
+        auto driving = designer->driveOptions(o.scene);
+        cameraBeforeDrive = renderer.camera();
+        if (!driving) {
+          log::error(driving.error());
+        } else if (Status st = startFresh(*driving); !st) {
+          log::error("drive: " + st.error());
+        } else {
+          pauseMenu.setDesignerReturn(true);
+          controls.paused = false;
+        }
+      }
+    }
     if (menuRequests.backToGame && session) pauseMenu.open();
     if (menuRequests.openBindings) {
       if (session) {
@@ -594,6 +657,8 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       session->director.decorate(scene, alpha, renderer.camera(), snap);
       thinParticles(snap, qualityPreset(quality).particleBudget);
       snap.simTime_s = session->time_s;
+    } else if (designerShown()) {
+      designer->update(renderer, float(scripted ? o.scene.dt_s : elapsed), snap);  // scripted: the same on any machine
     } else {
       snap = render::FrameSnapshot{};  // the menu over the sky
     }
@@ -711,7 +776,9 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
         {"bindings_menu_buttons", bindingButtons},
         {"script_errors", errors},
         {"state_hash", session ? nlohmann::json(stateHashText(*session->scene)) : nlohmann::json(nullptr)},
+        {"designer", designer ? designer->report() : nlohmann::json(nullptr)},
     };
+    if (designer) report["designer"]["active"] = designerShown();
     if (auto st = writeReport(o.reportPath, report); !st) {
       log::error("report: " + st.error());
       if (session) session->scene->finish(session->time_s, session->step);

@@ -58,6 +58,10 @@ struct PlayOptions {
   bool sizeGiven = false;  ///< --width or --height given: they win over the saved settings
   std::string quality;     ///< --quality low|medium|high; empty: the saved setting
   std::string recordPath;  ///< --record FILE: a replay of the session (app/replay.h, docs/replays.md)
+  /// `tumble design [MOD:SCENARIO | new]`: the designer instead of the menu
+  /// (app/designer_mode.h); designRef empty or "new": the New map dialog.
+  bool design = false;
+  std::string designRef;
 };
 
 /// `tumble run`: headless unless a screenshot is asked for. Returns the exit

@@ -100,6 +100,16 @@ struct TerrainSurface {
   // its chunk meshes (lazily, only those it draws) and re-uploads materials.
   // A change of size, spacing, scale, origin or pointers also counts.
   std::uint64_t revision = 0;
+  // Optional, for editors: the samples (inclusive, i0..i1 x j0..j1) whose
+  // heights or block materials changed between revision dirtySinceRevision
+  // and revision. If the renderer last drew dirtySinceRevision and nothing
+  // but the revision changed, it rebuilds only the chunks those samples
+  // touch (their meshes, normals and bounds, one sample around for the
+  // normals) and re-uploads only their blocks' materials; otherwise, or
+  // with an empty rectangle (i1 < i0), everything as above. The app unites
+  // the rectangles of the edits made since the frame it last handed over.
+  std::uint64_t dirtySinceRevision = 0;
+  int dirtyI0 = 0, dirtyJ0 = 0, dirtyI1 = -1, dirtyJ1 = -1;
 };
 
 /// Number of built-in procedural terrain textures (see TerrainSurface).
@@ -161,6 +171,7 @@ struct TerrainStats {
   std::int64_t trianglesDrawn = 0;
   int chunksUploaded = 0;      // chunk meshes built and uploaded during this frame
   bool materialsUploaded = false;  // the per-block material texture was (re)uploaded this frame
+  int chunksInvalidated = 0;       // chunks a dirty rectangle (TerrainSurface::dirtyI0..) made rebuild this frame
   std::size_t residentBytes = 0;   // chunk vertex data held on the GPU
   std::vector<TerrainChunkDraw> drawn;  // one entry per drawn chunk
 };

@@ -201,9 +201,9 @@ TEST(PauseMenu, MainMenuTearsTheSceneDownAndShowsTheMenu) {
 
 TEST(Settings, AQualityChangeIsSavedAndLoadedAtTheNextStart) {
   const std::string dir = outDir("menu_settings");
-  // Root: Down skips the greyed-out Designer to Settings; Return; Down x2 to
+  // Root: Down x2 passes Designer to Settings; Return; Down x2 to
   // Quality (medium by default); Right makes it high.
-  std::string events = tap("Down", 5) + tap("Return", 8);
+  std::string events = tap("Down", 3) + tap("Down", 5) + tap("Return", 8);
   int frame = taps(events, "Down", 2, 12);
   events += tap("Right", frame);
   auto changed = play(dir, "changed", "", frame + 6, events);

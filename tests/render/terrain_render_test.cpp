@@ -223,6 +223,52 @@ TEST_F(TerrainRender, RevisionBumpRebuildsChunks) {
   EXPECT_FALSE(after.rgb == before.rgb);
 }
 
+TEST_F(TerrainRender, DirtyRectangleRebuildsOnlyTheChunksItTouches) {
+  // 257 x 257 samples: 4 x 4 chunks, all in view.
+  TestTerrain t(257, 257);
+  Camera& camera = m_renderer->camera();
+  camera.target = t.centre();
+  camera.yaw_rad = 0;
+  camera.pitch_rad = 1.2f;
+  camera.distance_m = 300;
+  render(&t.surface, "dirty_before.png");
+  ASSERT_EQ(m_renderer->terrainStats().chunksDrawn, 16);
+  // A 10 m hill and a rock patch inside chunk (1, 1) (samples 64..128).
+  for (int j = 90; j <= 100; ++j)
+    for (int i = 90; i <= 100; ++i) t.setHeight_m(i, j, 10.0);
+  for (int bj = 92; bj < 98; ++bj)
+    for (int bi = 92; bi < 98; ++bi) t.textureAt(bi, bj) = 1;
+  t.surface.dirtySinceRevision = t.surface.revision;
+  ++t.surface.revision;
+  t.surface.dirtyI0 = 90;
+  t.surface.dirtyJ0 = 90;
+  t.surface.dirtyI1 = 100;
+  t.surface.dirtyJ1 = 100;
+  const Image partial = render(&t.surface, "dirty_partial.png");
+  EXPECT_EQ(m_renderer->terrainStats().chunksInvalidated, 1);
+  EXPECT_EQ(m_renderer->terrainStats().chunksUploaded, 1) << "only the chunk holding the edit is rebuilt";
+  EXPECT_TRUE(m_renderer->terrainStats().materialsUploaded);
+
+  // The same surface rebuilt from scratch (an unrelated revision) draws the same picture.
+  t.surface.dirtySinceRevision = 0;
+  t.surface.revision += 100;
+  const Image full = render(&t.surface, "dirty_full.png");
+  EXPECT_EQ(m_renderer->terrainStats().chunksUploaded, 16);
+  EXPECT_TRUE(partial.rgb == full.rgb) << "the partial rebuild must match a full one";
+
+  // An edit on a chunk corner (sample 128, 128: shared by four chunks, and
+  // their neighbours' normals) rebuilds the four.
+  t.setHeight_m(128, 128, 5.0);
+  t.surface.dirtySinceRevision = t.surface.revision;
+  ++t.surface.revision;
+  t.surface.dirtyI0 = t.surface.dirtyI1 = 128;
+  t.surface.dirtyJ0 = t.surface.dirtyJ1 = 128;
+  const Image corner = render(&t.surface, "dirty_corner.png");
+  EXPECT_EQ(m_renderer->terrainStats().chunksInvalidated, 4);
+  t.surface.revision += 100;
+  EXPECT_TRUE(render(&t.surface, "dirty_corner_full.png").rgb == corner.rgb);
+}
+
 // --- large maps: frame times (logged, not asserted) and LOD memory ---------
 
 double msPerFrame(Renderer& renderer, const FrameSnapshot& frame, int frames) {

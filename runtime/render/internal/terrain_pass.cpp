@@ -111,6 +111,56 @@ void TerrainPass::uploadMaterials(const TerrainSurface& surface) {
   m_materialScratch.shrink_to_fit();  // 32 MiB on a 4097^2 map: do not keep it
 }
 
+void TerrainPass::updateDirty(const TerrainSurface& surface, TerrainStats& stats) {
+  // A vertex's normal reads its neighbours (central differences), so the
+  // samples one around the rectangle change too.
+  const int i0 = std::max(surface.dirtyI0 - 1, 0), j0 = std::max(surface.dirtyJ0 - 1, 0);
+  const int i1 = std::min(surface.dirtyI1 + 1, m_grid.blocksX), j1 = std::min(surface.dirtyJ1 + 1, m_grid.blocksZ);
+  if (i0 > i1 || j0 > j1) return;
+  // Chunk cx holds samples cx * 64 .. cx * 64 + 64 (its neighbour shares the edge).
+  const auto firstChunk = [](int sample) { return std::max(0, (sample - 1) / kTerrainChunkBlocks); };
+  const int cx0 = firstChunk(i0), cz0 = firstChunk(j0);
+  const int cx1 = std::min(i1 / kTerrainChunkBlocks, m_grid.chunksX - 1);
+  const int cz1 = std::min(j1 / kTerrainChunkBlocks, m_grid.chunksZ - 1);
+  for (int cz = cz0; cz <= cz1; ++cz) {
+    for (int cx = cx0; cx <= cx1; ++cx) {
+      Chunk& chunk = m_chunks[static_cast<std::size_t>(cz * m_grid.chunksX + cx)];
+      for (ChunkLevel& level : chunk.levels) {
+        m_residentBytes -= level.bytes;
+        level = ChunkLevel{};
+      }
+      chunk.bounds = chunkBounds(surface, cx, cz);
+      ++stats.chunksInvalidated;
+    }
+  }
+  // Blocks i - 1 and i hold sample i.
+  uploadMaterialRect(surface, std::max(surface.dirtyI0 - 1, 0), std::max(surface.dirtyJ0 - 1, 0),
+                     std::min(surface.dirtyI1, m_grid.blocksX - 1), std::min(surface.dirtyJ1, m_grid.blocksZ - 1));
+  stats.materialsUploaded = true;
+}
+
+void TerrainPass::uploadMaterialRect(const TerrainSurface& surface, int bi0, int bj0, int bi1, int bj1) {
+  if (bi0 > bi1 || bj0 > bj1) return;
+  const int w = bi1 - bi0 + 1, h = bj1 - bj0 + 1;
+  m_materialScratch.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 2, 0);
+  for (int bj = bj0; bj <= bj1; ++bj) {
+    for (int bi = bi0; bi <= bi1; ++bi) {
+      const std::size_t b = static_cast<std::size_t>(bj) * static_cast<std::size_t>(m_grid.blocksX) +
+                            static_cast<std::size_t>(bi);
+      const std::size_t o = 2 * (static_cast<std::size_t>(bj - bj0) * static_cast<std::size_t>(w) +
+                                 static_cast<std::size_t>(bi - bi0));
+      if (surface.textureIndex != nullptr) m_materialScratch[o] = surface.textureIndex[b];
+      if (surface.bump != nullptr) m_materialScratch[o + 1] = surface.bump[b];
+    }
+  }
+  glBindTexture(GL_TEXTURE_2D, m_materials.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, bi0, bj0, w, h, GL_RG_INTEGER, GL_UNSIGNED_BYTE, m_materialScratch.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  m_materialScratch.clear();
+}
+
 const TerrainPass::IndexSet& TerrainPass::indexSet(int nx, int nz) {
   for (const IndexSet& set : m_indexSets) {
     if (set.nx == nx && set.nz == nz) return set;
@@ -179,7 +229,15 @@ Status TerrainPass::sync(const TerrainSurface& surface, TerrainStats& stats) {
   const SurfaceKey key{surface.samplesX,   surface.samplesZ,  surface.spacing_m, surface.heightScale_m,
                        surface.baseHeight_m, surface.originX_m, surface.originZ_m, surface.heights,
                        surface.textureIndex, surface.bump,     surface.revision};
-  if (!m_hasSurface || !(key == m_key)) {
+  SurfaceKey sameRevision = key;
+  sameRevision.revision = m_key.revision;
+  const bool onlyDirty = m_hasSurface && sameRevision == m_key && key.revision != m_key.revision &&
+                         surface.dirtySinceRevision == m_key.revision && surface.dirtyI0 <= surface.dirtyI1 &&
+                         surface.dirtyJ0 <= surface.dirtyJ1;
+  if (onlyDirty) {
+    updateDirty(surface, stats);
+    m_key = key;
+  } else if (!m_hasSurface || !(key == m_key)) {
     reset(surface);
     m_key = key;
     m_hasSurface = true;
@@ -220,6 +278,7 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
   if (Status s = sync(surface, stats); !s) return s;
   stats.materialsUploaded = stats.materialsUploaded || m_depthUploads.materialsUploaded;
   stats.chunksUploaded += m_depthUploads.chunksUploaded;
+  stats.chunksInvalidated += m_depthUploads.chunksInvalidated;
   m_depthUploads = TerrainStats{};
   ++m_frame;
 

@@ -78,6 +78,11 @@ class TerrainPass {
   /// Creates the GPU objects on the first call and resets when the surface changed.
   Status sync(const TerrainSurface& surface, TerrainStats& stats);
   void reset(const TerrainSurface& surface);
+  /// Only the surface's dirty rectangle changed since the last sync: frees
+  /// the touched chunks' levels (rebuilt when drawn), recomputes their
+  /// bounds and re-uploads their blocks' materials.
+  void updateDirty(const TerrainSurface& surface, TerrainStats& stats);
+  void uploadMaterialRect(const TerrainSurface& surface, int bi0, int bj0, int bi1, int bj1);
   void uploadMaterials(const TerrainSurface& surface);
   ChunkLevel& ensureLevel(const TerrainSurface& surface, int chunk, int lod, TerrainStats& stats);
   const IndexSet& indexSet(int nx, int nz);

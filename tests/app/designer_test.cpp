@@ -1,0 +1,210 @@
+// The scenario designer through SDL's real event path: `tumble design
+// --frames N --events FILE --report r.json` (and `play` with the main
+// menu's Designer) pushes scripted keys and mouse into SDL's queue
+// (docs/play-events.md); the report's "designer" object says what the
+// player saw: the map, the ground under the cursor, the objects, the undo
+// state, where it was saved. Every test isolates HOME, so saves land in a
+// folder of its own.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/fly_camera.h"
+#include "tumble_process.h"
+
+namespace tumble::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kSize = " --width 640 --height 360 --quality low --mute";
+
+struct Played {
+  ProcessResult process;
+  nlohmann::json report;
+};
+
+std::string isolated(const std::string& dir) {
+  return "env HOME=" + dir + "/home TUMBLE_CONFIG_DIR=" + dir + "/config XDG_DATA_HOME=" + dir +
+         "/data TUMBLE_CACHE_DIR=" + dir + "/cache ";
+}
+
+Played run(const std::string& dir, const std::string& name, const std::string& command, int frames,
+           const std::string& events) {
+  const std::string eventsPath = dir + "/" + name + ".events", reportPath = dir + "/" + name + ".json";
+  std::ofstream(eventsPath) << events;
+  Played p;
+  p.process = runTumble(command + " --frames " + std::to_string(frames) + " --events " + eventsPath + " --report " +
+                            reportPath + kSize,
+                        isolated(dir));
+  std::ifstream in(reportPath);
+  p.report = nlohmann::json::parse(in, nullptr, false);
+  return p;
+}
+
+std::string tap(const std::string& key, int frame) {
+  return std::to_string(frame) + " down key:" + key + "\n" + std::to_string(frame + 1) + " up key:" + key + "\n";
+}
+std::string ctrl(const std::string& key, int frame) {
+  return std::to_string(frame) + " down key:Left Ctrl\n" + tap(key, frame + 1) + std::to_string(frame + 3) +
+         " up key:Left Ctrl\n";
+}
+// Holds the left button at window pixel (x, y) from `frame` for `frames` frames.
+std::string press(int x, int y, int frame, int frames) {
+  return std::to_string(frame) + " move " + std::to_string(x) + " " + std::to_string(y) + "\n" +
+         std::to_string(frame + 1) + " down mouse:left\n" + std::to_string(frame + 1 + frames) + " up mouse:left\n";
+}
+
+// A new flat map (the dialog's defaults: Return creates it), then a hill
+// raised at the screen's centre by holding the left button for one second.
+const std::string kNewMap = tap("Return", 2);
+const std::string kHill = kNewMap + press(320, 180, 8, 60);
+
+const nlohmann::json& designer(const Played& p) { return p.report["designer"]; }
+double heightAtCursor(const Played& p) { return designer(p)["document"]["height_at_cursor_m"].get<double>(); }
+
+void expectRan(const Played& p) {
+  ASSERT_EQ(p.process.exitCode, 0) << p.process.output;
+  ASSERT_FALSE(p.report.is_discarded()) << p.process.output;
+  ASSERT_TRUE(p.report["designer"].is_object()) << p.report.dump(2);
+}
+
+TEST(Designer, MainMenuDesignerOpensTheNewMapDialogAndCreatesAFlatMap) {
+  const std::string dir = outDir("designer_menu");
+  // Root page: Play, Designer, ... -> Down, Return; then Return: Create.
+  auto p = run(dir, "menu", "play", 40, tap("Down", 3) + tap("Return", 6) + tap("Return", 14) + "20 move 320 180\n");
+  expectRan(p);
+  EXPECT_FALSE(p.report["menu"]["open"].get<bool>()) << p.report["menu"].dump();
+  const auto& d = designer(p);
+  EXPECT_TRUE(d["active"].get<bool>());
+  EXPECT_FALSE(d["new_map_open"].get<bool>());
+  ASSERT_TRUE(d["document"].is_object()) << d.dump(2);
+  EXPECT_EQ(d["document"]["samples"][0], 513);
+  EXPECT_FALSE(d["document"]["can_undo"].get<bool>());
+  ASSERT_FALSE(d["document"]["cursor_m"].is_null()) << "the pointer is over the map";
+  // Flat at 0 m; heights are 16-bit steps over the flat map's range (-100 .. 300 m): 6 mm.
+  EXPECT_NEAR(heightAtCursor(p), 0.0, 400.0 / 65535) << "a flat map at 0 m";
+}
+
+TEST(Designer, TheMouseRaisesAHillUnderTheCursorAndUndoRedoRestoreIt) {
+  const std::string dir = outDir("designer_hill");
+  auto flat = run(dir, "flat", "design new", 12, kNewMap + "8 move 320 180\n");
+  expectRan(flat);
+  const double ground = heightAtCursor(flat);
+  auto hill = run(dir, "hill", "design new", 80, kHill);
+  expectRan(hill);
+  const double raised = heightAtCursor(hill);
+  EXPECT_GT(raised, ground + 1.0) << designer(hill).dump(2);
+  EXPECT_TRUE(designer(hill)["document"]["can_undo"].get<bool>());
+  // Only the chunks the strokes touched were rebuilt in the last frames.
+  EXPECT_LE(designer(hill)["terrain_chunks_invalidated"].get<int>(), 4);
+
+  auto undone = run(dir, "undo", "design new", 90, kHill + ctrl("Z", 75));
+  expectRan(undone);
+  EXPECT_EQ(heightAtCursor(undone), ground) << "Ctrl+Z takes the whole stroke back, to the bit";
+  EXPECT_TRUE(designer(undone)["document"]["can_redo"].get<bool>());
+
+  auto redone = run(dir, "redo", "design new", 100, kHill + ctrl("Z", 75) + ctrl("Y", 85));
+  expectRan(redone);
+  EXPECT_EQ(heightAtCursor(redone), raised) << "Ctrl+Y brings the same hill back";
+}
+
+TEST(Designer, PlacesARockSnappedToTheGroundAndSavesTheModUnderHome) {
+  const std::string dir = outDir("designer_rock");
+  // The palette's order comes from the mods found; the report lists it.
+  auto first = run(dir, "palette", "design new", 6, kNewMap);
+  expectRan(first);
+  const auto& palette = designer(first)["palette"];
+  int rock = -1;
+  for (std::size_t i = 0; i < palette.size(); ++i)
+    if (palette[i] == "rock (base)") rock = int(i);
+  ASSERT_GE(rock, 0) << palette.dump();
+
+  std::string events = kHill + tap("3", 72);
+  int frame = 76;
+  for (int i = 0; i < rock; ++i, frame += 2) events += tap(".", frame);
+  events += press(400, 200, frame, 2);
+  frame += 8;
+  events += ctrl("S", frame) + tap("Return", frame + 8);  // Save: the Save as dialog; Return keeps mymap:course
+  auto p = run(dir, "rock", "design new", frame + 20, events);
+  expectRan(p);
+  const auto& doc = designer(p)["document"];
+  ASSERT_EQ(doc["objects"].size(), 1u) << doc.dump(2);
+  const auto& rockObject = doc["objects"][0];
+  EXPECT_EQ(rockObject["asset"], "base:assets/models/rock.obj");
+  EXPECT_EQ(doc["saved_as"], "mymap:course") << designer(p)["status"];
+  EXPECT_FALSE(doc["unsaved"].get<bool>());
+  const fs::path mod = fs::path(dir) / "home/.local/share/tumble/mods/mymap";
+  EXPECT_TRUE(fs::exists(mod / "mod.lua")) << mod;
+  EXPECT_TRUE(fs::exists(mod / "scenarios/course.lua")) << mod;
+  // The saved scenario names the rock through the modders' API.
+  std::ifstream in(mod / "scenarios/course.lua");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("rock.obj"), std::string::npos) << text;
+}
+
+TEST(Designer, F5DrivesTheMapAndF5ComesBackWithNothingLost) {
+  const std::string dir = outDir("designer_drive");
+  const std::string drive = kNewMap + tap("F5", 10) + "20 down key:W\n140 up key:W\n";
+  auto driving = run(dir, "driving", "design new", 140, drive);
+  expectRan(driving);
+  EXPECT_FALSE(designer(driving)["active"].get<bool>()) << "driving, not designing";
+  ASSERT_TRUE(driving.report["vehicle"].is_object()) << driving.report.dump(2);
+  EXPECT_GT(driving.report["vehicle"]["distance_m"].get<double>(), 3.0) << "W drives the car forward";
+
+  auto before = run(dir, "before", "design new", 10, kNewMap);
+  expectRan(before);
+  auto back = run(dir, "back", "design new", 160, drive + tap("F5", 145));
+  expectRan(back);
+  const auto& d = designer(back);
+  EXPECT_TRUE(d["active"].get<bool>());
+  EXPECT_TRUE(back.report["scenario"].is_null()) << "the drive's scene is gone";
+  EXPECT_EQ(d["document"]["revision"], designer(before)["document"]["revision"]) << "driving changes nothing";
+  EXPECT_EQ(d["camera"], designer(before)["camera"]) << "the camera is where it was";
+}
+
+TEST(Designer, EscapeOpensItsMenuAndQuitWithUnsavedChangesAsks) {
+  const std::string dir = outDir("designer_quit");
+  // Escape, Up (wraps to Quit), Return: the unsaved-changes question.
+  auto asked = run(dir, "asked", "design new", 100, kHill + tap("Escape", 72) + tap("Up", 76) + tap("Return", 80));
+  expectRan(asked);
+  EXPECT_FALSE(asked.report["quit"].get<bool>()) << "an unsaved hill must not be dropped silently";
+  EXPECT_EQ(designer(asked)["menu"]["page"], "confirm_leave");
+  // Down, Return: Leave without saving.
+  auto quit = run(dir, "quit", "design new", 100,
+                  kHill + tap("Escape", 72) + tap("Up", 76) + tap("Return", 80) + tap("Down", 84) + tap("Return", 88));
+  expectRan(quit);
+  EXPECT_TRUE(quit.report["quit"].get<bool>());
+}
+
+TEST(FlyCamera, MovesWhereItLooksAndTurnsWithTheMouse) {
+  app::FlyCamera c;
+  c.position_m = {0, 10, 0};
+  c.yaw_rad = 0;
+  c.pitch_rad = -0.5f;
+  app::FlyInput in;
+  in.forward = true;
+  c.update(in, 1.0f);
+  // Forward is along +Z in the horizontal plane at the walking speed, whatever the pitch.
+  EXPECT_NEAR(c.position_m.z(), app::FlyCamera::kSpeed_mps, 1e-4);
+  EXPECT_NEAR(c.position_m.y(), 10, 1e-5);
+  in = app::FlyInput{};
+  in.up = true;
+  in.fast = true;
+  c.update(in, 0.5f);
+  EXPECT_NEAR(c.position_m.y(), 10 + 0.5f * app::FlyCamera::kSpeed_mps * app::FlyCamera::kFastFactor, 1e-4);
+  // Dragging right turns right (clockwise from above: towards -X when looking along +Z).
+  in = app::FlyInput{};
+  in.lookDx_px = 100;
+  c.update(in, 0.0f);
+  EXPECT_LT(c.forward().x(), 0);
+  c.lookAt({0, 0, 50});
+  EXPECT_NEAR(c.forward().normalized().dot((Eigen::Vector3f(0, 0, 50) - c.position_m).normalized()), 1.0f, 1e-5);
+}
+
+}  // namespace
+}  // namespace tumble::test
