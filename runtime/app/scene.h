@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "audio/audio_system.h"
+#include "audio/listener_motion.h"
 #include "app/error_audit.h"
 #include "core/result.h"
 #include "input/input_system.h"
@@ -132,6 +133,8 @@ class Scene final : public script::SceneSystems {
   };
   void setListener(const Listener& l) { m_listener = l; }
   const std::optional<Listener>& listener() const { return m_listener; }
+  /// The listener's velocity from its movement between audio steps (Doppler).
+  audio::ListenerMotion& listenerMotion() { return m_listenerMotion; }
   /// The joint solver (--set physics.joint_solver, else the scenario's
   /// joint_solver field, else lagrange; world.set_joint_solver switches it).
   physics::JointSolverKind jointSolver() const override { return m_jointSolver; }
@@ -220,6 +223,7 @@ class Scene final : public script::SceneSystems {
   std::unique_ptr<audio::AudioSystem> m_audio;
   std::map<std::uint64_t, physics::BodyId> m_soundBodies;
   std::optional<Listener> m_listener;
+  audio::ListenerMotion m_listenerMotion;
   physics::JointSolverKind m_jointSolver = physics::JointSolverKind::Lagrange;
   double m_requestedDt_s = 0;  ///< world.set_dt, 0 = none
   std::unique_ptr<script::ScenarioHost> m_host;  ///< last: scripts reach every system above

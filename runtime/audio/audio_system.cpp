@@ -106,7 +106,6 @@ Result<std::unique_ptr<AudioSystem>> AudioSystem::create(AudioOutput output) {
   sys->m_engineLow = sys->addClip(clipFromFloat(engineLoop(false), kSampleRate_hz));
   sys->m_engineBright = sys->addClip(clipFromFloat(engineLoop(true), kSampleRate_hz));
   sys->m_wind = sys->addClip(clipFromFloat(windLoop(), kSampleRate_hz));
-  sys->m_impact = sys->addClip(clipFromFloat(impactClip(), kSampleRate_hz));
   sys->m_thunderClip = sys->addClip(clipFromFloat(thunderClip(), kSampleRate_hz));
   for (int s = 0; s < kTyreSurfaceCount; ++s)
     sys->m_tyre[s] = sys->addClip(clipFromFloat(tyreLoop(TyreSurface(s)), kSampleRate_hz));
@@ -119,6 +118,7 @@ AudioSystem::~AudioSystem() {
   for (auto& [id, s] : m_sounds) alDeleteSources(1, &s.source);
   for (auto& [key, v] : m_vehicles) releaseVehicle(v);
   for (ALuint s : m_oneShots) alDeleteSources(1, &s);
+  if (m_rainSource) alDeleteSources(1, &m_rainSource);
   for (ALuint b : m_buffers) alDeleteBuffers(1, &b);
   alcMakeContextCurrent(nullptr);
   alcDestroyContext(m_impl->context);
@@ -132,6 +132,7 @@ void AudioSystem::setVolumes(const AudioVolumes& v) {
   m_impl->current();
   alListenerf(AL_GAIN, m_volumes.master);
   for (auto& [id, s] : m_sounds) applyGain(s.source, s.category, s.volume);
+  applyGain(m_rainSource, SoundCategory::Effects, kRainGain * m_rainLevel);
 }
 
 void AudioSystem::setListener(const Vec3& p, const Vec3& forward, const Vec3& up, const Vec3& v) {
@@ -249,6 +250,13 @@ void AudioSystem::setPosition(SoundId id, const Vec3& p) {
   setSourcePosition(it->second.source, p);
 }
 
+void AudioSystem::setVelocity(SoundId id, const Vec3& v) {
+  auto it = m_sounds.find(id);
+  if (it == m_sounds.end() || !it->second.source || !v.allFinite()) return;
+  m_impl->current();
+  alSource3f(it->second.source, AL_VELOCITY, float(v.x()), float(v.y()), float(v.z()));
+}
+
 void AudioSystem::stop(SoundId id) {
   auto it = m_sounds.find(id);
   if (it == m_sounds.end()) return;
@@ -265,11 +273,16 @@ float AudioSystem::impactGain(float impulse_Ns) {
   return std::min(1.0f, impulse_Ns / kImpactFull_Ns);
 }
 
-void AudioSystem::impact(const Vec3& position_m, float impulse_Ns) {
+void AudioSystem::impact(const Vec3& position_m, float impulse_Ns, ImpactMaterial a, ImpactMaterial b) {
   const float gain = impactGain(impulse_Ns);
   if (gain <= 0 || !m_impl->context || int(m_oneShots.size()) >= kMaxOneShots || !position_m.allFinite()) return;
+  if (int(a) >= kImpactMaterialCount) a = ImpactMaterial::Thud;
+  if (int(b) >= kImpactMaterialCount) b = ImpactMaterial::Thud;
+  if (a > b) std::swap(a, b);
   m_impl->current();
-  const ALuint s = newSource(m_impact, false, position_m, 8);
+  ClipId& clip = m_impactPair[int(a)][int(b)];
+  if (!clip) clip = addClip(clipFromFloat(impactClip(a, b), kSampleRate_hz));
+  const ALuint s = newSource(clip, false, position_m, 8);
   if (!s) return;
   applyGain(s, SoundCategory::Effects, gain);
   alSourcePlay(s);
@@ -291,6 +304,26 @@ void AudioSystem::startThunder(const Vec3& position_m) {
   applyGain(s, SoundCategory::Effects, 1);
   alSourcePlay(s);
   m_oneShots.push_back(s);
+}
+
+void AudioSystem::setRain(float intensity) {
+  m_rainTarget = std::isfinite(intensity) ? std::clamp(intensity, 0.0f, 1.0f) : 0.0f;
+}
+
+void AudioSystem::updateRain(double dt_s) {
+  m_rainLevel += float((m_rainTarget - m_rainLevel) * (1.0 - std::exp(-dt_s / kRainFade_s)));
+  if (m_rainTarget == 0 && m_rainLevel < 1e-4f) m_rainLevel = 0;  // -80 dB: done fading
+  if (!m_impl->context || (!m_rainSource && m_rainLevel == 0)) return;
+  m_impl->current();
+  if (!m_rainSource) {
+    if (!m_rainClip) m_rainClip = addClip(clipFromFloat(rainLoop(), kSampleRate_hz));
+    m_rainSource = newSource(m_rainClip, true, Vec3::Zero(), 1);
+    if (!m_rainSource) return;
+    alSourcei(m_rainSource, AL_SOURCE_RELATIVE, AL_TRUE);  // at the listener wherever it goes
+    applyGain(m_rainSource, SoundCategory::Effects, 0);
+    alSourcePlay(m_rainSource);
+  }
+  applyGain(m_rainSource, SoundCategory::Effects, kRainGain * m_rainLevel);
 }
 
 float AudioSystem::tyreGain(float slip, float threshold) {
@@ -406,6 +439,7 @@ void AudioSystem::renderFrames(std::size_t frames) {
 void AudioSystem::update(double dt_s) {
   if (!(dt_s > 0) || !std::isfinite(dt_s)) return;
   const double end_s = m_time_s + dt_s;
+  updateRain(dt_s);
   // Thunder due within this update starts on its own frame when rendering
   // offline (exact to a sample), at the update otherwise.
   std::sort(m_thunder.begin(), m_thunder.end(), [](auto& a, auto& b) { return a.due_s < b.due_s; });

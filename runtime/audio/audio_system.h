@@ -106,14 +106,23 @@ class AudioSystem {
   void setPitch(SoundId id, float pitch);
   void setVolume(SoundId id, float volume);
   void setPosition(SoundId id, const Vec3& position_m);
+  /// The sound's velocity, m/s: with the listener's, it gives the Doppler
+  /// shift (OpenAL: f' = f (c - v_listener) / (c - v_source), the
+  /// velocities' components from the source towards the listener,
+  /// c = kOpenAlSpeedOfSound_mps).
+  void setVelocity(SoundId id, const Vec3& velocity_mps);
+  /// OpenAL's default speed of sound (AL_SPEED_OF_SOUND), used for the Doppler shift, m/s.
+  static constexpr double kOpenAlSpeedOfSound_mps = 343.3;
   void stop(SoundId id);
   /// Sounds playing now (scripts' and impacts'; not the vehicles' voices).
   int playingCount() const { return int(m_sounds.size()); }
   static constexpr int kMaxSounds = 32;
 
-  /// A collision: a one-shot thump whose amplitude is proportional to the
-  /// normal impulse, full at kImpactFull_Ns, silent below kImpactMin_Ns.
-  void impact(const Vec3& position_m, float impulse_Ns);
+  /// A collision of two materials (synth.h: each one's hit, summed): a
+  /// one-shot whose amplitude is proportional to the normal impulse, full
+  /// at kImpactFull_Ns, silent below kImpactMin_Ns.
+  void impact(const Vec3& position_m, float impulse_Ns, ImpactMaterial a = ImpactMaterial::Thud,
+              ImpactMaterial b = ImpactMaterial::Thud);
   static constexpr float kImpactMin_Ns = 5;
   static constexpr float kImpactFull_Ns = 3000;
   /// Gain of an impact of this impulse (before distance): impulse / kImpactFull_Ns, at most 1.
@@ -123,6 +132,15 @@ class AudioSystem {
   /// distance from the listener / kSpeedOfSound_mps. Returns that delay, s.
   double thunder(const Vec3& position_m);
   static constexpr double kSpeedOfSound_mps = 343;
+
+  /// Rain on and around the listener (not placed in the world): intensity
+  /// 0 (none) .. 1 (a storm's downpour). The level follows it smoothly, as
+  /// level += (intensity - level) (1 - exp(-dt / kRainFade_s)) per update,
+  /// and the rain loop plays at gain kRainGain * level (effects volume).
+  void setRain(float intensity);
+  float rainLevel() const { return m_rainLevel; }
+  static constexpr double kRainFade_s = 2;
+  static constexpr float kRainGain = 0.5f;
 
   /// A vehicle's engine, tyres and wind, keyed by the caller (one key per
   /// vehicle). Voices of vehicles not updated since the last update() stop.
@@ -167,6 +185,7 @@ class AudioSystem {
   void applyGain(unsigned source, SoundCategory category, float volume);
   void renderFrames(std::size_t frames);
   void startThunder(const Vec3& position_m);
+  void updateRain(double dt_s);
   void releaseVehicle(VehicleVoices& v);
   void reapFinished();
 
@@ -178,7 +197,11 @@ class AudioSystem {
   std::vector<unsigned> m_buffers;  ///< by ClipId - 1 (0 when Silent)
   std::vector<double> m_clipSeconds;
   std::map<std::string, ClipId> m_fileClips;
-  ClipId m_engineLow = 0, m_engineBright = 0, m_wind = 0, m_impact = 0, m_thunderClip = 0;
+  ClipId m_engineLow = 0, m_engineBright = 0, m_wind = 0, m_thunderClip = 0, m_rainClip = 0;
+  /// Impact clips by material pair [min][max], made on first use.
+  ClipId m_impactPair[kImpactMaterialCount][kImpactMaterialCount] = {};
+  float m_rainTarget = 0, m_rainLevel = 0;
+  unsigned m_rainSource = 0;
   ClipId m_tyre[kTyreSurfaceCount] = {};
   std::unordered_map<SoundId, Sound> m_sounds;
   SoundId m_nextSound = 1;

@@ -15,9 +15,17 @@
 //                clicks band-passed near 2.5 kHz), grass swish (noise above
 //                4 kHz), mud squelch (noise below 250 Hz with slow bubbles).
 //   windLoop     low band-passed noise with gusts.
-//   impactClip   a thump (70 Hz, 60 ms decay) and a short noise burst.
+//   impactClip   two materials struck together: the sum of each one's hit
+//                (impactMaterialName lists them; synth.cpp defines each as
+//                resonant modes with their decay times and a noise burst).
+//   rainLoop     broadband hiss (noise high-passed at 500 Hz, low-passed
+//                twice at 5 kHz: most power at 1..8 kHz) with drops
+//                (short pings at 1.5..6 kHz, about 300 a second).
 //   thunderClip  a crack (noise above 1 kHz, 0.15 s) then a low rumble
 //                (noise below 150 Hz with swells) dying over ~5 s.
+#include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace tumble::audio {
@@ -31,11 +39,20 @@ enum class TyreSurface { Asphalt = 0, Gravel, Grass, Mud };
 constexpr int kTyreSurfaceCount = 4;
 const char* tyreSurfaceName(TyreSurface s);
 
+/// What a struck thing is made of (a body's sound material, the terrain's
+/// sound layer). Thud: a body of no stated material (a dull 70 Hz knock).
+enum class ImpactMaterial : std::uint8_t { Thud = 0, Metal, Wood, Rubber, Rock, Gravel, Soil, Mud };
+constexpr int kImpactMaterialCount = 8;
+/// "thud", "metal", "wood", "rubber", "rock", "gravel", "soil", "mud".
+const char* impactMaterialName(ImpactMaterial m);
+std::optional<ImpactMaterial> parseImpactMaterial(std::string_view name);
+
 /// Peak-normalised (0.9) mono buffers at kSampleRate_hz. Loops join without a click.
 std::vector<float> engineLoop(bool bright);
 std::vector<float> tyreLoop(TyreSurface surface);
 std::vector<float> windLoop();
-std::vector<float> impactClip();
+std::vector<float> impactClip(ImpactMaterial a = ImpactMaterial::Thud, ImpactMaterial b = ImpactMaterial::Thud);
+std::vector<float> rainLoop();
 std::vector<float> thunderClip();
 
 }  // namespace tumble::audio

@@ -74,6 +74,9 @@ struct Body {
   Real angularDamping_per_s = 0;
   Real sleepTime_s = 0;
   std::uint64_t userData = 0;
+  /// What the body sounds like when struck: a value the audio module
+  /// defines (audio::ImpactMaterial; 0 none stated). Physics never reads it.
+  std::uint8_t soundMaterial = 0;
   std::uint32_t generation = 0;  ///< slot generation; odd while alive (see World)
   bool alive = false;
   bool awake = true;

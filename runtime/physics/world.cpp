@@ -213,6 +213,7 @@ void World::setMaterial(BodyId id, Real friction, Real restitution) {
   b.friction = friction;
   b.restitution = restitution;
 }
+void World::setSoundMaterial(BodyId id, std::uint8_t material) { mutableBody(id).soundMaterial = material; }
 void World::applyForce(BodyId id, const Vec3& f, const Vec3& point, bool wake) {
   Body& b = mutableBody(id);
   if (!b.isDynamic()) return;

@@ -157,6 +157,8 @@ class World {
   void setLinearVelocity(BodyId id, const Vec3& v_mps, bool wake = true);
   void setAngularVelocity(BodyId id, const Vec3& w_radps, bool wake = true);
   void setMaterial(BodyId id, Real friction, Real restitution);
+  /// Body::soundMaterial (heard, not simulated: no wake, no effect on the step).
+  void setSoundMaterial(BodyId id, std::uint8_t material);
   /// Force (N) at a world point (m), applied over the next step. wake =
   /// false leaves a sleeping body (and its island) asleep and the force
   /// unused: for forces that only hold a body where it is, like joint

@@ -2,6 +2,7 @@
 // refuse a removed body with a clear error instead of touching a reused slot.
 //
 // Vectors are tables {x=, y=, z=}; setters accept {x, y, z} or {x=, y=, z=}.
+#include "audio/synth.h"
 #include "script/internal/bind_common.h"
 
 namespace tumble::script {
@@ -190,37 +191,48 @@ int bodyRemove(lua_State* L) {
 /// @class Material
 /// @field friction? number Coulomb coefficient >= 0; a pair uses sqrt(fa*fb)
 /// @field restitution? number 0..1; a pair uses the larger
+/// @field sound? string what it sounds like when struck: "metal", "wood", "rubber", "rock", "gravel", "soil", "mud" or "thud" (a dull knock; the default, but a vehicle's chassis sounds as metal and a plane as rock). Heard only: physics ignores it
 
 /// @function Body:set_material
-/// Changes friction and restitution; a field left out keeps its value.
-/// @param m Material {friction=, restitution=}
+/// Changes friction, restitution and the sound of impacts; a field left out keeps its value.
+/// @param m Material {friction=, restitution=, sound=}
 /// @example ice:set_material{friction = 0.02}
+/// @example crate:set_material{sound = "wood"}
 int bodySetMaterial(lua_State* L) {
   physics::BodyId id = checkBody(L, 1);
   if (!lua_istable(L, 2))
     throw LuaArgError(std::string("Body:set_material: expected a table {friction = ..., restitution = ...}, got ") +
                       luaL_typename(L, 2));
-  checkFields(L, 2, "Body:set_material", {"friction", "restitution"});
+  checkFields(L, 2, "Body:set_material", {"friction", "restitution", "sound"});
   const physics::Body& b = worldOf(L).body(id);
   double friction = 0, restitution = 0;
+  std::string sound;
   try {
     friction = optNumberField(L, 2, "friction", b.friction);
     restitution = optNumberField(L, 2, "restitution", b.restitution);
+    sound = optStringField(L, 2, "sound", audio::impactMaterialName(audio::ImpactMaterial(b.soundMaterial)));
   } catch (const LuaArgError& e) {
     throw LuaArgError(std::string("Body:set_material: ") + e.what());
   }
+  const std::optional<audio::ImpactMaterial> soundMaterial = audio::parseImpactMaterial(sound);
+  if (!soundMaterial)
+    throw LuaArgError("Body:set_material: field 'sound' must be one of \"metal\", \"wood\", \"rubber\", \"rock\", "
+                      "\"gravel\", \"soil\", \"mud\", \"thud\", got \"" + sound + "\"");
   if (friction < 0) throw LuaArgError("Body:set_material: field 'friction' must be >= 0, got " + std::to_string(friction));
   if (restitution < 0 || restitution > 1)
     throw LuaArgError("Body:set_material: field 'restitution' must be in 0..1, got " + std::to_string(restitution));
   worldOf(L).setMaterial(id, Real(friction), Real(restitution));
+  worldOf(L).setSoundMaterial(id, std::uint8_t(*soundMaterial));
   return 0;
 }
 
 /// @function Body:material
-/// @return Material the body's {friction=, restitution=}
+/// @return Material the body's {friction=, restitution=, sound=} (sound: what it was set to, "thud" when never set)
 int bodyMaterial(lua_State* L) {
   const physics::Body& b = worldOf(L).body(checkBody(L, 1));
-  lua_createtable(L, 0, 2);
+  lua_createtable(L, 0, 3);
+  lua_pushstring(L, audio::impactMaterialName(audio::ImpactMaterial(b.soundMaterial)));
+  rawSetField(L, -2, "sound");
   lua_pushnumber(L, b.friction);
   rawSetField(L, -2, "friction");
   lua_pushnumber(L, b.restitution);

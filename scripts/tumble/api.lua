@@ -109,15 +109,16 @@ function Body:apply_torque(t) end
 ---Removes the body from the world (as world.remove); the handle becomes invalid.
 function Body:remove() end
 
----Changes friction and restitution; a field left out keeps its value.
+---Changes friction, restitution and the sound of impacts; a field left out keeps its value.
 ---
 ---```lua
 ---ice:set_material{friction = 0.02}
+---crate:set_material{sound = "wood"}
 ---```
----@param m Material {friction=, restitution=}
+---@param m Material {friction=, restitution=, sound=}
 function Body:set_material(m) end
 
----@return Material # the body's {friction=, restitution=}
+---@return Material # the body's {friction=, restitution=, sound=} (sound: what it was set to, "thud" when never set)
 function Body:material() end
 
 ---Draws the body with a model instead of its plain shape. The collision
@@ -139,6 +140,7 @@ function Body:clear_model() end
 ---@class Material
 ---@field friction? number Coulomb coefficient >= 0; a pair uses sqrt(fa*fb)
 ---@field restitution? number 0..1; a pair uses the larger
+---@field sound? string what it sounds like when struck: "metal", "wood", "rubber", "rock", "gravel", "soil", "mud" or "thud" (a dull knock; the default, but a vehicle's chassis sounds as metal and a plane as rock). Heard only: physics ignores it
 
 ---@class CameraOptions
 ---@field target? Body the body followed (required for "follow", "chase", "hood" and "cockpit")

@@ -13,6 +13,7 @@
 #include "audio/clip.h"
 #include "render/sky.h"
 #include "tumble_process.h"
+#include "../audio/signal.h"
 
 namespace tumble::test {
 
@@ -68,9 +69,12 @@ TEST(AudioCli, AudioOutRendersTheDriveOffline) {
 
 // Thunder follows the lightning drawn: the storm's strike schedule
 // (render::lightningStrikes) gives each flash's time and ground point; the
-// offline render is silent until the first flash's distance / 343 m/s after
-// it (the listener is at the origin: no camera, no vehicle), then loud. The
-// same scene in clear weather is silent throughout.
+// listener is at the origin (no camera, no vehicle). The storm's rain hisses
+// from the start (above 500 Hz), so the thunder's rumble is told by the
+// band below 150 Hz: it jumps more than tenfold the first flash's distance /
+// 343 m/s after it. Before that, the render is rain: a broadband hiss
+// (spectral centroid above 1.5 kHz). The same scene in clear weather is
+// silent throughout: no rain, no thunder.
 TEST(AudioCli, ThunderArrivesTheSpeedOfSoundAfterEachFlash) {
   const std::string dir = outDir("audio_thunder");
   auto storm = runTumble("run good:storm_thunder " + testMods() + " --audio-out " + dir + "/storm.wav");
@@ -84,20 +88,68 @@ TEST(AudioCli, ThunderArrivesTheSpeedOfSoundAfterEachFlash) {
   ASSERT_FALSE(strikes.empty()) << "the schedule has flashes in 30 s";
   auto wav = audio::loadClip(dir + "/storm.wav");
   ASSERT_TRUE(wav) << wav.error();
-  auto rms = [&](const audio::Clip& c, double from_s, double to_s) {
-    const std::size_t a = std::size_t(std::max(0.0, from_s) * c.rate_hz);  // mono (loadClip averages channels)
-    const std::size_t b = std::min(c.samples.size(), std::size_t(to_s * c.rate_hz));
-    double sum2 = 0;
-    for (std::size_t i = a; i < b; ++i) sum2 += double(c.samples[i]) * c.samples[i];
-    return b > a ? std::sqrt(sum2 / double(b - a)) / 32768.0 : 0.0;
+  // Mono floats (loadClip averages the channels), and their band below 150 Hz
+  // (four one-pole low-passes: -24 dB an octave above it).
+  std::vector<float> all(wav->samples.size()), low(wav->samples.size());
+  double y[4] = {};
+  const double a = 1 - std::exp(-2 * M_PI * 150.0 / wav->rate_hz);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    all[i] = float(wav->samples[i] / 32768.0);
+    double x = all[i];
+    for (double& yk : y) x = yk += a * (x - yk);
+    low[i] = float(x);
+  }
+  auto slice = [&](const std::vector<float>& v, double from_s, double to_s) {
+    const std::size_t i0 = std::size_t(std::max(0.0, from_s) * wav->rate_hz);
+    const std::size_t i1 = std::min(v.size(), std::size_t(to_s * wav->rate_hz));
+    return std::vector<float>(v.begin() + std::ptrdiff_t(std::min(i0, i1)), v.begin() + std::ptrdiff_t(i1));
   };
   const double arrival_s = strikes[0].time_s + double(strikes[0].ground_m.norm()) / 343.0;
   ASSERT_LT(arrival_s + 0.5, wav->seconds());
-  EXPECT_LT(rms(*wav, 0.0, arrival_s - 0.03), 1e-4) << "nothing before the first thunder arrives";
-  EXPECT_GT(rms(*wav, arrival_s + 0.03, arrival_s + 0.5), 1e-3) << "the thunder, " << arrival_s << " s in";
+  ASSERT_GT(arrival_s, 2.0) << "the rain has faded in before the first thunder";
+  const double before = audio::test::rms(slice(low, arrival_s - 0.5, arrival_s - 0.03));
+  const double after = audio::test::rms(slice(low, arrival_s + 0.03, arrival_s + 0.5));
+  std::printf("below 150 Hz: %.5f before the first thunder, %.5f after it (%.2f s in)\n", before, after, arrival_s);
+  EXPECT_GT(after, 10 * before) << "the thunder, " << arrival_s << " s in";
+  EXPECT_GT(after, 1e-3);
+  const auto rain = slice(all, arrival_s - 1.5, arrival_s - 0.03);
+  std::printf("rain before it: rms %.4f, centroid %.0f Hz\n", audio::test::rms(rain), audio::test::spectralCentroid(rain));
+  EXPECT_GT(audio::test::rms(rain), 0.01) << "the storm's rain";
+  EXPECT_GT(audio::test::spectralCentroid(rain), 1500) << "a hiss, not a rumble";
   // (Clear weather may make no audio at all: nothing sounds, so no file.)
   auto quiet = audio::loadClip(dir + "/clear.wav");
-  if (quiet) EXPECT_LT(rms(*quiet, 0.0, quiet->seconds()), 1e-4) << "no storm, no thunder";
+  if (quiet) {
+    double sum2 = 0;
+    for (std::int16_t v : quiet->samples) sum2 += double(v) * v;
+    EXPECT_LT(std::sqrt(sum2 / double(std::max<std::size_t>(1, quiet->samples.size()))) / 32768.0, 1e-4)
+        << "no storm: no rain, no thunder";
+  }
+}
+
+// A box dropped on the ground (a plane: rock) sounds as its Material.sound:
+// metal rings (40 dB down only after more than five times as long as wood),
+// and the sound material never changes the simulation (same state hash).
+TEST(AudioCli, ImpactsSoundAsTheBodysMaterial) {
+  const std::string dir = outDir("audio_struck");
+  double decay[2];
+  std::string hash[2];
+  const char* materials[2] = {"metal", "wood"};
+  for (int i = 0; i < 2; ++i) {
+    const std::string name = dir + "/" + materials[i];
+    auto r = runTumble("run good:struck " + testMods() + " --set sound=" + materials[i] + " --audio-out " + name +
+                       ".wav --report " + name + ".json");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto wav = audio::loadClip(name + ".wav");
+    ASSERT_TRUE(wav) << wav.error();
+    std::vector<float> x(wav->samples.size());
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = float(wav->samples[k] / 32768.0);
+    decay[i] = audio::test::decayTime(x, 40);
+    hash[i] = readJson(name + ".json")["state_hash"].get<std::string>();
+    std::printf("%s box on the ground: rms %.4f, 40 dB decay %.3f s\n", materials[i], audio::test::rms(x), decay[i]);
+    EXPECT_GT(audio::test::rms(x), 1e-4) << materials[i] << ": the landing is heard";
+  }
+  EXPECT_GT(decay[0], 5 * decay[1]) << "metal rings, wood knocks";
+  EXPECT_EQ(hash[0], hash[1]) << "the sound material is heard, not simulated";
 }
 
 // A mod whose scenario plays sounds: a good file, a missing one, a corrupt

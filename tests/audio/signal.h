@@ -79,3 +79,39 @@ inline double spectralFlatness(const std::vector<float>& x) {
 }
 
 }  // namespace tumble::audio::test
+
+namespace tumble::audio::test {
+
+/// Fraction of the power between lo and hi Hz.
+inline double bandPowerFraction(const std::vector<float>& x, double lo_hz, double hi_hz) {
+  const auto p = powerSpectrum(x);
+  const double binHz = double(kSampleRate_hz) / double(x.size());
+  double in = 0, all = 0;
+  for (std::size_t k = 1; k < p.size(); ++k) {
+    all += p[k];
+    if (k * binHz >= lo_hz && k * binHz < hi_hz) in += p[k];
+  }
+  return all > 0 ? in / all : 0;
+}
+
+/// Seconds from the loudest 5 ms window until the level (rms over 5 ms
+/// windows) stays below the peak's minus `drop_dB`; -1 if it never does.
+inline double decayTime(const std::vector<float>& x, double drop_dB) {
+  const std::size_t w = kSampleRate_hz / 200;
+  std::vector<double> level;
+  for (std::size_t i = 0; i + w <= x.size(); i += w) {
+    double s = 0;
+    for (std::size_t j = i; j < i + w; ++j) s += double(x[j]) * x[j];
+    level.push_back(std::sqrt(s / double(w)));
+  }
+  if (level.empty()) return -1;
+  const std::size_t peak = std::size_t(std::max_element(level.begin(), level.end()) - level.begin());
+  const double limit = level[peak] * std::pow(10.0, -drop_dB / 20.0);
+  std::size_t last = peak;
+  for (std::size_t i = peak; i < level.size(); ++i)
+    if (level[i] >= limit) last = i;
+  if (last + 1 >= level.size()) return -1;
+  return double(last + 1 - peak) * double(w) / kSampleRate_hz;
+}
+
+}  // namespace tumble::audio::test

@@ -147,6 +147,23 @@ TEST_F(Api, SetMaterialChangesFrictionAndRestitution) {
   expectAllHeld(*host);
 }
 
+TEST_F(Api, SetMaterialSetsTheSoundOfImpacts) {
+  auto host = load(R"(return {on_start = function()
+    local b = world.box{}
+    expect("thud unless set", b:material().sound == "thud")
+    b:set_material{sound = "metal"}
+    expect("metal", b:material().sound == "metal")
+    b:set_material{friction = 0.2}
+    expect("sound kept", b:material().sound == "metal")
+    local ok, e = pcall(b.set_material, b, {sound = "jelly"})
+    expect("unknown sound refused, naming the valid ones", not ok and e:find("'sound'") ~= nil and e:find("wood") ~= nil)
+    ok, e = pcall(b.set_material, b, {sound = 3})
+    expect("not a string refused", not ok and e:find("sound") ~= nil)
+  end})");
+  run(*host, 1);
+  expectAllHeld(*host);
+}
+
 TEST_F(Api, RemovedBodiesAreGoneAndTheirHandlesSaySo) {
   auto host = load(R"(return {on_start = function()
     local a, b = world.box{position = {0, 1, 0}}, world.box{position = {3, 1, 0}}
