@@ -230,6 +230,7 @@ render::RenderQuality renderQuality(const QualityPreset& p) {
   q.shadowMapSize = p.shadowMapSize;
   q.shadowCascades = p.shadowCascades;
   q.lensFlare = p.lensFlare;
+  q.rainDrops = p.particleBudget / 4;  // the storm's rain: a quarter of the particle budget
   return q;
 }
 

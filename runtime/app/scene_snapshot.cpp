@@ -4,6 +4,7 @@
 // the collision view's wireframes.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 
 #include "app/paths.h"
@@ -21,6 +22,45 @@
 #endif
 
 namespace tumble::app {
+
+namespace {
+
+// A rope segment from a to b as a capsule of the rope's radius (its local Y
+// along the segment).
+render::DrawShape ropeSegment(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float radius_m,
+                              const Eigen::Vector3f& color) {
+  render::DrawShape s;
+  s.kind = render::ShapeKind::Capsule;
+  s.position = 0.5f * (a + b);
+  const Eigen::Vector3f d = b - a;
+  const float length = d.norm();
+  if (length > 0 && std::isfinite(length))
+    s.orientation = Eigen::Quaternionf::FromTwoVectors(Eigen::Vector3f::UnitY(), d / length);
+  s.halfHeight_m = std::isfinite(length) ? 0.5f * length : 0.0f;
+  s.radius_m = radius_m;
+  s.color = color;
+  return s;
+}
+
+// A cloth's particle grid (row r, column c is particle r * columns + c) as
+// two triangles per cell.
+render::DrawSurface clothSurface(const physics::Deformable& cloth, const Eigen::Vector3f& color) {
+  render::DrawSurface surface;
+  surface.color = color;
+  const int n = cloth.particleCount(), columns = cloth.columns();
+  surface.positions.reserve(std::size_t(n));
+  for (int i = 0; i < n; ++i) surface.positions.push_back(cloth.position(i).cast<float>());
+  const int rows = columns > 0 ? n / columns : 0;
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int c = 0; c + 1 < columns; ++c) {
+      const std::uint32_t i00 = std::uint32_t(r * columns + c), i10 = i00 + 1, i01 = i00 + std::uint32_t(columns),
+                          i11 = i01 + 1;
+      surface.indices.insert(surface.indices.end(), {i00, i10, i11, i00, i11, i01});
+    }
+  return surface;
+}
+
+}  // namespace
 
 void Scene::savePreviousState() {
   const auto& bodies = *m_world;
@@ -240,16 +280,21 @@ void Scene::snapshotVehiclesAndLines(render::FrameSnapshot& out, double alpha) c
         out.shapes.push_back(s);
       }
     });
-  // Ropes, cloth and the lines scripts drew (no interpolation: lines),
-  // after the collision view's mesh wireframes (snapshot cleared the list).
+  // Ropes as lit tubes (a capsule of the rope's thickness per segment, so
+  // the joints are round), cloth as a surface lit on both sides; neither
+  // interpolated (their particles are not bodies).
+  out.surfaces.clear();
   if (const physics::DeformableSystem* d = m_deformables.get()) {
     d->forEach([&](int id, const physics::Deformable& def) {
       const Eigen::Vector3f color = presentation.deformableColor(id);
+      if (def.kind() == physics::Deformable::Kind::Cloth) return out.surfaces.push_back(clothSurface(def, color));
       def.forEachStructuralSegment([&](const Vec3& a, const Vec3& b) {
-        out.lines.push_back(render::DebugLine{a.cast<float>(), b.cast<float>(), color});
+        out.shapes.push_back(ropeSegment(a.cast<float>(), b.cast<float>(), float(def.material().radius_m), color));
       });
     });
   }
+  // The lines scripts drew, after the collision view's mesh wireframes
+  // (snapshot cleared the list).
   for (const auto& l : presentation.scriptLines())
     out.lines.push_back(render::DebugLine{l.a_m.cast<float>(), l.b_m.cast<float>(), l.color});
 }

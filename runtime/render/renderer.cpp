@@ -5,6 +5,7 @@
 
 #include "core/log.h"
 #include "render/internal/camera_math.h"
+#include "render/internal/rain.h"
 #include "render/internal/renderer_impl.h"
 #include "render/internal/screenshot.h"
 #include "render/internal/sky_model.h"
@@ -85,6 +86,7 @@ void drawShadowMaps(Renderer::Impl& r, const FrameSnapshot& frame, const FrameVi
     r.shadowMaps.bindCascade(i);
     r.shapes.drawDepth(cascades.lightViewProjection[i]);
     r.convexMeshes.drawDepth(cascades.lightViewProjection[i]);
+    r.surfaces.drawDepth(cascades.lightViewProjection[i]);
     r.meshes.drawDepth(frame.models, cascades.lightViewProjection[i]);
     if (frame.terrain != nullptr) {
       // Failures are reported by the terrain's own draw.
@@ -154,6 +156,10 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   r.environment.skyAmbient += Eigen::Vector3f(0.25f, 0.27f, 0.35f) * flash;
   r.shapes.prepare(frame.shapes);
   r.convexMeshes.prepare(frame.shapes);
+  if (Status s = r.surfaces.prepare(frame.surfaces); !s && !r.reportedSurfaceError) {
+    log::warn("render: surfaces not drawn: " + s.error() + " (reported once)");
+    r.reportedSurfaceError = true;
+  }
   drawShadowMaps(r, frame, view);
 
   r.targets.bindScene();
@@ -167,10 +173,16 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
     r.reportedMeshError = true;
   }
   r.convexMeshes.draw(view, r.environment);
+  r.surfaces.draw(view, r.environment);
   r.lines.draw(frame.lines, view);
-  // Last in the scene: transparent, depth-tested, no depth writes.
-  if (Status s = r.particles.draw(frame.particles, frame.additiveParticles, view); !s && !r.reportedParticleError) {
-    log::warn("render: particles not drawn: " + s.error() + " (reported once)");
+  // Last in the scene: transparent, depth-tested, no depth writes. The
+  // storm's rain after the scene's own particles (additive, no sorting).
+  r.rain.clear();
+  appendRain(frame.sky, frame.simTime_s, view.eye, r.quality.rainDrops, r.rain);
+  Status particles = r.particles.draw(frame.particles, frame.additiveParticles, view);
+  if (particles) particles = r.particles.draw({}, r.rain, view);
+  if (!particles && !r.reportedParticleError) {
+    log::warn("render: particles not drawn: " + particles.error() + " (reported once)");
     r.reportedParticleError = true;
   }
   // Effects over the scene: lightning (hidden by what stands in front), then
@@ -217,6 +229,7 @@ void Renderer::setQuality(const RenderQuality& quality) {
   r.config.shadowMapSize = std::clamp(quality.shadowMapSize, 64, 4096);
   r.config.shadowCascades = std::clamp(quality.shadowCascades, 1, 3);
   r.config.lensFlare = quality.lensFlare;
+  r.quality.rainDrops = std::clamp(quality.rainDrops, 0, 100000);
 }
 
 const RenderQuality& Renderer::quality() const { return m_impl->quality; }

@@ -6,6 +6,7 @@
 // Index
 //   DrawShape, DebugLine, FrameSnapshot   what the renderer reads (plain data)
 //   DrawParticle                          one camera-facing particle billboard
+//   DrawSurface                           a triangle surface remade every frame (cloth), lit on both sides
 //   ModelInstance, MeshStats              models (model.h) placed in the frame; what was drawn
 //   ConvexMeshData                        a convex mesh (physics hull) drawn flat shaded
 //   TerrainSurface, TerrainStats          height-field view the app fills; what was drawn
@@ -78,6 +79,16 @@ struct DrawParticle {
   Eigen::Vector3f stretch_m{0, 0, 0};
 };
 
+/// A triangle surface handed over anew every frame (cloth): drawn smooth
+/// shaded with normals the renderer averages over the triangles at each
+/// vertex, lit on both sides (a back face takes the flipped normal), and
+/// casting sun shadows. Triangles naming a vertex past `positions` are skipped.
+struct DrawSurface {
+  std::vector<Eigen::Vector3f> positions;   // m, world
+  std::vector<std::uint32_t> indices;       // triangle list
+  Eigen::Vector3f color{0.8f, 0.8f, 0.8f};  // linear RGB 0..1, both sides
+};
+
 /// A plain view of a height field (render never includes terrain; the app
 /// fills this from terrain::Terrain). No ownership: the arrays must stay
 /// valid during each drawFrame that is handed this surface.
@@ -142,6 +153,7 @@ struct FrameSnapshot {
   std::vector<DrawParticle> additiveParticles;
   std::vector<ModelInstance> models;        // textured meshes (mesh pass); empty: no mesh GPU memory
   SkySettings sky;                          // time of day, sun, fog, clouds, weather (render/sky.h)
+  std::vector<DrawSurface> surfaces;        // cloth; empty: no surface GPU objects
 };
 
 /// What the mesh pass did in the last drawFrame (Renderer::meshStats).
@@ -315,6 +327,9 @@ struct RenderQuality {
   int shadowMapSize = 1024;      ///< texels per cascade's map edge (WindowConfig::shadowMapSize)
   int shadowCascades = 3;        ///< WindowConfig::shadowCascades
   bool lensFlare = true;         ///< WindowConfig::lensFlare
+  /// Rain streaks kept around the eye while the sky's weather is Storm
+  /// (0: no rain). The app's presets give a quarter of their particle budget.
+  int rainDrops = 4000;
 };
 
 /// An image uploaded for the HUD's panels (ImGui::Image(ImTextureID(texture), ...)).

@@ -40,8 +40,48 @@ int partField(lua_State* L, int t, const char* key, const physics::RagdollDesc& 
   throw LuaArgError(std::string("field '") + key + "': no part named '" + name + "' (parts: " + valid + ")");
 }
 
-/// The description table's parts = {...} and joints = {...} (see spawn_ragdoll).
-physics::RagdollDesc readDescription(lua_State* L, int t) {
+// The default human's colours (linear RGB): skin, a blue shirt, dark trousers.
+const Eigen::Vector3f kSkin(0.80f, 0.52f, 0.38f), kShirt(0.12f, 0.30f, 0.65f), kTrousers(0.16f, 0.17f, 0.22f);
+
+/// Field `key` of the table at t as a colour {r, g, b} (each clamped to 0..1), or `fallback`.
+Eigen::Vector3f colorField(lua_State* L, int t, const char* key, const Eigen::Vector3f& fallback) {
+  Vec3 c;
+  try {
+    if (!optVec3Field(L, t, key, &c)) return fallback;
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string(e.what()) + " (a colour {r, g, b}, each 0..1)");
+  }
+  if (!c.allFinite()) throw LuaArgError(std::string("field '") + key + "' must be finite (a colour {r, g, b}, each 0..1)");
+  return c.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
+}
+
+/// The default human's part colours from colors = {skin =, shirt =,
+/// trousers =} (each optional): head and forearms skin, torso and upper
+/// arms shirt, pelvis and legs trousers.
+std::vector<Eigen::Vector3f> humanColors(lua_State* L, int t, const physics::RagdollDesc& d) {
+  Eigen::Vector3f skin = kSkin, shirt = kShirt, trousers = kTrousers;
+  if (rawGetField(L, t, "colors") != LUA_TNIL) {
+    if (!lua_istable(L, -1)) throw LuaArgError("field 'colors' must be a table {skin =, shirt =, trousers =}");
+    const int c = lua_gettop(L);
+    checkFields(L, c, "colors", {"skin", "shirt", "trousers"});
+    skin = colorField(L, c, "skin", skin);
+    shirt = colorField(L, c, "shirt", shirt);
+    trousers = colorField(L, c, "trousers", trousers);
+  }
+  lua_pop(L, 1);
+  std::vector<Eigen::Vector3f> out;
+  for (const physics::RagdollPart& p : d.parts) {
+    const std::string& n = p.name;
+    if (n == "head" || n.rfind("lower_arm", 0) == 0) out.push_back(skin);
+    else if (n == "torso" || n.rfind("upper_arm", 0) == 0) out.push_back(shirt);
+    else out.push_back(trousers);
+  }
+  return out;
+}
+
+/// The description table's parts = {...} and joints = {...} (see spawn_ragdoll);
+/// each part's colour goes to `colors`.
+physics::RagdollDesc readDescription(lua_State* L, int t, std::vector<Eigen::Vector3f>* colors) {
   physics::RagdollDesc d;
   if (rawGetField(L, t, "parts") != LUA_TTABLE) throw LuaArgError("field 'parts' must be a list of part tables");
   const int partsIdx = lua_gettop(L);
@@ -53,7 +93,7 @@ physics::RagdollDesc readDescription(lua_State* L, int t) {
     const int pt = lua_gettop(L);
     physics::RagdollPart p;
     try {
-      checkFields(L, pt, where, {"name", "shape", "size", "radius", "length", "mass", "position", "rotation"});
+      checkFields(L, pt, where, {"name", "shape", "size", "radius", "length", "mass", "position", "rotation", "color"});
       p.name = optStringField(L, pt, "name", "");
       if (p.name.empty()) throw LuaArgError("field 'name' is required");
       for (const physics::RagdollPart& q : d.parts)
@@ -79,6 +119,7 @@ physics::RagdollDesc readDescription(lua_State* L, int t) {
       if (!(p.mass_kg > 0)) throw LuaArgError("field 'mass' is required and must be > 0 kg");
       if (!optVec3Field(L, pt, "position", &p.position_m)) throw LuaArgError("field 'position' is required ({x, y, z}, m)");
       p.orientation = rotationField(L, pt);
+      colors->push_back(colorField(L, pt, "color", kShirt));
     } catch (const LuaArgError& e) {
       throw LuaArgError(where + (p.name.empty() ? "" : " ('" + p.name + "')") + ": " + e.what());
     }
@@ -160,6 +201,7 @@ void scaleDescription(physics::RagdollDesc& d, Real s) {
 /// @field mass number kg, > 0
 /// @field position Vec3Arg centre of mass in the doll's frame (Y up, facing +Z, feet at y = 0), m
 /// @field rotation? Vec3Arg the part's axes in the doll's frame: rotation vector, rad
+/// @field color? Vec3Arg the part's colour {r, g, b}, each 0..1 (default a shirt blue)
 
 /// @class RagdollJointDef
 /// @field name? string for messages
@@ -184,6 +226,7 @@ void scaleDescription(physics::RagdollDesc& d, Real s) {
 /// @field parts? RagdollPartDef[] a doll of your own: its parts (then joints is required)
 /// @field joints? RagdollJointDef[] its joints (parts joined by one do not collide with each other)
 /// @field friction? number every part's friction (default 0.6)
+/// @field colors? table the default human only: {skin =, shirt =, trousers =}, each a colour {r, g, b} 0..1 (head and forearms skin, torso and upper arms shirt, pelvis and legs trousers; defaults a light skin, a blue shirt, dark trousers)
 
 /// @function spawn_ragdoll
 /// Creates a rag-doll: the default human (11 parts, 10 joints; Winter's
@@ -208,8 +251,9 @@ int spawnRagdoll(lua_State* L) {
   Vec3 position = Vec3::Zero();
   Quat q = Quat::Identity();
   physics::RagdollDesc desc;
+  std::vector<Eigen::Vector3f> colors;
   try {
-    checkFields(L, 1, fn, {"position", "rotation", "scale", "height", "mass", "parts", "joints", "friction"});
+    checkFields(L, 1, fn, {"position", "rotation", "scale", "height", "mass", "parts", "joints", "friction", "colors"});
     optVec3Field(L, 1, "position", &position);
     q = rotationField(L, 1);
     const Real scale = Real(optNumberField(L, 1, "scale", 1));
@@ -218,19 +262,22 @@ int spawnRagdoll(lua_State* L) {
     const bool described = !lua_isnil(L, -1);
     lua_pop(L, 1);
     if (described) {
-      for (const char* key : {"height", "mass"}) {
+      for (const char* key : {"height", "mass", "colors"}) {
         rawGetField(L, 1, key);
         const bool given = !lua_isnil(L, -1);
         lua_pop(L, 1);
-        if (given) throw LuaArgError(std::string("field '") + key + "' is for the default human; with 'parts' give each part's size and mass");
+        if (given)
+          throw LuaArgError(std::string("field '") + key +
+                            "' is for the default human; with 'parts' give each part's size, mass and color");
       }
-      desc = readDescription(L, 1);
+      desc = readDescription(L, 1, &colors);
     } else {
       const double height = optNumberField(L, 1, "height", 1.75), mass = optNumberField(L, 1, "mass", 75);
       if (!(height > 0.1 && height < 100)) throw LuaArgError("field 'height' must be in (0.1, 100) m");
       if (!(mass > 0)) throw LuaArgError("field 'mass' must be > 0 kg");
       desc = physics::defaultHuman(Real(height), Real(mass));
       desc.friction = Real(optNumberField(L, 1, "friction", desc.friction));
+      colors = humanColors(L, 1, desc);
     }
     scaleDescription(desc, scale);
   } catch (const LuaArgError& e) {
@@ -241,6 +288,7 @@ int spawnRagdoll(lua_State* L) {
   if (!r) throw LuaArgError(std::string(fn) + ": " + r.error());
   lua_createtable(L, 0, int(desc.parts.size()));
   for (std::size_t i = 0; i < desc.parts.size(); ++i) {
+    if (i < colors.size()) host.presentation().setColor(r.value().bodies[i], colors[i]);
     pushBody(L, r.value().bodies[i]);
     rawSetField(L, -2, desc.parts[i].name.c_str());
   }

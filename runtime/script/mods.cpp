@@ -553,7 +553,7 @@ const LiteralCallForm kEmitterCalls{"particles.", {"spawn", "burst"}, '(', false
 const LiteralCallForm kVehicleCalls{"vehicle.", {"spawn", "definition"}, '(', false};
 const LiteralCallForm kActionCalls{"input.", {"value", "pressed", "released", "down", "inject"}, '(', false};
 const LiteralCallForm kAssetCalls{"", {"set_model", "add_static_model", "model_mass_properties", "import"}, '(', false};
-const LiteralCallForm kAssetFields{"", {"interior", "mesh", "heightmap"}, '=', true};
+const LiteralCallForm kAssetFields{"", {"interior", "mesh", "display_mesh", "heightmap"}, '=', true};
 
 // References by literal name in a mod's Lua files, checked statically: the
 // emitter, vehicle, input action or asset file must exist. Names built at

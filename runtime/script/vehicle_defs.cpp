@@ -38,6 +38,9 @@ const FieldTable<vehicle::ChassisDef> kChassis{
         number("restitution", &vehicle::ChassisDef::restitution, "", "0..1"),
         text("mesh", &vehicle::ChassisDef::mesh, "visual mesh, a path inside the mod",
              [](const std::string& path, const std::string& v) { insideMod(path, v); }),
+        text("display_mesh", &vehicle::ChassisDef::displayMesh,
+             "drawn instead of mesh (e.g. with wheel arches cut out); mesh stays the solid the inertia comes from",
+             [](const std::string& path, const std::string& v) { insideMod(path, v); }),
         choice("inertia", &vehicle::ChassisDef::inertiaFromMesh, {{"box", false}, {"mesh", true}},
                "\"box\": a solid box of size and mass; \"mesh\": the visual mesh as a uniform solid of the chassis "
                "mass (needs mesh)"),

@@ -35,6 +35,9 @@ struct ChassisDef {
   Real friction = Real(0.4);      ///< body contact friction (crashes, scrapes)
   Real restitution = Real(0.1);
   std::string mesh;               ///< visual mesh inside the mod (empty: drawn as the box)
+  /// Drawn instead of mesh when set (more shape than the solid the inertia
+  /// comes from: wheel arches, ...); a path inside the mod. Empty: mesh.
+  std::string displayMesh;
 };
 
 struct SuspensionDef {

@@ -445,6 +445,7 @@ function OdeSystem:stats() end
 ---@field mass number kg, > 0
 ---@field position Vec3Arg centre of mass in the doll's frame (Y up, facing +Z, feet at y = 0), m
 ---@field rotation? Vec3Arg the part's axes in the doll's frame: rotation vector, rad
+---@field color? Vec3Arg the part's colour {r, g, b}, each 0..1 (default a shirt blue)
 
 ---@class RagdollJointDef
 ---@field name? string for messages
@@ -469,6 +470,7 @@ function OdeSystem:stats() end
 ---@field parts? RagdollPartDef[] a doll of your own: its parts (then joints is required)
 ---@field joints? RagdollJointDef[] its joints (parts joined by one do not collide with each other)
 ---@field friction? number every part's friction (default 0.6)
+---@field colors? table the default human only: {skin =, shirt =, trousers =}, each a colour {r, g, b} 0..1 (head and forearms skin, torso and upper arms shirt, pelvis and legs trousers; defaults a light skin, a blue shirt, dark trousers)
 
 ---A random number generator (xoshiro256**) made by random.new.
 ---@class Random
@@ -846,6 +848,7 @@ function Vehicle:remove() end
 ---@field friction? number chassis contact friction (default 0.4)
 ---@field restitution? number 0..1 (default 0.1)
 ---@field mesh? string visual mesh, a path inside the mod
+---@field display_mesh? string drawn instead of mesh (e.g. with wheel arches cut out); mesh stays the solid the inertia comes from
 ---@field inertia? string "box": a solid box of size and mass; "mesh": the visual mesh as a uniform solid of the chassis mass (needs mesh): "box" or "mesh" (default "box")
 
 ---two wheels at (+x, y, z) (left) and (-x, y, z) (right), chassis frame

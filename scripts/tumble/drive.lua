@@ -321,7 +321,9 @@ function drive.show(car, opts)
   local mode = (opts and opts.camera) or "chase"
   local done = 0
   local def = car:definition()
-  local mesh = def.chassis.mesh
+  -- The display mesh (wheel arches, ...) when the definition has one.
+  local mesh = def.chassis.display_mesh
+  if mesh == nil or mesh == "" then mesh = def.chassis.mesh end
   local body = car:body()
   local z0, y0, slope = model_ground(car, def)
   if type(camera) == "table" and camera.set_mode then

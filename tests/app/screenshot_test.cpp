@@ -49,20 +49,19 @@ TEST(Screenshot, RunScreenshotShowsTheBodiesNotJustTheSky) {
   EXPECT_GT(redPixels(b), 320 * 240 / 50) << "the two red boxes cover a good part of the picture";
 }
 
-// Ropes and cloth are drawn as lines (a scene with no particles too: the
-// red flag's lines must reach the picture).
+// Ropes and cloth are drawn (as tubes and shaded surfaces; a scene with no
+// particles too: the red flag must reach the picture).
 TEST(Screenshot, ClothAndRopesAreDrawn) {
   std::string dir = outDir("screenshot_cloth");
   auto r = runTumble("run base:cloth --seconds 2.5 --screenshot " + dir + "/cloth.png --width 640 --height 360");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   Image img = load(dir + "/cloth.png");
   ASSERT_EQ(img.w, 640);
-  // The flag's thin red lines blend with the grey ground: count pixels
-  // clearly redder than they are green or blue.
+  // Count pixels clearly redder than they are green or blue (the flag).
   int reddish = 0;
   for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3)
     reddish += img.rgb[i] > img.rgb[i + 1] + 40 && img.rgb[i] > img.rgb[i + 2] + 40;
-  EXPECT_GT(reddish, 150) << "the flag's red lines";
+  EXPECT_GT(reddish, 150) << "the red flag";
 }
 
 TEST(Screenshot, AtPicksTheMomentOfThePicture) {

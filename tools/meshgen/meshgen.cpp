@@ -462,6 +462,17 @@ const std::vector<Material>& materials() {
   return list;
 }
 
+// The hatchback's wheel arches, seen from the side: an opening 0.84 m
+// long around each wheel (base:hatchback's axles at z = 1.25 and -1.30,
+// tyres of radius 0.30 whose top is 0.60 m up at rest), 0.72 m high, as a
+// half octagon standing on the body's underside (y = 0.28).
+constexpr double kArchHalfLength = 0.42, kArchTop = 0.72;
+std::vector<V2> archOutline(double centreZ) {
+  const double l = kArchHalfLength;
+  return {{centreZ - l, 0.28}, {centreZ - 0.38, 0.50}, {centreZ - 0.24, 0.66}, {centreZ, kArchTop},
+          {centreZ + 0.24, 0.66}, {centreZ + 0.38, 0.50}, {centreZ + l, 0.28}};
+}
+
 // Hatchback, 4.14 m long with its bumpers, 1.56 m wide body (wheels outside
 // it at x = +-0.8, z = +-1.3, radius 0.32). One closed solid (a
 // PrismSolid), so chassis.inertia = "mesh" counts no volume twice: the
@@ -469,21 +480,66 @@ const std::vector<Material>& materials() {
 // window, a B pillar and a rear side window framed by pillars, and the
 // bumpers as cells in front and behind. Windscreen, rear window and lights
 // are painted faces of the body.
-ObjModel hatchback() {
+//
+// wheelArches: the drawn body (hatchback_shaped.obj, chassis.display_mesh)
+// with wheel arches open from the sides down to x = +-0.40 (the wells lined
+// black) and the rear below the sill and the rear bumper tucked in to x =
+// +-0.60, so the tyres show from the side and from behind; the plain one
+// (hatchback.obj) stays the solid the chassis inertia is taken from.
+ObjModel hatchback(bool wheelArches) {
   PrismSolid h;
   // The lights' edges across the width (0.40 .. 0.70 m from the middle)
   // and the rear window's (0.6 m).
   h.stations = {-0.78, -0.70, -0.60, -0.40, 0.40, 0.60, 0.70, 0.78};
   auto all = [](double) { return true; };
+  auto tucked = [](double x) { return std::abs(x) < 0.60; };
   // Lower body, front to back; the front and rear faces are cut where the
   // bumpers and the lights end.
   const int b0 = h.point(-2.0, 0.28), b1 = h.point(2.0, 0.28), f045 = h.point(2.0, 0.45), f062 = h.point(2.0, 0.62);
   const int f074 = h.point(2.0, 0.74), f078 = h.point(2.0, 0.78), belt0 = h.point(1.25, 0.92), belt1 = h.point(-2.0, 0.95);
   const int r088 = h.point(-2.0, 0.88), r074 = h.point(-2.0, 0.74), r045 = h.point(-2.0, 0.45);
-  h.cell({b0, b1, f045, f062, f074, f078, belt0, belt1, r088, r074, r045}, "paint_red", all);
+  if (!wheelArches) {
+    h.cell({b0, b1, f045, f062, f074, f078, belt0, belt1, r088, r074, r045}, "paint_red", all);
+  } else {
+    // Below y = 0.74: a strip behind, between and in front of the arches,
+    // the arches (solid only inside the wells, |x| < 0.40) and one quad over
+    // each arch edge up to y = 0.74; above it one cell to the belt line,
+    // its lower edge carrying every point the strips and quads put there.
+    const double sill = 0.74;
+    std::vector<std::pair<double, int>> sillPoints{{-2.0, r074}, {2.0, f074}};
+    auto sillAt = [&](double z) {
+      for (const auto& [zz, i] : sillPoints)
+        if (std::abs(zz - z) < 1e-9) return i;
+      const int i = h.point(z, sill);
+      sillPoints.emplace_back(z, i);
+      return i;
+    };
+    int last = b0;  // the underside point the next strip starts from
+    double lastZ = -2.0;
+    for (double centre : {-1.30, 1.25}) {
+      const std::vector<V2> outline = archOutline(centre);
+      std::vector<int> arch;
+      for (const V2& q : outline) arch.push_back(h.point(q.x(), q.y()));
+      // Behind the rear arch the body below the sill is tucked in to
+      // |x| < 0.60 (as the bumper), so the rear tyres show from behind.
+      if (last == b0) h.cell({b0, arch.front(), sillAt(outline.front().x()), r074, r045}, "paint_red", tucked);
+      else h.cell({last, arch.front(), sillAt(outline.front().x()), sillAt(lastZ)}, "paint_red", all);
+      h.cell(arch, "plastic_black", [](double x) { return std::abs(x) < 0.40; });
+      for (std::size_t i = 1; i < arch.size(); ++i)
+        h.cell({arch[i - 1], arch[i], sillAt(outline[i].x()), sillAt(outline[i - 1].x())}, "paint_red", all);
+      last = arch.back();
+      lastZ = outline.back().x();
+    }
+    h.cell({last, b1, f045, f062, f074, sillAt(lastZ)}, "paint_red", all);
+    std::sort(sillPoints.begin(), sillPoints.end());
+    std::vector<int> upper;
+    for (const auto& [z, i] : sillPoints) upper.push_back(i);
+    for (int q : {f078, belt0, belt1, r088}) upper.push_back(q);
+    h.cell(upper, "paint_red", all);
+  }
   const int fb0 = h.point(2.07, 0.28), fb1 = h.point(2.07, 0.45), rb0 = h.point(-2.07, 0.28), rb1 = h.point(-2.07, 0.45);
   h.cell({b1, fb0, fb1, f045}, "plastic_black", all);
-  h.cell({rb0, b0, r045, rb1}, "plastic_black", all);
+  h.cell({rb0, b0, r045, rb1}, "plastic_black", wheelArches ? std::function<bool(double)>(tucked) : all);
   // Greenhouse: the windscreen line from (1.25, 0.92) to (0.45, 1.42), the
   // roof to (-1.55, 1.45), the hatch line down to (-2.0, 0.95). The side
   // glass runs from y = lo to hi, inset from both lines, split by a B pillar.
@@ -504,15 +560,16 @@ ObjModel hatchback() {
   h.cell({clo, blo1, bhi1, chi}, "glass", all);
   h.cell({hlo, clo, chi, hhi}, "paint_red", all);
   h.cell({hhi, chi, bhi1, bhi0, fhi, whi, roof0, roof1}, "paint_red", all);
-  h.paint = [lo, hi](const V3& c, const V3& n, const std::string& material) -> std::string {
+  h.paint = [lo, hi, wheelArches](const V3& c, const V3& n, const std::string& material) -> std::string {
     const double ax = std::abs(c.x());
     if (n.z() > 0.4 && n.y() > 0.5 && c.y() > 0.95 && ax < 0.7) return "glass";      // windscreen
     if (n.z() < -0.5 && n.y() > 0.3 && c.y() > lo && c.y() < hi && ax < 0.6) return "glass";  // rear window
     if (ax > 0.4 && ax < 0.7 && n.z() > 0.9 && c.z() > 1.99 && c.y() > 0.62 && c.y() < 0.74) return "headlight";
     if (ax > 0.4 && ax < 0.7 && n.z() < -0.9 && c.z() < -1.99 && c.y() > 0.74 && c.y() < 0.88) return "taillight";
+    if (wheelArches && n.y() < -0.2 && c.y() > 0.3 && c.y() < 0.75) return "plastic_black";  // the arches' ceilings
     return material;
   };
-  return {"hatchback", buildPrismSolid(h), true};
+  return {wheelArches ? "hatchback_shaped" : "hatchback", buildPrismSolid(h), true};
 }
 
 // Off-road truck: a cab with side windows and a flatbed, 4.9 m long, high
@@ -791,7 +848,7 @@ GeneratedFolder folderOf(const std::string& path, const std::vector<ObjModel>& m
 std::vector<GeneratedFolder> generateModelFolders() {
   return {folderOf("assets/models", {wheel()}),
           folderOf("mods/base/assets/models",
-                   {hatchback(), truck(), buggy(), cockpit(), rock(), tree(), building(), barrier(), arch()})};
+                   {hatchback(false), hatchback(true), truck(), buggy(), cockpit(), rock(), tree(), building(), barrier(), arch()})};
 }
 
 Result<std::vector<std::string>> writeModelFolders(const std::string& root) {

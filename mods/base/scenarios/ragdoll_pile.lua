@@ -23,8 +23,10 @@ function scenario.on_start(ctx)
   for i = 1, count do
     -- Lying flat (rotated about x), crossed alternately, 0.5 m apart in height.
     local yaw = (i % 2 == 0) and math.pi / 2 or 0
+    local shirts = {{0.12, 0.30, 0.65}, {0.70, 0.12, 0.10}, {0.15, 0.50, 0.20}}
     dolls[#dolls + 1] = spawn_ragdoll{position = {0, 0.3 + (i - 1) * 0.5, -0.9}, height = 1.8, mass = 75,
-                                      rotation = {math.pi / 2 * math.cos(yaw), 0, math.pi / 2 * math.sin(yaw)}}
+                                      rotation = {math.pi / 2 * math.cos(yaw), 0, math.pi / 2 * math.sin(yaw)},
+                                      colors = {shirt = shirts[(i - 1) % #shirts + 1]}}
   end
   top_start_y = dolls[#dolls].pelvis:position().y
 end

@@ -4,7 +4,8 @@
 return {
   name = "Hatchback",
   description = "front drive, soft and forgiving: understeers gently, brakes straight",
-  chassis = {mass = 1150, size = {1.7, 0.6, 3.9}, com = {0, 0, 0.15}, drag_area = 0.68, mesh = "assets/models/hatchback.obj", inertia = "mesh"},
+  chassis = {mass = 1150, size = {1.7, 0.6, 3.9}, com = {0, 0, 0.15}, drag_area = 0.68, mesh = "assets/models/hatchback.obj", inertia = "mesh",
+             display_mesh = "assets/models/hatchback_shaped.obj"},
   axles = {
     {position = {0.74, -0.15, 1.25}, radius = 0.30, width = 0.19, inertia = 0.9,
      steered = true, driven = true, brake = 1600,

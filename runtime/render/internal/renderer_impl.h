@@ -17,6 +17,7 @@
 #include "render/internal/shadow_maps.h"
 #include "render/internal/shape_pass.h"
 #include "render/internal/sky_pass.h"
+#include "render/internal/surface_pass.h"
 #include "render/internal/terrain_pass.h"
 #include "render/renderer.h"
 
@@ -32,6 +33,9 @@ struct Renderer::Impl {
   ShapePass shapes;
   ConvexMeshPass convexMeshes;  // no GPU memory until a frame has a ConvexMesh
   LinePass lines;
+  SurfacePass surfaces;      // cloth; creates nothing until the first frame with a surface
+  bool reportedSurfaceError = false;
+  std::vector<DrawParticle> rain;  // this frame's rain streaks (storm), capacity kept
   TerrainPass terrain;       // creates nothing until the first frame with a terrain
   ParticlesPass particles;   // creates nothing until the first frame with particles
   EffectsPass effects;       // lightning and lens flare; creates nothing until needed

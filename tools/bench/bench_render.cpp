@@ -1,0 +1,107 @@
+// Render cost per quality preset: one frame of base:drive (terrain, the
+// trees and rocks, the car with its wheels, the generated sky and clouds,
+// sun shadows) drawn offscreen at 1280x720 with each preset's renderer
+// settings, and the same frame under a storm sky (rain, denser fog).
+// The time is the wall time of Renderer::drawFrame, as the play report's
+// frame_ms.render_p50 measures it; on Mesa llvmpipe that is the
+// rasteriser's work (the resolve of the multisampled scene waits for it).
+//
+//   cmake --build build --target tumble_bench_render && build/bin/tumble_bench_render
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+
+#include "app/fixed_step.h"
+#include "app/player_settings.h"
+#include "app/scene.h"
+#include "render/renderer.h"
+#include "vehicle/vehicle_system.h"
+
+namespace {
+
+using namespace tumble;
+
+// The renderer's share of a preset, as `play` sets it (app/play_command.cpp).
+render::RenderQuality qualityOf(const app::QualityPreset& p) {
+  render::RenderQuality q;
+  q.resolutionScale = p.resolutionScale;
+  q.farPlane_m = p.farPlane_m;
+  q.fogDistance_m = p.fogStart_m;
+  q.terrainLodPixels = p.terrainLodPixels;
+  q.msaaSamples = p.msaaSamples;
+  q.shadows = p.shadows;
+  q.shadowMapSize = p.shadowMapSize;
+  q.shadowCascades = p.shadowCascades;
+  q.lensFlare = p.lensFlare;
+  q.rainDrops = p.particleBudget / 4;
+  return q;
+}
+
+void BM_DriveFrame(benchmark::State& state) {
+  const auto level = static_cast<app::QualityLevel>(state.range(0));
+  const bool storm = state.range(1) != 0;
+  app::SceneOptions options;
+  options.scenarioRef = "base:drive";
+  options.sets = {{"autopilot", "1"}};
+  auto scene = app::Scene::create(options);
+  if (!scene) {
+    state.SkipWithError(scene.error().c_str());
+    return;
+  }
+  (*scene)->start();
+  app::RunTimings timings;
+  for (int i = 0; i < 180; ++i) app::stepScene(**scene, app::StepTime{i * (*scene)->dt_s(), i}, timings);
+  (*scene)->savePreviousState();
+  render::FrameSnapshot frame;
+  (*scene)->snapshot(frame, 1.0);
+  if (storm) {  // the same frame under a storm: dark cover, dense fog, rain, lightning
+    frame.sky.weather = render::Weather::Storm;
+    frame.sky.cloudCover = 1;
+  }
+
+  ::setenv("SDL_VIDEODRIVER", "offscreen", 1);
+  render::WindowConfig config;
+  config.width = 1280;
+  config.height = 720;
+  config.hud = false;
+  config.forceOffscreen = true;
+  auto renderer = render::Renderer::create(config);
+  if (!renderer) {
+    state.SkipWithError(renderer.error().c_str());
+    return;
+  }
+  (*renderer)->setQuality(qualityOf(app::qualityPreset(level)));
+  // Behind and above the car, looking along its way.
+  render::Camera& camera = (*renderer)->camera();
+  const vehicle::VehicleSystem* vehicles = (*scene)->vehiclesIfAny();
+  if (vehicles)
+    vehicles->forEach([&](vehicle::VehicleId id) {
+      const physics::Body& b = (*scene)->world().body(vehicles->chassis(id));
+      camera.target = b.position_m.cast<float>() + Eigen::Vector3f(0, 1, 0);
+      const Vec3 forward = b.orientation * Vec3::UnitZ();
+      camera.yaw_rad = float(std::atan2(-forward.x(), -forward.z()));
+    });
+  camera.pitch_rad = 0.25f;
+  camera.distance_m = 7;
+  render::Controls controls;
+  // The first frame uploads the sky cube and terrain chunks: not timed.
+  if (const Status s = (*renderer)->drawFrame(frame, render::HudStats{}, controls); !s) {
+    state.SkipWithError(s.error().c_str());
+    return;
+  }
+  for (auto _ : state) {
+    const Status s = (*renderer)->drawFrame(frame, render::HudStats{}, controls);
+    if (!s) state.SkipWithError(s.error().c_str());
+  }
+  state.SetLabel(std::string(app::qualityName(level)) + (storm ? ", storm" : ""));
+}
+BENCHMARK(BM_DriveFrame)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->ArgNames({"preset", "storm"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
