@@ -6,7 +6,11 @@
 // renamed into place (renames within one file system cannot run out of
 // space). A failure before that point removes the staging folder and leaves
 // the earlier save untouched; a failed rename puts the moved files back.
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <charconv>
@@ -455,6 +459,28 @@ void removeAllQuiet(const fs::path& p) {
   fs::remove_all(p, ec);
 }
 
+/// Staging folders ".saving-SCENARIO-PID" left by a save whose process died
+/// (a crash, a kill) are removed; a live process's folder is left alone.
+void removeOrphanedStaging(const fs::path& modDir, const std::string& scenario) {
+  const std::string prefix = ".saving-" + scenario + "-";
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(modDir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string pid = name.substr(prefix.size());
+    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) removeAllQuiet(it->path());
+  }
+}
+
+/// Makes the renames into `dir` durable (as writeFileAtomic does for its own).
+void syncFolder(const fs::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)::fsync(fd);
+  ::close(fd);
+}
+
 }  // namespace
 
 // ---- palettes ----------------------------------------------------------------------------------
@@ -563,6 +589,7 @@ Status DesignDocument::saveAsMod(const std::string& modsDir, const std::string& 
   // 1. Everything into a staging folder.
   const fs::path staging = modDir / (".saving-" + scenario + "-" + std::to_string(::getpid()));
   removeAllQuiet(staging);
+  removeOrphanedStaging(modDir, scenario);
   for (const PendingFile& f : files) {
     const fs::path target = staging / f.relative;
     fs::create_directories(target.parent_path(), ec);
@@ -620,6 +647,10 @@ Status DesignDocument::saveAsMod(const std::string& modsDir, const std::string& 
     placed.push_back(f.relative);
   }
   removeAllQuiet(staging);
+  std::set<fs::path> written{modDir};
+  for (const PendingFile& f : files) written.insert((modDir / f.relative).parent_path());
+  for (const std::string& rel : backedUp) written.insert((backup / rel).parent_path());
+  for (const fs::path& dir : written) syncFolder(dir);
   return Ok{};
 }
 

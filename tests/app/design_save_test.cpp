@@ -134,7 +134,14 @@ TEST(DesignSave, SavingAgainKeepsTheEarlierSaveInBackup) {
   Brush b;
   d.dab(b, 0, 0, 1);
   d.setTitle("Second version");
+  // A staging folder left by a save that was killed is cleared; one of a
+  // live process (pid 1) is not touched.
+  fs::create_directories(mod / ".saving-course-999999999" / "scenarios");
+  fs::create_directories(mod / ".saving-course-1");
   ASSERT_TRUE(d.saveAsMod(mods.string(), "mymap", "course").ok());
+  EXPECT_FALSE(fs::exists(mod / ".saving-course-999999999"));
+  EXPECT_TRUE(fs::exists(mod / ".saving-course-1"));
+  fs::remove_all(mod / ".saving-course-1");
   const auto backup = folderHashes(mod / "backup" / "course");
   EXPECT_EQ(backup.size(), first.size() - 1) << "every file of the scenario (mod.lua stays: it is shared)";
   for (const auto& [rel, hash] : backup) EXPECT_EQ(hash, first.at(rel)) << rel;
