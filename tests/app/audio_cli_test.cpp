@@ -126,6 +126,29 @@ TEST(AudioCli, ThunderArrivesTheSpeedOfSoundAfterEachFlash) {
   }
 }
 
+// play opens the default audio device unless --mute. A machine without one
+// plays silently and says so once (this is checked only where no device
+// opens, as on the test machine); --mute opens none and says nothing.
+TEST(AudioCli, PlayWithoutADeviceSaysSoOnceAndMuteSaysNothing) {
+  const std::string dir = outDir("audio_play_device");
+  std::ofstream(dir + "/w.events") << "0 down key:W\n";
+  auto times = [](const std::string& text, const std::string& part) {
+    int n = 0;
+    for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+  };
+  const std::string args = "play base:drive --frames 30 --events " + dir + "/w.events --width 320 --height 180";
+  auto muted = runTumble(args + " --mute", "env TUMBLE_CONFIG_DIR=" + dir + " ");
+  ASSERT_EQ(muted.exitCode, 0) << muted.output;
+  EXPECT_EQ(times(muted.output, "playing silently"), 0) << muted.output;
+  auto played = runTumble(args, "env TUMBLE_CONFIG_DIR=" + dir + " ");
+  ASSERT_EQ(played.exitCode, 0) << played.output;
+  const int said = times(played.output, "playing silently");
+  if (said == 0) GTEST_SKIP() << "an audio device opened on this machine";
+  EXPECT_EQ(said, 1) << played.output;
+  EXPECT_NE(played.output.find("no audio output device"), std::string::npos) << played.output;
+}
+
 // A box dropped on the ground (a plane: rock) sounds as its Material.sound:
 // metal rings (40 dB down only after more than five times as long as wood),
 // and the sound material never changes the simulation (same state hash).
