@@ -59,7 +59,7 @@ TEST(ToolsCli, AnUnknownCommandNamesTheCommandsAndTools) {
   const ProcessResult r = runTumble("nosuchcommand --x");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("'nosuchcommand' is not a command"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("play, run, check, list"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("play, design, run, check, list"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("meshgen, report, sweep, terrain"), std::string::npos) << r.output;
   // A path is never taken for a tool name.
   EXPECT_EQ(runTumble("../bin/tumble --help").exitCode, 1);
