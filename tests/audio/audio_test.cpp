@@ -122,6 +122,27 @@ TEST(TyreSound, SilentBelowTheSlipThresholdAndGrowingAbove) {
   }
 }
 
+// Wind grows with the dynamic pressure, the square of the speed through
+// the air, up to full level at 40 m/s; a car at rest hears none.
+TEST(WindSound, GrowsWithTheSquareOfTheSpeed) {
+  auto level = [](float speed_mps) {
+    auto sys = loopback();
+    VehicleSoundInput in = car(0, 0, 4);
+    in.volume = 0;  // no engine note
+    in.speed_mps = speed_mps;
+    run(*sys, 1.0, &in);
+    return rms(monoSlice(sys->rendered(), 0.2, 1.0));
+  };
+  const double still = level(0), slow = level(10), twice = level(20), full = level(40), beyond = level(60);
+  EXPECT_LT(still, 1e-6);
+  EXPECT_GT(slow, 1e-4);
+  // x2 speed -> x4 level, give or take the pitch rising with speed (the
+  // loop's band moves up by 0.8 + v / 80).
+  EXPECT_NEAR(twice / slow, 4.0, 1.0);
+  EXPECT_NEAR(full / twice, 4.0, 1.0);
+  EXPECT_NEAR(beyond / full, 1.0, 0.25) << "full level from 40 m/s on";
+}
+
 // Each surface sounds different: every pair differs by at least 30 % in
 // spectral centroid or by a factor 2 in spectral flatness (tonal squeal vs
 // noise).
