@@ -410,20 +410,7 @@ const terrain::Terrain& DesignDocument::terrain() const { return *m->terrain; }
 double DesignDocument::groundHeight_m(double x, double z) const { return m->terrain->heightAt(Real(x), Real(z)); }
 
 void DesignDocument::fillSurface(render::TerrainSurface& s) const {
-  const terrain::Terrain& t = *m->terrain;
-  const terrain::TerrainDesc& d = t.desc();
-  s.samplesX = t.heights().width();
-  s.samplesZ = t.heights().height();
-  s.spacing_m = float(d.spacing_m);
-  s.heightScale_m = float(d.heightScale_m);
-  s.baseHeight_m = float(d.baseHeight_m);
-  s.originX_m = float(d.originX_m);
-  s.originZ_m = float(d.originZ_m);
-  s.heights = t.heights().samples().data();
-  if (const terrain::MaterialMaps* mm = t.materials()) {
-    s.textureIndex = mm->layer(terrain::MaterialLayer::Texture).data();
-    s.bump = mm->layer(terrain::MaterialLayer::Bump).data();
-  }
+  describeTerrainSurface(*m->terrain, s);
   s.revision = m->revision;
 }
 

@@ -51,13 +51,6 @@ const char* toolName(DesignerMode::Tool t) {
 Vec3 toVec3(const Eigen::Vector3f& v) { return Vec3(Real(v.x()), Real(v.y()), Real(v.z())); }
 Eigen::Vector3f toFloat(const Vec3& v) { return Eigen::Vector3f(float(v.x()), float(v.y()), float(v.z())); }
 
-// The user's mod folder, where Save writes (paths.cpp: the second search folder).
-std::string userModsDir() {
-  if (const char* home = std::getenv("HOME"); home && *home)
-    return (fs::path(home) / ".local/share/tumble/mods").string();
-  return "";
-}
-
 bool menuButton(const char* label, bool highlighted, float width) {
   ImGui::PushStyleColor(ImGuiCol_Button, highlighted ? kHighlight : kItemColor);
   ImGui::PushStyleColor(ImGuiCol_ButtonHovered, highlighted ? kHighlight : kItemHover);

@@ -13,6 +13,9 @@ std::string scriptsDir();
 /// -> DATA/assets/models/wheel.obj. Every runtime-owned file is found
 /// through here; assets/README.md lists them and the tools that make them.
 std::string assetPath(const std::string& relative);
+/// The user's mods folder, ~/.local/share/tumble/mods (where the designer
+/// saves); empty when HOME is not set.
+std::string userModsDir();
 /// Built-in mods folder, then the user's (~/.local/share/tumble/mods), then
 /// each --mods folder in order (later folders override earlier ones).
 std::vector<std::string> modSearchDirs(const std::vector<std::string>& extra);

@@ -218,22 +218,6 @@ int playOffscreenSnapshot(const PlayOptions& o, Scene& scene, render::Renderer& 
   return 0;
 }
 
-// The renderer's share of a quality preset.
-render::RenderQuality renderQuality(const QualityPreset& p) {
-  render::RenderQuality q;
-  q.resolutionScale = p.resolutionScale;
-  q.farPlane_m = p.farPlane_m;
-  q.fogDistance_m = p.fogStart_m;
-  q.terrainLodPixels = p.terrainLodPixels;
-  q.msaaSamples = p.msaaSamples;
-  q.shadows = p.shadows;
-  q.shadowMapSize = p.shadowMapSize;
-  q.shadowCascades = p.shadowCascades;
-  q.lensFlare = p.lensFlare;
-  q.rainDrops = p.particleBudget / 4;  // the storm's rain: a quarter of the particle budget
-  return q;
-}
-
 // At most `budget` particles are drawn: beyond it an evenly spaced subset
 // (every k-th), so a dense cloud thins out rather than losing one end. The
 // simulation keeps every particle.

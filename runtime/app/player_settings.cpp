@@ -7,6 +7,7 @@
 
 #include "core/file_util.h"
 #include "input/overrides_file.h"
+#include "render/renderer.h"
 
 namespace tumble::app {
 
@@ -67,6 +68,21 @@ QualityPreset qualityPreset(QualityLevel level) {
       break;
   }
   return p;
+}
+
+render::RenderQuality renderQuality(const QualityPreset& p) {
+  render::RenderQuality q;
+  q.resolutionScale = p.resolutionScale;
+  q.farPlane_m = p.farPlane_m;
+  q.fogDistance_m = p.fogStart_m;
+  q.terrainLodPixels = p.terrainLodPixels;
+  q.msaaSamples = p.msaaSamples;
+  q.shadows = p.shadows;
+  q.shadowMapSize = p.shadowMapSize;
+  q.shadowCascades = p.shadowCascades;
+  q.lensFlare = p.lensFlare;
+  q.rainDrops = p.particleBudget / 4;
+  return q;
 }
 
 const std::vector<std::pair<int, int>>& offeredResolutions() {

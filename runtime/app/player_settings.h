@@ -19,6 +19,10 @@
 
 #include "core/result.h"
 
+namespace tumble::render {
+struct RenderQuality;
+}
+
 namespace tumble::app {
 
 enum class QualityLevel { Low, Medium, High };
@@ -47,6 +51,9 @@ const char* qualityName(QualityLevel level);
 /// "low", "medium" or "high"; the error lists them.
 Result<QualityLevel> parseQuality(const std::string& name);
 QualityPreset qualityPreset(QualityLevel level);
+/// The renderer's share of a preset, as `play` sets it (the storm's rain
+/// is a quarter of the particle budget).
+render::RenderQuality renderQuality(const QualityPreset& preset);
 
 struct PlayerSettings {
   int width = 1280, height = 720;  ///< window size, px (64..16384)

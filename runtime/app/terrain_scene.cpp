@@ -260,21 +260,24 @@ Status saveMaterialLayersBeside(const terrain::Terrain& terrain, const std::stri
   return Ok();
 }
 
-void TerrainScene::fillSurface() {
-  const terrain::Terrain& t = *m_terrain;
+void describeTerrainSurface(const terrain::Terrain& t, render::TerrainSurface& s) {
   const terrain::TerrainDesc& d = t.desc();
-  m_surface.samplesX = t.heights().width();
-  m_surface.samplesZ = t.heights().height();
-  m_surface.spacing_m = float(d.spacing_m);
-  m_surface.heightScale_m = float(d.heightScale_m);
-  m_surface.baseHeight_m = float(d.baseHeight_m);
-  m_surface.originX_m = float(d.originX_m);
-  m_surface.originZ_m = float(d.originZ_m);
-  m_surface.heights = t.heights().samples().data();
+  s.samplesX = t.heights().width();
+  s.samplesZ = t.heights().height();
+  s.spacing_m = float(d.spacing_m);
+  s.heightScale_m = float(d.heightScale_m);
+  s.baseHeight_m = float(d.baseHeight_m);
+  s.originX_m = float(d.originX_m);
+  s.originZ_m = float(d.originZ_m);
+  s.heights = t.heights().samples().data();
   if (const terrain::MaterialMaps* m = t.materials()) {
-    m_surface.textureIndex = m->layer(terrain::MaterialLayer::Texture).data();
-    m_surface.bump = m->layer(terrain::MaterialLayer::Bump).data();
+    s.textureIndex = m->layer(terrain::MaterialLayer::Texture).data();
+    s.bump = m->layer(terrain::MaterialLayer::Bump).data();
   }
+}
+
+void TerrainScene::fillSurface() {
+  describeTerrainSurface(*m_terrain, m_surface);
   ++m_surface.revision;
 }
 

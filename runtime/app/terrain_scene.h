@@ -51,6 +51,11 @@ class TerrainHeightField final : public physics::HeightField, public vehicle::Gr
   const terrain::Terrain& m_terrain;
 };
 
+/// Points `surface` at a terrain's heights and material layers with its
+/// size, spacing, scale and origin (everything but the revision, which the
+/// owner bumps when it changes the terrain).
+void describeTerrainSurface(const terrain::Terrain& terrain, render::TerrainSurface& surface);
+
 class TerrainScene {
  public:
   /// True if `settings` (terrain.* keys) ask for a terrain.

@@ -21,22 +21,6 @@ namespace {
 
 using namespace tumble;
 
-// The renderer's share of a preset, as `play` sets it (app/play_command.cpp).
-render::RenderQuality qualityOf(const app::QualityPreset& p) {
-  render::RenderQuality q;
-  q.resolutionScale = p.resolutionScale;
-  q.farPlane_m = p.farPlane_m;
-  q.fogDistance_m = p.fogStart_m;
-  q.terrainLodPixels = p.terrainLodPixels;
-  q.msaaSamples = p.msaaSamples;
-  q.shadows = p.shadows;
-  q.shadowMapSize = p.shadowMapSize;
-  q.shadowCascades = p.shadowCascades;
-  q.lensFlare = p.lensFlare;
-  q.rainDrops = p.particleBudget / 4;
-  return q;
-}
-
 void BM_DriveFrame(benchmark::State& state) {
   const auto level = static_cast<app::QualityLevel>(state.range(0));
   const bool storm = state.range(1) != 0;
@@ -70,7 +54,7 @@ void BM_DriveFrame(benchmark::State& state) {
     state.SkipWithError(renderer.error().c_str());
     return;
   }
-  (*renderer)->setQuality(qualityOf(app::qualityPreset(level)));
+  (*renderer)->setQuality(app::renderQuality(app::qualityPreset(level)));
   // Behind and above the car, looking along its way.
   render::Camera& camera = (*renderer)->camera();
   const vehicle::VehicleSystem* vehicles = (*scene)->vehiclesIfAny();
