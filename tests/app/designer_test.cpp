@@ -28,10 +28,6 @@ struct Played {
   nlohmann::json report;
 };
 
-std::string isolated(const std::string& dir) {
-  return "env HOME=" + dir + "/home TUMBLE_CONFIG_DIR=" + dir + "/config XDG_DATA_HOME=" + dir +
-         "/data TUMBLE_CACHE_DIR=" + dir + "/cache ";
-}
 
 Played run(const std::string& dir, const std::string& name, const std::string& command, int frames,
            const std::string& events) {

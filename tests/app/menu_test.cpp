@@ -24,12 +24,6 @@ struct Played {
   nlohmann::json report;
 };
 
-// The player's config, data and cache folders all live in `dir`: the test
-// never reads or changes the real player's settings, mods or thumbnails.
-std::string isolated(const std::string& dir) {
-  return "env TUMBLE_CONFIG_DIR=" + dir + "/config XDG_DATA_HOME=" + dir + "/data TUMBLE_CACHE_DIR=" + dir +
-         "/cache ";
-}
 
 Played play(const std::string& dir, const std::string& name, const std::string& args, int frames,
             const std::string& events) {

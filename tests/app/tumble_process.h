@@ -43,4 +43,14 @@ inline std::string outDir(const std::string& name) {
   return dir.string();
 }
 
+/// An environment prefix for runTumble that puts the player's folders in
+/// `dir`: home (the user's mods, ~/.local/share/tumble/mods), config
+/// (settings, bindings), data (saves) and cache (thumbnails). A test then
+/// never reads or changes the real player's settings, mods, saves or
+/// thumbnails.
+inline std::string isolated(const std::string& dir) {
+  return "env HOME=" + dir + "/home TUMBLE_CONFIG_DIR=" + dir + "/config XDG_DATA_HOME=" + dir +
+         "/data TUMBLE_CACHE_DIR=" + dir + "/cache ";
+}
+
 }  // namespace tumble::test
