@@ -41,6 +41,7 @@ QualityPreset qualityPreset(QualityLevel level) {
       p.farPlane_m = 300.0f;
       p.fogStart_m = 90.0f;
       p.terrainLodPixels = 40.0f;
+      p.terrainDetail = false;
       p.particleBudget = 2000;
       p.msaaSamples = 1;
       p.shadows = false;
@@ -76,6 +77,7 @@ render::RenderQuality renderQuality(const QualityPreset& p) {
   q.farPlane_m = p.farPlane_m;
   q.fogDistance_m = p.fogStart_m;
   q.terrainLodPixels = p.terrainLodPixels;
+  q.terrainDetail = p.terrainDetail;
   q.msaaSamples = p.msaaSamples;
   q.shadows = p.shadows;
   q.shadowMapSize = p.shadowMapSize;

@@ -17,6 +17,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
   impl->config = config;
   impl->quality.msaaSamples = config.msaaSamples;
   impl->quality.terrainLodPixels = config.terrainLodPixels;
+  impl->quality.terrainDetail = config.terrainDetail;
   impl->quality.fogDistance_m = 1.0f / impl->environment.fogDensity_per_m;
   auto context = GlContext::create({config.width, config.height, config.title, config.forceOffscreen});
   if (!context) return makeError("renderer: " + context.error());
@@ -55,7 +56,7 @@ void drawTerrain(Renderer::Impl& r, const FrameSnapshot& frame, const FrameView&
   // Pixels per radian near the screen centre: what the LOD rule needs.
   const float pixelsPerRadian = static_cast<float>(r.targets.sceneHeight()) / (2.0f * view.tanHalfFovY);
   const Status status = r.terrain.draw(*frame.terrain, view, r.environment, pixelsPerRadian,
-                                       r.config.terrainLodPixels, r.terrainStats);
+                                       r.config.terrainLodPixels, r.config.terrainDetail, r.terrainStats);
   if (!status && !r.reportedTerrainError) {
     log::warn("render: terrain not drawn: " + status.error() + " (reported once)");
     r.reportedTerrainError = true;
@@ -163,8 +164,7 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   drawShadowMaps(r, frame, view);
 
   r.targets.bindScene();
-  glClear(GL_DEPTH_BUFFER_BIT);  // the sky covers every pixel, so no colour clear
-  r.sky.draw(view, r.environment, r.config.skyCubeSize, r.config.clouds, 0.35f * flash);
+  glClear(GL_DEPTH_BUFFER_BIT);  // the sky fills every pixel nothing else covers, so no colour clear
   drawTerrain(r, frame, view);
   r.shapes.draw(view, r.environment);
   r.meshes.draw(frame.models, view, r.environment, r.meshStats);
@@ -175,6 +175,10 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
   r.convexMeshes.draw(view, r.environment);
   r.surfaces.draw(view, r.environment);
   r.lines.draw(frame.lines, view);
+  // The sky after everything opaque, at the far plane with the depth test:
+  // it shades only the pixels nothing covers (a sky shaded under the ground
+  // cost a full screen of cube and cloud lookups).
+  r.sky.draw(view, r.environment, r.config.skyCubeSize, r.config.clouds, 0.35f * flash);
   // Last in the scene: transparent, depth-tested, no depth writes. The
   // storm's rain after the scene's own particles (additive, no sorting).
   r.rain.clear();
@@ -224,6 +228,7 @@ void Renderer::setQuality(const RenderQuality& quality) {
   r.quality.farPlane_m = std::max(quality.farPlane_m, 1.0f);
   r.config.msaaSamples = std::max(1, quality.msaaSamples);
   r.config.terrainLodPixels = std::max(1.0f, quality.terrainLodPixels);
+  r.config.terrainDetail = quality.terrainDetail;
   r.environment.fogDensity_per_m = 1.0f / std::max(1.0f, quality.fogDistance_m);
   r.config.shadows = quality.shadows;
   r.config.shadowMapSize = std::clamp(quality.shadowMapSize, 64, 4096);

@@ -303,6 +303,9 @@ struct WindowConfig {
   // (coarse) blocks are at most this many pixels wide on screen at the
   // chunk's nearest point. Smaller: more triangles, less popping.
   float terrainLodPixels = 16.0f;
+  // Bump detail on the ground near the eye (two octaves of noise per pixel,
+  // faded out by 120 m); off: the ground's own normals only.
+  bool terrainDetail = true;
   // The look (sky.h, README "Sky, weather and shadows"). Quality presets set
   // these; Renderer::settings() changes them between frames.
   bool clouds = true;              // the two moving cloud layers (off: the clear sky cube only)
@@ -322,6 +325,7 @@ struct RenderQuality {
   float farPlane_m = 2000.0f;    ///< nothing is drawn beyond this distance
   float fogDistance_m = 250.0f;  ///< fog reaches 63 % here (1 - exp(-(d / this)^2)); terrain beyond 2.5x is culled
   float terrainLodPixels = 16.0f;  ///< as WindowConfig::terrainLodPixels
+  bool terrainDetail = true;       ///< as WindowConfig::terrainDetail
   int msaaSamples = 4;           ///< 1 = off; as WindowConfig::msaaSamples
   bool shadows = true;           ///< cascaded sun shadows (WindowConfig::shadows)
   int shadowMapSize = 1024;      ///< texels per cascade's map edge (WindowConfig::shadowMapSize)
@@ -411,6 +415,10 @@ class Renderer {
   /// Decodes an image file (PNG, JPEG; stb_image) into an RGBA texture for
   /// HUD panels. Free it with freeUiImage while the renderer lives.
   Result<UiImage> loadUiImage(const std::string& path);
+  /// An RGBA texture (8 bits a channel, rows top first) made from pixels the
+  /// app computed, e.g. the minimap: one textured quad to draw instead of a
+  /// rectangle per cell. Free it with freeUiImage.
+  Result<UiImage> makeUiImage(const std::uint8_t* rgba, int width, int height);
   void freeUiImage(UiImage& image);
 
   struct Impl;  // SDL, GL and ImGui state; kept out of this header

@@ -110,12 +110,16 @@ void SkyPass::draw(const FrameView& view, const Environment& environment, int cu
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_CUBE_MAP, m_cube.get());
 
-  // Background: no depth test and no depth write, everything else draws over it.
-  glDisable(GL_DEPTH_TEST);
+  // Background: drawn after the opaque passes at the far plane (depth 1),
+  // so the depth test keeps it to the pixels nothing else covered; no depth
+  // write.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glBindVertexArray(m_emptyVao.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
   glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, 0);

@@ -2,8 +2,9 @@
 // The sky: a cube map of the clear sky (horizon gradient, sun glow and disc;
 // built on the CPU by sky_model.h and rebuilt only when the sun or the sky
 // colours change) and two cloud layers of a generated plasma texture that
-// the wind moves. Drawn as one full-screen triangle; it covers every pixel,
-// so it replaces a colour clear and must be drawn first.
+// the wind moves. Drawn as one full-screen triangle at the far plane after
+// the opaque passes: the depth test leaves it every pixel nothing covers,
+// so it replaces a colour clear without shading pixels twice.
 #include <array>
 
 #include "core/result.h"

@@ -268,7 +268,7 @@ Status TerrainPass::drawDepth(const TerrainSurface& surface, const Eigen::Matrix
 }
 
 Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
-                         const Environment& environment, float pixelsPerRadian, float lodPixels,
+                         const Environment& environment, float pixelsPerRadian, float lodPixels, bool detail,
                          TerrainStats& stats) {
   std::vector<TerrainChunkDraw> drawn = std::move(stats.drawn);  // keep its capacity
   drawn.clear();
@@ -306,7 +306,7 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
   glUniform2i(m_blocks, m_grid.blocksX, m_grid.blocksZ);
   glUniform1f(m_texturePerMetre, 1.0f / kTerrainTextureSize_m);
   glUniform1i(m_layerCount, kTerrainTextureCount);
-  glUniform1f(m_detailSlope, kDetailSlope);
+  glUniform1f(m_detailSlope, detail ? kDetailSlope : 0.0f);  // 0: the shader skips the noise
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, m_materials.get());
   glActiveTexture(GL_TEXTURE1);

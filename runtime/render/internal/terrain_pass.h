@@ -35,7 +35,7 @@ class TerrainPass {
   /// Draws `surface`; fills `stats`. Creates the shader and textures on the
   /// first call, re-uploads when the surface's revision (or shape) changed.
   Status draw(const TerrainSurface& surface, const FrameView& view, const Environment& environment,
-              float pixelsPerRadian, float lodPixels, TerrainStats& stats);
+              float pixelsPerRadian, float lodPixels, bool detail, TerrainStats& stats);
   /// Depth only into the bound shadow map: the chunks inside the light's box,
   /// each at the level draw gives it (the same rule, from the eye), so the
   /// ground's shadow depth matches the drawn ground.
