@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/log.h"
 #include "vehicle/vehicle_system.h"
 #ifdef TUMBLE_HAVE_TERRAIN
 #include "app/terrain_scene.h"
@@ -123,8 +124,23 @@ void GameHud::update(Scene& scene, double time_s) {
 #endif
   if (v.vehicle) m_minimap.update(surface);  // built once per terrain, on the first frame with a car
   else if (!surface) m_minimap.update(nullptr);
+  if (m_renderer && m_minimapTextureBuild != m_minimap.builds()) {
+    // Re-upload after a rebuild: software OpenGL pays per triangle, and a
+    // rectangle per cell cost more than the rest of the HUD together.
+    m_renderer->freeUiImage(m_minimapTexture);
+    m_minimapTextureBuild = m_minimap.builds();
+    if (!m_minimap.empty()) {
+      auto texture = m_renderer->makeUiImage(m_minimap.rgba(), MinimapImage::kCells, MinimapImage::kCells);
+      if (texture) m_minimapTexture = *texture;
+      else log::warn("minimap: drawn cell by cell: " + texture.error());
+    }
+  }
   if (v.vehicle) v.minimap = !m_minimap.empty() && surface ? "terrain" : (!v.gates_m.empty() ? "plan" : "");
   m_view = std::move(v);
+}
+
+GameHud::~GameHud() {
+  if (m_renderer) m_renderer->freeUiImage(m_minimapTexture);
 }
 
 void GameHud::draw() {
@@ -250,7 +266,9 @@ void GameHud::drawMinimap(float s) {
   const ImVec2 o(ia.x + (side - (x1 - x0) * k) * 0.5f, ia.y + (side - (z1 - z0) * k) * 0.5f);
   auto toScreen = [&](float x, float z) { return ImVec2(o.x + (x - x0) * k, o.y + (z - z0) * k); };
   dl->PushClipRect(ia, ib, true);
-  if (v.minimap == "terrain") {
+  if (v.minimap == "terrain" && m_minimapTexture.texture != 0) {
+    dl->AddImage(ImTextureID(m_minimapTexture.texture), o, ImVec2(o.x + (x1 - x0) * k, o.y + (z1 - z0) * k));
+  } else if (v.minimap == "terrain") {
     const int n = MinimapImage::kCells;
     const float cw = (x1 - x0) * k / float(n), ch = (z1 - z0) * k / float(n);
     for (int j = 0; j < n; ++j) {

@@ -53,6 +53,13 @@ std::string lapTimeText(std::optional<double> seconds);
 
 class GameHud {
  public:
+  GameHud() = default;
+  GameHud(const GameHud&) = delete;
+  GameHud& operator=(const GameHud&) = delete;
+  ~GameHud();
+  /// The renderer whose GL context the HUD's textures (the minimap) live in;
+  /// without one the minimap is drawn as a rectangle per cell.
+  void setRenderer(render::Renderer* renderer) { m_renderer = renderer; }
   /// Reads the scene after the frame's steps (time_s: simulated time now).
   void update(Scene& scene, double time_s);
   /// A hot reload took effect: the errors leave the HUD (the console keeps them).
@@ -82,6 +89,9 @@ class GameHud {
   MessageLog m_messages;
   ScriptConsole m_console;
   MinimapImage m_minimap;
+  render::Renderer* m_renderer = nullptr;
+  render::UiImage m_minimapTexture;  ///< m_minimap uploaded (one quad instead of ~9000 rectangles)
+  int m_minimapTextureBuild = -1;    ///< m_minimap.builds() it was made from
 };
 
 }  // namespace tumble::app

@@ -26,6 +26,10 @@ class MinimapImage {
   bool empty() const { return m_colors.empty(); }
   /// Colour of cell (i, j), packed as Dear ImGui's IM_COL32 (a << 24 | b << 16 | g << 8 | r).
   std::uint32_t color(int i, int j) const { return m_colors[std::size_t(j) * kCells + std::size_t(i)]; }
+  /// The kCells x kCells picture as RGBA bytes, row j = 0 first (null when empty).
+  const std::uint8_t* rgba() const {
+    return m_colors.empty() ? nullptr : reinterpret_cast<const std::uint8_t*>(m_colors.data());
+  }
   /// World extent the image covers, m.
   float minX_m = 0, minZ_m = 0, maxX_m = 0, maxZ_m = 0;
   /// How many times it was built (the report shows it: once per terrain).

@@ -371,6 +371,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   }
   bool backToDesigner = false;
   GameHud gameHud;  // speed, rpm, gear, lap, minimap, messages, script-error console
+  gameHud.setRenderer(&renderer);
   renderer.addHudPanel([&gameHud, &session] {
     if (session) gameHud.draw();
   });

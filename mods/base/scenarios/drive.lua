@@ -118,7 +118,9 @@ return {
     end
     steps = steps + 1
     if touching >= 3 then contact_steps = contact_steps + 1 end
-    hud_text(("%s  %3.0f km/h  gear %d  %4.0f rpm"):format(car:name(), t.speed * 3.6, t.gear, t.rpm),
+    local kmh = t.speed * 3.6
+    if math.abs(kmh) < 0.5 then kmh = 0 end  -- a car at rest creeps by mm/s: show 0, not -0
+    hud_text(("%s  %3.0f km/h  gear %d  %4.0f rpm"):format(car:name(), kmh, t.gear, t.rpm),
              ("travelled %.0f m"):format(travelled))
   end,
 
