@@ -200,16 +200,26 @@ Status Renderer::drawFrame(const FrameSnapshot& frame, const HudStats& hud, Cont
     log::warn("render: effects not drawn: " + effects.error() + " (reported once)");
     r.reportedEffectsError = true;
   }
-  r.targets.resolve();
+  // A frame only shown goes straight to the window: the scene is scaled
+  // (or resolved) into the window's framebuffer and the HUD drawn there,
+  // which saves a full-size copy per frame. A frame someone keeps (offscreen,
+  // or a screenshot) is finished in the renderer's own frame target first.
+  const bool direct = !r.context->offscreen() && screenshotPath == nullptr && width == r.targets.width() &&
+                      height == r.targets.height();
+  if (direct) {
+    r.targets.resolveToWindow();
+  } else {
+    r.targets.resolve();
+  }
   if (r.hud) r.hud->draw(hud, controls, r.camera.mode, r.tuning);
-  r.hasFrame = true;
+  r.hasFrame = !direct;
 
   Status result = Ok{};
   if (screenshotPath != nullptr) result = saveScreenshot(screenshotPath);
 
   // Offscreen there is no one to show the frame to; skip the copy.
   if (!r.context->offscreen()) {
-    if (width > 0 && height > 0) r.targets.blitToWindow(width, height);
+    if (!direct && width > 0 && height > 0) r.targets.blitToWindow(width, height);
     r.context->present();
   }
   if (std::string errors = drainGlErrors(); !errors.empty() && !r.reportedGlError) {
@@ -263,7 +273,8 @@ const MeshStats& Renderer::meshStats() const { return m_impl->meshStats; }
 Status Renderer::saveScreenshot(const std::string& path) {
   const Impl& r = *m_impl;
   if (!r.hasFrame) {
-    return makeError(path + ": no frame to save yet; call drawFrame first");
+    return makeError(path + ": no frame to save: none drawn yet, or the last went straight to the window "
+                     "(pass the path to drawFrame)");
   }
   const RgbImage image =
       readFramebuffer(r.targets.frameFramebuffer(), r.targets.width(), r.targets.height());

@@ -104,6 +104,16 @@ void RenderTargets::resolve() const {
   glViewport(0, 0, m_width, m_height);
 }
 
+void RenderTargets::resolveToWindow() const {
+  const bool scaled = m_sceneWidth != m_width || m_sceneHeight != m_height;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, m_scene.get() ? m_scene.get() : m_frame.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(0, 0, m_sceneWidth, m_sceneHeight, 0, 0, m_width, m_height, GL_COLOR_BUFFER_BIT,
+                    scaled ? GL_LINEAR : GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, m_width, m_height);
+}
+
 void RenderTargets::blitToWindow(int windowWidth, int windowHeight) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, m_frame.get());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

@@ -4,7 +4,9 @@
 // the HUD is drawn on top of the resolved image. That resolved image is
 // "the frame": screenshots read it (so they work with the offscreen driver
 // and with hidden or covered windows, where reading the window's buffer is
-// undefined) and presenting copies it to the window.
+// undefined) and presenting copies it to the window. A frame that is only
+// shown skips it: the scene goes straight into the window's framebuffer
+// and the HUD is drawn there (resolveToWindow).
 #include "core/result.h"
 #include "render/internal/gl_util.h"
 
@@ -34,6 +36,9 @@ class RenderTargets {
   GLuint frameFramebuffer() const { return m_frame.get(); }
   /// Copies the frame to the window's framebuffer (0).
   void blitToWindow(int windowWidth, int windowHeight) const;
+  /// Instead of resolve() + blitToWindow(): the scene straight into the
+  /// window's framebuffer (of the frame's size), left bound for the HUD.
+  void resolveToWindow() const;
 
  private:
   int m_width = 0, m_height = 0, m_samples = 0, m_requestedSamples = 0;

@@ -47,7 +47,7 @@ struct Renderer::Impl {
   std::unique_ptr<Hud> hud;  // null when config.hud is false
   Environment environment;
   Camera camera;
-  bool hasFrame = false;         // a finished frame exists for saveScreenshot
+  bool hasFrame = false;         // the last frame was finished in the frame target, for saveScreenshot
   bool reportedGlError = false;  // GL errors are logged once, not every frame
   bool reportedTerrainError = false;
   bool reportedParticleError = false;
