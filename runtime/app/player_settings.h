@@ -39,7 +39,7 @@ struct QualityPreset {
   /// Terrain LOD: a chunk takes the coarsest level whose blocks are at most
   /// this many pixels wide on screen (render::WindowConfig::terrainLodPixels).
   float terrainLodPixels = 16.0f;
-  bool terrainDetail = true;     ///< bump detail on the near ground (off on low: per-pixel noise is costly on software OpenGL)
+  bool terrainDetail = true;     ///< the ground lit per pixel with bump detail (off on low: lit per vertex; render::WindowConfig::terrainDetail)
   int particleBudget = 20000;    ///< particles drawn per frame at most (evenly thinned beyond)
   int msaaSamples = 4;           ///< 1 = off
   bool shadows = true;           ///< cascaded sun shadows (off on low)

@@ -303,8 +303,10 @@ struct WindowConfig {
   // (coarse) blocks are at most this many pixels wide on screen at the
   // chunk's nearest point. Smaller: more triangles, less popping.
   float terrainLodPixels = 16.0f;
-  // Bump detail on the ground near the eye (two octaves of noise per pixel,
-  // faded out by 120 m); off: the ground's own normals only.
+  // The ground's detailed shading: light per pixel with sun shadows and bump
+  // detail near the eye (two octaves of noise, faded out by 120 m). Off: the
+  // ground is lit per vertex, without bump detail or sun shadows on it (a
+  // third of the ground's cost on software OpenGL; the low preset).
   bool terrainDetail = true;
   // The look (sky.h, README "Sky, weather and shadows"). Quality presets set
   // these; Renderer::settings() changes them between frames.

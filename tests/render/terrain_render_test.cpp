@@ -101,6 +101,61 @@ TEST_F(TerrainRender, AHillShowsGroundBelowAndSkyAboveTheHorizon) {
   EXPECT_EQ(m_renderer->terrainStats().chunksTotal, 0);
 }
 
+TEST_F(TerrainRender, GroundLitPerVertexLooksLikeGroundLitPerPixel) {
+  // The low preset's simple shading (terrainDetail off: light per vertex, no
+  // bump detail) against the detailed one, on the 30 m hill seen from the
+  // side: the same pixels are ground, their colour is close, and the slopes
+  // keep their light and shade.
+  TestTerrain t(257, 257);
+  for (int j = 0; j < t.nz; ++j)
+    for (int i = 0; i < t.nx; ++i)
+      t.setHeight_m(i, j, 30.0 * std::exp(-((i - 128) * (i - 128) + (j - 128) * (j - 128)) / (2.0 * 30 * 30)));
+  Camera& camera = m_renderer->camera();
+  camera.target = t.centre() + Eigen::Vector3f(0, 10, 0);
+  camera.yaw_rad = 0.8f;
+  camera.pitch_rad = 0.25f;
+  camera.distance_m = 90;
+  RenderQuality quality;
+  quality.shadows = false;
+  quality.msaaSamples = 1;
+  m_renderer->setQuality(quality);
+  const Image detailed = render(&t.surface, "detailed.png");
+  quality.terrainDetail = false;
+  m_renderer->setQuality(quality);
+  const Image simple = render(&t.surface, "simple.png");
+
+  long groundBoth = 0, groundEither = 0;
+  double sum[2][3] = {};
+  // Mean brightness of each half of the picture: the hill's two flanks.
+  double half[2][2] = {};
+  long halfCount[2] = {};
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t* d = detailed.at(x, y);
+      const std::uint8_t* s = simple.at(x, y);
+      const bool gd = isGrassy(d[0], d[1], d[2]), gs = isGrassy(s[0], s[1], s[2]);
+      groundEither += gd || gs;
+      if (!(gd && gs)) continue;
+      ++groundBoth;
+      for (int c = 0; c < 3; ++c) sum[0][c] += d[c], sum[1][c] += s[c];
+      const int h = x < kWidth / 2 ? 0 : 1;
+      half[0][h] += d[0] + d[1] + d[2];
+      half[1][h] += s[0] + s[1] + s[2];
+      ++halfCount[h];
+    }
+  ASSERT_GT(groundBoth, kWidth * kHeight / 4) << "the hill and the plain fill much of the view";
+  EXPECT_GT(groundBoth, groundEither * 99 / 100) << "ground in one is ground in the other";
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(sum[1][c] / double(groundBoth), sum[0][c] / double(groundBoth), 8.0) << "channel " << c;
+  ASSERT_GT(halfCount[0], 0);
+  ASSERT_GT(halfCount[1], 0);
+  const double flankDetailed = half[0][0] / double(halfCount[0]) - half[0][1] / double(halfCount[1]);
+  const double flankSimple = half[1][0] / double(halfCount[0]) - half[1][1] / double(halfCount[1]);
+  EXPECT_GT(std::abs(flankDetailed), 6.0) << "the sun lights one flank more than the other";
+  EXPECT_GT(flankSimple * flankDetailed, 0.0) << "the same flank is lit";
+  EXPECT_NEAR(flankSimple, flankDetailed, 0.5 * std::abs(flankDetailed));
+}
+
 TEST_F(TerrainRender, TextureIndexPaintsItsOwnBlocks) {
   // Flat 128 m square seen from straight above; world x < 0 is the left of
   // the image (yaw 0 puts +X to the right).

@@ -322,6 +322,76 @@ void main() {
 )glsl");
 const char* const kTerrainFragment = kTerrainFragmentSource.c_str();
 
+// Terrain lit per vertex (the ground's simple shading, for the low preset):
+// the same sun, hemisphere ambient, large-scale shade and fog as above, but
+// computed at the vertices and interpolated, so a pixel costs a material
+// fetch, a texture sample and one multiply. No bump detail and no sun
+// shadows on the ground. On the ground's 1 m grid near the eye the light
+// varies too slowly across a block for the difference to show; far away the
+// coarse levels' big triangles smooth it.
+const char* const kTerrainVertexLit = R"glsl(
+#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec4 aNormal;   // packed 2_10_10_10, normalised
+uniform mat4 uViewProjection;
+uniform vec3 uEye;
+uniform vec3 uLightDirection;   // unit, towards the light
+uniform vec3 uLightColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform float uFogDensity;      // 1/m
+out vec3 vWorldPosition;
+out vec3 vLight;                // what multiplies the albedo (linear)
+out float vFog;                 // 0..1 of the fog colour
+
+float hash(vec2 p) {
+  uvec2 q = uvec2(ivec2(p)) * uvec2(1597334673u, 3812015801u);
+  return float(((q.x ^ q.y) * 1597334673u) >> 8) * (1.0 / 16777216.0);
+}
+float valueNoise(vec2 p) {
+  vec2 i = floor(p), f = p - i, u = f * f * (3.0 - 2.0 * f);
+  return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), u.x), u.y);
+}
+
+void main() {
+  vec3 n = normalize(aNormal.xyz);
+  float shade = 0.75 + 0.3 * valueNoise(aPosition.xz * (1.0 / 41.0)) + 0.2 * valueNoise(aPosition.xz * (1.0 / 13.0));
+  float diffuse = max(dot(n, uLightDirection), 0.0);
+  vLight = shade * (mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5) + uLightColor * diffuse);
+  float d = length(uEye - aPosition) * uFogDensity;
+  vFog = 1.0 - exp(-d * d);
+  vWorldPosition = aPosition;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)glsl";
+
+const char* const kTerrainFragmentLit = R"glsl(
+#version 330 core
+in vec3 vWorldPosition;
+in vec3 vLight;
+in float vFog;
+
+uniform usampler2D uMaterial;      // per block: r texture layer, g bump (unused here)
+uniform sampler2DArray uTextures;  // sRGB layers, sampled as linear
+uniform int uLayerCount;
+uniform vec2 uOrigin;              // m, world x / z of sample (0, 0)
+uniform float uSpacing;            // m per block
+uniform ivec2 uBlocks;             // blocks along x / z
+uniform float uTexturePerMetre;    // material texture repeats per metre
+uniform vec3 uFogColor;
+
+out vec4 fragColor;
+
+void main() {
+  vec2 xz = vWorldPosition.xz;
+  ivec2 block = clamp(ivec2(floor((xz - uOrigin) / uSpacing)), ivec2(0), uBlocks - 1);
+  float layer = float(int(texelFetch(uMaterial, block, 0).r) % uLayerCount);
+  vec3 color = texture(uTextures, vec3(xz * uTexturePerMetre, layer)).rgb * vLight;
+  color = mix(color, uFogColor, vFog);
+  fragColor = vec4(pow(max(color, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
+}
+)glsl";
+
 // Meshes of loaded models: the shapes' lighting and fog, an albedo of
 // material colour x vertex colour x texture (an sRGB texture, so the sample
 // is already linear). Two-sided: back faces turn their normal round, since

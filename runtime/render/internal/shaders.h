@@ -14,6 +14,8 @@ extern const char* const kLineVertex;
 extern const char* const kLineFragment;
 extern const char* const kTerrainVertex;
 extern const char* const kTerrainFragment;
+extern const char* const kTerrainVertexLit;    // the ground lit per vertex (simple shading)
+extern const char* const kTerrainFragmentLit;
 extern const char* const kMeshVertex;
 extern const char* const kMeshFragment;
 // Shadow maps: depth only, paired with each pass's own vertex shader.

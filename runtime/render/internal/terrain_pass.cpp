@@ -29,25 +29,38 @@ int verticesAlong(int blocks, int lod) {
 
 }  // namespace
 
+Result<TerrainPass::Program> TerrainPass::buildTerrainProgram(const char* name, const char* vertex,
+                                                             const char* fragment) {
+  auto built = buildProgram(name, vertex, fragment);
+  if (!built) return makeError(built.error());
+  Program p;
+  p.program = std::move(*built);
+  p.lit.locate(p.program);
+  p.origin = uniformLocation(p.program, "uOrigin");
+  p.spacing = uniformLocation(p.program, "uSpacing");
+  p.blocks = uniformLocation(p.program, "uBlocks");
+  p.texturePerMetre = uniformLocation(p.program, "uTexturePerMetre");
+  p.layerCount = uniformLocation(p.program, "uLayerCount");
+  p.detailSlope = uniformLocation(p.program, "uDetailSlope");
+  glUseProgram(p.program.get());
+  glUniform1i(uniformLocation(p.program, "uMaterial"), 0);
+  glUniform1i(uniformLocation(p.program, "uTextures"), 1);
+  return p;
+}
+
 Status TerrainPass::init() {
   const auto start = std::chrono::steady_clock::now();
-  auto program = buildProgram("terrain shader", shaders::kTerrainVertex, shaders::kTerrainFragment);
-  if (!program) return makeError(program.error());
-  m_program = std::move(*program);
-  m_lit.locate(m_program);
+  auto detailed = buildTerrainProgram("terrain shader", shaders::kTerrainVertex, shaders::kTerrainFragment);
+  if (!detailed) return makeError(detailed.error());
+  m_detailed = std::move(*detailed);
+  auto simple = buildTerrainProgram("terrain shader (per vertex light)", shaders::kTerrainVertexLit,
+                                    shaders::kTerrainFragmentLit);
+  if (!simple) return makeError(simple.error());
+  m_simple = std::move(*simple);
   auto depth = buildProgram("terrain shadow shader", shaders::kTerrainVertex, shaders::kDepthFragment);
   if (!depth) return makeError(depth.error());
   m_depthProgram = std::move(*depth);
   m_depthViewProjection = uniformLocation(m_depthProgram, "uViewProjection");
-  m_origin = uniformLocation(m_program, "uOrigin");
-  m_spacing = uniformLocation(m_program, "uSpacing");
-  m_blocks = uniformLocation(m_program, "uBlocks");
-  m_texturePerMetre = uniformLocation(m_program, "uTexturePerMetre");
-  m_layerCount = uniformLocation(m_program, "uLayerCount");
-  m_detailSlope = uniformLocation(m_program, "uDetailSlope");
-  glUseProgram(m_program.get());
-  glUniform1i(uniformLocation(m_program, "uMaterial"), 0);
-  glUniform1i(uniformLocation(m_program, "uTextures"), 1);
 
   // Material textures, generated here (first terrain frame), not at start-up:
   // a scene without terrain never pays for them.
@@ -299,14 +312,15 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
   stats.chunksTotal = static_cast<int>(m_chunks.size());
   stats.chunksCulled = stats.chunksTotal - static_cast<int>(m_visible.size());
 
-  glUseProgram(m_program.get());
-  m_lit.apply(view, environment);
-  glUniform2f(m_origin, surface.originX_m, surface.originZ_m);
-  glUniform1f(m_spacing, surface.spacing_m);
-  glUniform2i(m_blocks, m_grid.blocksX, m_grid.blocksZ);
-  glUniform1f(m_texturePerMetre, 1.0f / kTerrainTextureSize_m);
-  glUniform1i(m_layerCount, kTerrainTextureCount);
-  glUniform1f(m_detailSlope, detail ? kDetailSlope : 0.0f);  // 0: the shader skips the noise
+  const Program& p = detail ? m_detailed : m_simple;
+  glUseProgram(p.program.get());
+  p.lit.apply(view, environment);
+  glUniform2f(p.origin, surface.originX_m, surface.originZ_m);
+  glUniform1f(p.spacing, surface.spacing_m);
+  glUniform2i(p.blocks, m_grid.blocksX, m_grid.blocksZ);
+  glUniform1f(p.texturePerMetre, 1.0f / kTerrainTextureSize_m);
+  glUniform1i(p.layerCount, kTerrainTextureCount);
+  glUniform1f(p.detailSlope, kDetailSlope);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, m_materials.get());
   glActiveTexture(GL_TEXTURE1);

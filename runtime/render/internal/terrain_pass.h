@@ -88,14 +88,22 @@ class TerrainPass {
   const IndexSet& indexSet(int nx, int nz);
   void evictUnused();
 
+  /// A terrain shader and its uniforms: the detailed one (per pixel light,
+  /// bump detail, shadows) or the simple one (per vertex light).
+  struct Program {
+    GlProgram program;
+    LitUniforms lit;
+    GLint origin = -1, spacing = -1, blocks = -1, texturePerMetre = -1, layerCount = -1;
+    GLint detailSlope = -1;  // -1 in the simple one
+  };
+  static Result<Program> buildTerrainProgram(const char* name, const char* vertex, const char* fragment);
+
   bool m_initialised = false;
-  GlProgram m_program, m_depthProgram;
+  Program m_detailed, m_simple;
+  GlProgram m_depthProgram;
   GLint m_depthViewProjection = -1;
   GlTexture m_textures;  // 2D array, one layer per material
   GlTexture m_materials; // RG8UI, one texel per block
-  LitUniforms m_lit;
-  GLint m_origin = -1, m_spacing = -1, m_blocks = -1, m_texturePerMetre = -1, m_layerCount = -1;
-  GLint m_detailSlope = -1;
 
   bool m_hasSurface = false;
   SurfaceKey m_key;
