@@ -12,7 +12,9 @@
 // the broad phase's sort order (it decides the order of the pairs, hence of
 // the contacts the solver visits); sleep islands, the collision filter,
 // island links, springs, the settings and the error bookkeeping.
+#include <algorithm>
 #include <type_traits>
+
 
 #include "core/byte_stream.h"
 #include "physics/internal/broad_phase.h"
@@ -205,13 +207,25 @@ Status World::restoreState(const std::string& bytes) {
   if (!r.ok()) return makeError("world state: damaged (truncated)");
   if (startPos.size() != slots || startOri.size() != slots || sleepIsland.size() != slots || axis < 0 || axis > 2)
     return makeError("world state: damaged (per-slot arrays)");
+  // Indices are checked against this world, so that damaged or hand-made
+  // bytes cannot make the next step read outside its arrays.
+  // (Old manifolds are only matched by index and child, never followed into
+  // a body's shape, so a range check is enough for them.)
   for (const Manifold& m : manifolds)
     if (m.a >= slots || (m.b >= slots && m.b != kHeightFieldBody) || m.count < 0 || m.count > kMaxManifoldPoints)
       return makeError("world state: damaged (contact cache)");
+  auto distinct = [](std::vector<std::uint32_t> v) {
+    std::sort(v.begin(), v.end());
+    return std::adjacent_find(v.begin(), v.end()) == v.end();
+  };
   for (std::uint32_t i : order)
     if (i >= slots) return makeError("world state: damaged (broad phase)");
   for (std::uint32_t i : freeList)
-    if (i >= slots) return makeError("world state: damaged (free slots)");
+    if (i >= slots || m_bodies[i].alive) return makeError("world state: damaged (free slots)");
+  if (!distinct(order) || !distinct(freeList)) return makeError("world state: damaged (repeated slots)");
+  for (const auto* pairs : {&noCollide, &islandLinks})
+    for (const BodyPair& p : *pairs)
+      if (p.a >= slots || p.b >= slots) return makeError("world state: damaged (body pairs)");
   if (Status st = m_integration->restoreSprings(r, std::uint32_t(slots)); !st) return st;
   if (!r.atEnd()) return makeError("world state: damaged (bytes after the end)");
   m_settings = settings;
