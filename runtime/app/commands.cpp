@@ -195,13 +195,20 @@ void addCommands(CLI::App& cli, int* exitCode) {
   run->add_option("--replay", st->run.replayPath,
                   "play back a replay written by `play --record` headless and check that it ends in the recorded "
                   "state hash (exit 4 if not; docs/replays.md)");
+  run->add_option("--save-state", st->run.saveStatePath,
+                  "write a snapshot of the whole simulated state after the step that ends at or after --at T "
+                  "(default: the end); the run goes on to its end (docs/snapshots.md)");
+  run->add_option("--load-state", st->run.loadStatePath,
+                  "start from a snapshot written by --save-state and run to the end: the snapshot names the "
+                  "scenario and holds its seed, dt, substeps and --set values (docs/snapshots.md)");
   run->add_option("--seconds", st->run.seconds, "simulated seconds (default: the scenario's duration)")
       ->check(kFinite)->check(CLI::NonNegativeNumber);
   run->add_option("--steps", st->run.steps, "number of fixed steps (instead of --seconds)")
       ->check(CLI::NonNegativeNumber);
   run->add_option("--report", st->run.reportPath, "write the run report (JSON) here");
   run->add_option("--screenshot", st->run.screenshotPath, "render offscreen and save a PNG here");
-  run->add_option("--at", st->run.screenshotAt_s, "simulated time of the screenshot, s (default: the end)")
+  run->add_option("--at", st->run.screenshotAt_s,
+                  "simulated time of the screenshot and of --save-state, s (default: the end)")
       ->check(kFinite)->check(CLI::NonNegativeNumber);
   run->add_option("--save-dir", st->run.saveDir,
                   "where the scenario's save.write files go (default: a throw-away folder removed at exit, "
@@ -222,6 +229,11 @@ void addCommands(CLI::App& cli, int* exitCode) {
     if (st->run.replayPath.empty() == st->runScenarioRef.empty()) {
       log::error(st->run.replayPath.empty() ? "run: give MOD:SCENARIO (or --replay FILE)"
                                              : "run --replay: the replay names its scenario; leave MOD:SCENARIO out");
+      *exitCode = 1;
+      return;
+    }
+    if (!st->run.loadStatePath.empty() && (!st->run.replayPath.empty() || !st->runSets.empty())) {
+      log::error("run --load-state: the snapshot holds the run's --set values and input; give no --set or --replay");
       *exitCode = 1;
       return;
     }

@@ -12,6 +12,7 @@
 #include "app/fixed_step.h"
 #include "app/replay.h"
 #include "app/run_report.h"
+#include "app/scene_state.h"
 #include "app/scene_models.h"
 #include "app/scene_view.h"
 #include "app/simulation_loop.h"
@@ -120,6 +121,22 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
       }
     }
   }
+  // --load-state: the snapshot's scenario and settings.
+  std::optional<SceneStateFile> loaded;
+  if (!o.loadStatePath.empty()) {
+    auto file = loadSceneState(o.loadStatePath);
+    if (!file) {
+      log::error(file.error());
+      return 1;
+    }
+    if (o.scene.scenarioRef != file->scenario) {
+      log::error(o.loadStatePath + ": field \"scenario\": the snapshot is of " + file->scenario + ", not " +
+                 o.scene.scenarioRef);
+      return 1;
+    }
+    loaded.emplace(std::move(file.value()));
+    applySceneStateOptions(*loaded, o.scene);
+  }
   auto created = Scene::create(o.scene);
   if (!created) {
     log::error(created.error());
@@ -153,6 +170,12 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
     t.script_s += sw.seconds();
   }
   if (renderer) frameCamera(scene, renderer->camera());  // after on_start made the bodies
+  if (loaded) {
+    if (Status st = restoreSceneState(scene, *loaded, o.loadStatePath); !st) {
+      log::error(st.error());
+      return 1;
+    }
+  }
   t.startup_s = processClock.seconds();
   const double shotAt = o.screenshotAt_s >= 0 ? o.screenshotAt_s : double(steps) * dt;
   bool shotTaken = false;
@@ -178,8 +201,17 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
   // scenario's duration) a changed dt still ends the run at that time.
   const double endTime_s = double(steps) * dt;
   double baseTime_s = 0, stepDt = dt;
-  long long baseStep = 0, done = 0;
-  for (long long i = 0; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
+  long long baseStep = 0, done = 0, first = 0;
+  if (loaded) {
+    time_s = loaded->clock.time_s;
+    baseTime_s = loaded->clock.baseTime_s;
+    baseStep = loaded->clock.baseStep;
+    stepDt = loaded->clock.stepDt_s;
+    first = done = loaded->clock.step;
+  }
+  const double saveAt_s = o.screenshotAt_s >= 0 ? o.screenshotAt_s : endTime_s;
+  bool saved = o.saveStatePath.empty();
+  for (long long i = first; o.steps >= 0 ? i < steps : time_s < endTime_s - 0.5 * scene.dt_s(); ++i) {
     if (renderer && !shotTaken && time_s >= shotAt) takeShot(time_s);
     if (scene.dt_s() != stepDt) baseTime_s = time_s, baseStep = i, stepDt = scene.dt_s();
     if (i == o.injectNanAtStep) injectNan(scene);
@@ -188,12 +220,26 @@ int runScenario(const RunOptions& options, const Stopwatch& processClock) {
     // A replay keeps time as play does (a sum of the steps).
     time_s = replay ? time_s + stepDt : baseTime_s + double(i + 1 - baseStep) * stepDt;
     done = i + 1;
+    if (!saved && time_s >= saveAt_s - 1e-9) {
+      if (Status st = saveSceneState(scene, RunClock{done, time_s, baseTime_s, baseStep, stepDt}, o.saveStatePath); !st) {
+        log::error(st.error());
+        return 1;
+      }
+      log::info("snapshot written: " + o.saveStatePath + " (step " + std::to_string(done) + ", t = " +
+                std::to_string(time_s) + " s)");
+      saved = true;
+    }
     counts.bodiesMax = std::max(counts.bodiesMax, scene.world().bodyCount());
     if (const physics::JointSystem* joints = scene.jointsIfAny())
       counts.jointsMax = std::max(counts.jointsMax, joints->jointCount());
     counts.particlesMax = std::max(counts.particlesMax, particleCount(scene));
   }
   steps = done;
+  if (!saved) {
+    log::error("--save-state: the run ended at " + std::to_string(time_s) + " s, before --at " +
+               std::to_string(saveAt_s) + " s; nothing was written");
+    return 1;
+  }
   if (renderer && !shotTaken) takeShot(time_s);
   // A replay's state is taken where play took it: before on_finish.
   const std::string replayedHash = replay ? stateHashText(scene) : std::string();

@@ -37,6 +37,12 @@ struct RunOptions {
   /// --replay FILE: run a replay written by `play --record` (app/replay.h)
   /// and check that it ends in the recorded state.
   std::string replayPath;
+  /// --save-state FILE: write a snapshot of the scene (app/scene_state.h)
+  /// after the step that ends at or after --at (default: the end); the run
+  /// goes on to its end as usual.
+  std::string saveStatePath;
+  /// --load-state FILE: start from a snapshot instead of from the start.
+  std::string loadStatePath;
 };
 
 struct PlayOptions {

@@ -23,6 +23,11 @@
 #include "core/result.h"
 #include "physics/body.h"
 
+namespace tumble {
+class ByteWriter;
+class ByteReader;
+}  // namespace tumble
+
 namespace tumble::physics {
 
 enum class BodyIntegrator {
@@ -128,6 +133,11 @@ class BodyIntegration {
   double springEnergy(const World& world) const;
   /// Newton iterations that did not converge (implicit methods), summed.
   long newtonFailures() const { return m_newtonFailures; }
+  /// The springs as exact bits, for World::saveState / restoreState
+  /// (world_state.cpp); restoreSprings refuses damaged bytes or springs on
+  /// body slots the world does not have (slotCount).
+  void saveSprings(ByteWriter& w) const;
+  Status restoreSprings(ByteReader& r, std::uint32_t slotCount);
 
  private:
   struct Slot {

@@ -261,6 +261,16 @@ class World {
   Eigen::Vector3d totalMomentum() const;
   /// Hash of every live body's position, orientation and velocities (exact bits).
   std::uint64_t stateHash() const;
+  /// The world's whole simulated state as exact bits (world_state.cpp): every
+  /// body's pose, velocities, mass, material and sleep state, the contact
+  /// cache with its warm-start impulses, the broad phase's order, sleep
+  /// islands, the collision filter, island links, springs and settings.
+  /// Shapes are not stored: restoreState puts the state back into a world
+  /// with the same bodies (same slots, generations, types and shapes, as the
+  /// same scenario makes them) and refuses anything else, or damaged bytes,
+  /// with a message naming the first difference (the world is then unchanged).
+  std::string saveState() const;
+  Status restoreState(const std::string& bytes);
   const ErrorStats& errorStats() const { return m_error; }
   /// What the world counts as external since resetErrorStats (diagnostics.cpp):
   /// the work (J) of forces, torques and impulses scripts applied, and the

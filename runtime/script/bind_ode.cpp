@@ -228,6 +228,7 @@ int odeSystem(lua_State* L) {
                       std::to_string(dim) + " numbers");
   const double t0 = optNumberField(L, 1, "time", 0.0);
 
+  ScenarioHost::from(L)->noteOdeSystem();
   auto* o = static_cast<OdeObject*>(lua_newuserdatauv(L, sizeof(OdeObject), 0));
   new (o) OdeObject();
   luaL_setmetatable(L, kOdeMeta);

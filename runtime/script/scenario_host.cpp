@@ -98,6 +98,7 @@ void ScenarioHost::buildEnvironment() {
   openDeformableBindings(L, env);
   openOdeBindings(L, env);
   openSpringBindings(L, env);
+  openWorldSnapshotBindings(L, env);
   openJointBindings(L, env);
   openHudBindings(L, env);
   guardEnvironment(L, env);
@@ -183,6 +184,7 @@ bool ScenarioHost::callLifecycle(const char* name, int nargs, bool* paused, int*
 void ScenarioHost::start() {
   pushCtx(0, 0, 0);
   callLifecycle("on_start", 1, nullptr, nullptr);
+  m_firstTimerAfterStart = m_timers.nextId();
   // Timers on_start made with delay 0 fire now, before the first step.
   if (m_timers.anyDue(0)) runTimers(0, 0, 0);
 }

@@ -141,6 +141,21 @@ class ScenarioHost {
   /// in errors() and returned. reloadCount() counts the reloads that took effect.
   Status reload(double time_s, std::int64_t step);
   int reloadCount() const { return m_reloadCount; }
+  /// The Lua part of a snapshot of the running scene (scenario_state.cpp:
+  /// ctx.state, timers' schedule, random generators, game state,
+  /// expectations). Refused, with where it was made, for what a snapshot
+  /// cannot store: ctx.state that is not plain data, and without on_reload a
+  /// timer made after on_start or a trigger volume.
+  Result<std::string> saveState();
+  /// Puts it back after on_start ran again; with on_reload, timers and
+  /// triggers are dropped and on_reload(ctx, state) re-makes them.
+  Status restoreState(const std::string& bytes, double time_s, std::int64_t step);
+  bool hasOnReload();
+  /// A path inside the mod's folder made relative to it ("scenarios/x.lua:12").
+  std::string modRelative(const std::string& where) const;
+  /// ode.system was called: its state lives in a Lua object a snapshot
+  /// cannot store, so saveState refuses from then on.
+  void noteOdeSystem() { ++m_odeSystemsMade; }
   /// Records an error that did not come from a Lua call (a reload hook, an
   /// overrides file); it shows on the HUD and in the report like the others.
   void recordError(ScriptError error);
@@ -298,6 +313,8 @@ class ScenarioHost {
   EmitterCache m_emitters;
   std::vector<physics::ContactEvent> m_contactScratch;  ///< reused each step
   std::uint64_t m_randomCount = 0;
+  int m_odeSystemsMade = 0;  ///< see noteOdeSystem
+  std::uint32_t m_firstTimerAfterStart = 1;  ///< first timer id made after on_start (saveState)
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
   Presentation m_presentation;
 };

@@ -28,7 +28,7 @@ namespace tumble::script {
 /// @field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 /// @field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
 /// @field on_finish fun(ctx: Ctx) called once after the last step: the place for expect()
-/// @field on_reload fun(ctx: Ctx, state: table) called after a hot reload, in the new code, with state = ctx.state; re-make timers and triggers here (the old ones were dropped) and refresh locals from state
+/// @field on_reload fun(ctx: Ctx, state: table) called after a hot reload, in the new code, with state = ctx.state; re-make timers and triggers here (the old ones were dropped) and refresh locals from state; also called after `run --load-state` restored a snapshot (docs/snapshots.md)
 
 /// @class Ctx
 /// The context passed to every callback (the same table each time).
@@ -36,7 +36,7 @@ namespace tumble::script {
 /// @field dt number the fixed step, s (0 in on_start and on_finish)
 /// @field step integer index of the step
 /// @field seed integer the run's seed (--seed)
-/// @field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
+/// @field state table yours: kept for the whole run, across hot reloads (on_reload gets it) and in snapshots (plain data: numbers, strings, booleans, bodies, tables of them; docs/snapshots.md); keep what reloaded code needs here
 
 Result<std::unique_ptr<ScenarioHost>> ScenarioHost::load(const ModInfo& mod, const std::string& scenario,
                                                           SceneSystems& scene, const ScenarioOptions& options) {

@@ -107,3 +107,45 @@ void TimerQueue::fireDue(double time_s, const Fire& fire, const std::function<vo
 }
 
 }  // namespace tumble::script
+
+namespace tumble::script {
+
+std::vector<TimerQueue::Schedule> TimerQueue::schedule() const {
+  std::vector<Schedule> out;
+  for (const Timer& t : m_heap)
+    if (active(t.id)) out.push_back(Schedule{t.due_s, t.period_s, t.seq, t.id, t.errors});
+  return out;
+}
+
+std::string TimerQueue::definedAt(std::uint32_t id) const {
+  lua_rawgeti(m_L, LUA_REGISTRYINDEX, m_functionsRef);
+  std::string where = "?";
+  if (lua_rawgeti(m_L, -1, id) == LUA_TFUNCTION) {
+    lua_Debug ar;
+    lua_getinfo(m_L, ">S", &ar);  // pops the function
+    const std::string source = ar.source ? ar.source : "?";
+    where = (source.rfind('@', 0) == 0 ? source.substr(1) : std::string(ar.short_src)) + ":" +
+            std::to_string(ar.linedefined);
+  } else {
+    lua_pop(m_L, 1);
+  }
+  lua_pop(m_L, 1);
+  return where;
+}
+
+bool TimerQueue::restoreSchedule(const std::vector<Schedule>& schedule, std::uint32_t nextId, std::uint64_t nextSeq) {
+  for (const Schedule& s : schedule)
+    if (!active(s.id)) return false;
+  std::vector<std::uint32_t> keep;
+  for (const Schedule& s : schedule) keep.push_back(s.id);
+  for (const Timer& t : m_heap)
+    if (std::find(keep.begin(), keep.end(), t.id) == keep.end()) cancel(t.id);
+  m_heap.clear();
+  for (const Schedule& s : schedule) m_heap.push_back(Timer{s.due_s, s.period_s, s.seq, s.id, s.errors});
+  std::make_heap(m_heap.begin(), m_heap.end(), later);
+  m_nextId = nextId;
+  m_seq = nextSeq;
+  return true;
+}
+
+}  // namespace tumble::script

@@ -11,6 +11,7 @@
 // round, so a timer that re-arms itself cannot keep a round going.
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 struct lua_State;
@@ -52,6 +53,25 @@ class TimerQueue {
   void fireDue(double time_s, const Fire& fire, const std::function<void()>& onGaveUp);
   /// Drops every timer (hot reload with on_reload).
   void clear();
+
+  /// A waiting timer's schedule, for snapshots of a running scene
+  /// (scenario_state.cpp): exact due time, period, order and error count.
+  struct Schedule {
+    double due_s = 0, period_s = 0;
+    std::uint64_t seq = 0;
+    std::uint32_t id = 0;
+    std::int32_t errors = 0;
+  };
+  /// Timers still to fire, in heap order.
+  std::vector<Schedule> schedule() const;
+  std::uint32_t nextId() const { return m_nextId; }
+  std::uint64_t nextSeq() const { return m_seq; }
+  /// Where timer `id`'s function was defined (its file's path and line), or "?".
+  std::string definedAt(std::uint32_t id) const;
+  /// Puts a saved schedule back over timers made again with the same ids
+  /// (by on_start): timers not in it are dropped. Refused (false, nothing
+  /// changed) if a timer in it has no function here.
+  bool restoreSchedule(const std::vector<Schedule>& schedule, std::uint32_t nextId, std::uint64_t nextSeq);
 
  private:
   static constexpr double kTimeSlack_s = 1e-9;  ///< due times computed by sums of steps

@@ -782,6 +782,9 @@ function Vehicle:remove() end
 ---@field point Vec3Arg where the ray hit, m
 ---@field normal Vec3Arg surface normal at the hit (unit)
 
+---The rigid-body world at one moment (world.snapshot), for world.restore.
+---@class WorldSnapshot
+
 ---A vector as the API returns it: {x=, y=, z=}. Arguments also accept the
 ---short form {x, y, z}. Colours use the same shape for {r, g, b}.
 ---@class Vec3
@@ -807,7 +810,7 @@ function Vehicle:remove() end
 ---@field on_update fun(ctx: Ctx, dt: number) called before every fixed step (dt in s)
 ---@field on_contact fun(ctx: Ctx, a: Body, b: Body, impulse: number, point: Vec3, normal: Vec3) called after a step for each pair of bodies that began touching in it; impulse in N s, normal from a to b
 ---@field on_finish fun(ctx: Ctx) called once after the last step: the place for expect()
----@field on_reload fun(ctx: Ctx, state: table) called after a hot reload, in the new code, with state = ctx.state; re-make timers and triggers here (the old ones were dropped) and refresh locals from state
+---@field on_reload fun(ctx: Ctx, state: table) called after a hot reload, in the new code, with state = ctx.state; re-make timers and triggers here (the old ones were dropped) and refresh locals from state; also called after `run --load-state` restored a snapshot (docs/snapshots.md)
 
 ---The context passed to every callback (the same table each time).
 ---@class Ctx
@@ -815,7 +818,7 @@ function Vehicle:remove() end
 ---@field dt number the fixed step, s (0 in on_start and on_finish)
 ---@field step integer index of the step
 ---@field seed integer the run's seed (--seed)
----@field state table yours: kept for the whole run and across hot reloads (on_reload gets it); keep what reloaded code needs here
+---@field state table yours: kept for the whole run, across hot reloads (on_reload gets it) and in snapshots (plain data: numbers, strings, booleans, bodies, tables of them; docs/snapshots.md); keep what reloaded code needs here
 
 ---One entry of a scenario's `params` table: `params = {speed = {default = 16, unit = "m/s", description = "..."}}`.
 ---The vehicle picker: a scenario that declares a string parameter `car` (default: a vehicle definition, MOD:NAME) is a driving scenario. The main menu (`tumble play` without a scenario) then lets the player pick one of the vehicle definitions of base, of the scenario's mod and of its dependencies, with mass, power, drive and grip, and starts the scenario with `--set car=MOD:NAME`; spawn it with `vehicle.spawn(param("car"), ...)`. The pause menu's "Change vehicle" does the same and restarts. The menu lists the scenario by its `title` with the first paragraph of the `--` comment at the top of its file as description.
@@ -1780,6 +1783,31 @@ function world.raycast_all(origin, dir, max_distance) end
 ---@param body Body the body to remove
 ---@return boolean # true if the body was removed now, false if it was already gone
 function world.remove(body) end
+
+---The rigid-body world's whole state now, exactly: every body's pose,
+---velocities, mass, material and sleep state, the contacts with their
+---warm-start impulses, springs and world settings (gravity). Refused while
+---the scene has joints, vehicles, particle emitters, ropes or cloth, whose
+---own state it does not hold. Lua state (locals, ctx.state, timers) is not
+---part of it.
+---
+---```lua
+---local before = world.snapshot()
+---```
+---@return WorldSnapshot # in memory, for world.restore in the same run
+function world.snapshot() end
+
+---Puts the world back to a snapshot exactly: stepping on from it gives the
+---same bits as stepping on from the moment it was taken. The world must
+---still have the same bodies: a body made or removed since is an error
+---naming the first body slot that differs (the world is then unchanged).
+---Body handles stay valid. Lua state is not touched.
+---
+---```lua
+---world.restore(before)
+---```
+---@param snapshot WorldSnapshot from world.snapshot
+function world.restore(snapshot) end
 
 ---Draws a line this frame (cleared before each on_update): a rod, a
 ---wire, a trajectory. At most 65536 lines per frame.

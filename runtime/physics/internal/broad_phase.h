@@ -35,6 +35,15 @@ class BroadPhase {
 
   /// Insertion-sort swaps in the last update (a measure of coherence).
   std::size_t lastSwaps() const { return m_swaps; }
+  /// The sort order and axis kept between steps (they decide the order of
+  /// the pairs), for World::saveState / restoreState.
+  const std::vector<std::uint32_t>& order() const { return m_order; }
+  int axis() const { return m_axis; }
+  void restore(std::vector<std::uint32_t> order, int axis, std::size_t swaps) {
+    m_order = std::move(order);
+    m_axis = axis;
+    m_swaps = swaps;
+  }
 
  private:
   void chooseAxis(const std::vector<Aabb>& boxes);

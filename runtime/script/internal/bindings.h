@@ -46,6 +46,8 @@ void openDeformableBindings(lua_State* L, int envIndex);
 void openOdeBindings(lua_State* L, int envIndex);
 /// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
 void openSpringBindings(lua_State* L, int envIndex);
+/// world.snapshot and world.restore (bind_world_snapshot.cpp); after openWorldBindings.
+void openWorldSnapshotBindings(lua_State* L, int envIndex);
 /// world.joint, world.grab, ... and the Joint type (bind_joint.cpp); after openWorldBindings.
 void openJointBindings(lua_State* L, int envIndex);
 /// The sound table and Sound type (bind_sound.cpp).

@@ -1,0 +1,286 @@
+// World::saveState / restoreState: the world's whole simulated state as exact
+// bits, for snapshots of a running scene (app/scene_state.h) and for
+// world.snapshot() / world.restore() in scripts.
+//
+// Shapes, hulls and meshes are not stored: a snapshot goes back into a world
+// with the same bodies (made by the same scenario), so each slot's liveness,
+// generation, type and shape are compared and the first difference refuses
+// the restore. Everything that changes while the world steps is stored: each
+// body's pose, velocities, accumulated force and torque, mass and inertia,
+// material and sleep state; the contact cache with its warm-start impulses
+// (without it the next step solves the stack from zero and the run differs);
+// the broad phase's sort order (it decides the order of the pairs, hence of
+// the contacts the solver visits); sleep islands, the collision filter,
+// island links, springs, the settings and the error bookkeeping.
+#include <algorithm>
+#include <type_traits>
+
+
+#include "core/byte_stream.h"
+#include "physics/internal/broad_phase.h"
+#include "physics/internal/height_field_collision.h"
+#include "physics/internal/manifold.h"
+#include "physics/world.h"
+
+namespace tumble::physics {
+
+namespace {
+
+constexpr std::uint32_t kStateMagic = 0x54574c44;  // "TWLD"
+constexpr std::uint32_t kStateVersion = 1;
+constexpr std::size_t kMaxSlots = std::size_t(1) << 24;
+
+static_assert(kBitwise<Manifold>);
+static_assert(kBitwise<WorldSettings>);
+static_assert(kBitwise<ErrorStats>);
+
+const char* shapeName(ShapeType t) {
+  switch (t) {
+    case ShapeType::Sphere: return "sphere";
+    case ShapeType::Box: return "box";
+    case ShapeType::Capsule: return "capsule";
+    case ShapeType::Hull: return "hull";
+    case ShapeType::Plane: return "plane";
+    case ShapeType::Compound: return "compound";
+    case ShapeType::Mesh: return "mesh";
+  }
+  return "?";
+}
+
+/// The part of a body that is structure, not state: it must match.
+struct SlotShape {
+  std::uint32_t generation = 0;
+  std::uint8_t alive = 0, type = 0, shape = 0;
+  Real radius_m = 0, halfHeight_m = 0;
+  Vec3 halfExtents_m = Vec3::Zero();
+};
+
+SlotShape shapeOf(const Body& b) {
+  SlotShape s;
+  s.generation = b.generation;
+  s.alive = b.alive;
+  s.type = std::uint8_t(b.type);
+  s.shape = std::uint8_t(b.shape.type);
+  s.radius_m = b.shape.radius_m;
+  s.halfHeight_m = b.shape.halfHeight_m;
+  s.halfExtents_m = b.shape.halfExtents_m;
+  return s;
+}
+
+/// The part of a body that changes while the world runs.
+struct SlotState {
+  Vec3 position_m, linearVelocity_mps, angularVelocity_radps, force_N, torque_Nm;
+  Quat orientation;
+  Real mass_kg, invMass_per_kg;
+  Vec3 invInertiaLocal, inertiaLocal_kgm2;
+  Mat3 invInertiaWorld;
+  Real friction, restitution, rollingResistance, linearDamping_per_s, angularDamping_per_s, sleepTime_s;
+  std::uint64_t userData;
+  std::uint8_t soundMaterial, awake, allowSleep, frozen;
+};
+static_assert(kBitwise<SlotState>);
+
+SlotState stateOf(const Body& b) {
+  return SlotState{b.position_m, b.linearVelocity_mps, b.angularVelocity_radps, b.force_N, b.torque_Nm,
+                   b.orientation, b.mass_kg, b.invMass_per_kg, b.invInertiaLocal, b.inertiaLocal_kgm2,
+                   b.invInertiaWorld, b.friction, b.restitution, b.rollingResistance, b.linearDamping_per_s,
+                   b.angularDamping_per_s, b.sleepTime_s, b.userData, b.soundMaterial, b.awake, b.allowSleep,
+                   b.frozen};
+}
+
+void applyState(const SlotState& s, Body& b) {
+  b.position_m = s.position_m;
+  b.linearVelocity_mps = s.linearVelocity_mps;
+  b.angularVelocity_radps = s.angularVelocity_radps;
+  b.force_N = s.force_N;
+  b.torque_Nm = s.torque_Nm;
+  b.orientation = s.orientation;
+  b.mass_kg = s.mass_kg;
+  b.invMass_per_kg = s.invMass_per_kg;
+  b.invInertiaLocal = s.invInertiaLocal;
+  b.inertiaLocal_kgm2 = s.inertiaLocal_kgm2;
+  b.invInertiaWorld = s.invInertiaWorld;
+  b.friction = s.friction;
+  b.restitution = s.restitution;
+  b.rollingResistance = s.rollingResistance;
+  b.linearDamping_per_s = s.linearDamping_per_s;
+  b.angularDamping_per_s = s.angularDamping_per_s;
+  b.sleepTime_s = s.sleepTime_s;
+  b.userData = s.userData;
+  b.soundMaterial = s.soundMaterial;
+  b.awake = s.awake;
+  b.allowSleep = s.allowSleep;
+  b.frozen = s.frozen;
+}
+
+bool sameShape(const SlotShape& a, const SlotShape& b) {
+  return a.generation == b.generation && a.alive == b.alive && a.type == b.type && a.shape == b.shape &&
+         a.radius_m == b.radius_m && a.halfHeight_m == b.halfHeight_m && a.halfExtents_m == b.halfExtents_m;
+}
+
+std::string describe(const SlotShape& s) {
+  if (!s.alive) return "no body";
+  static const char* kTypes[] = {"static", "kinematic", "dynamic"};
+  return std::string(s.type < 3 ? kTypes[s.type] : "?") + " " + shapeName(ShapeType(s.shape)) + " (generation " +
+         std::to_string(s.generation) + ")";
+}
+
+}  // namespace
+
+std::string World::saveState() const {
+  TUMBLE_ASSERT(!m_inStep, "saveState inside a step");
+  ByteWriter w;
+  w.pod(kStateMagic);
+  w.pod(kStateVersion);
+  w.pod(m_settings);
+  w.pod(std::uint64_t(m_bodies.size()));
+  for (const Body& b : m_bodies) {
+    w.pod(shapeOf(b));
+    w.pod(stateOf(b));
+  }
+  w.vec(m_freeList);
+  w.pod(std::int32_t(m_bodyCount));
+  w.vec(m_manifolds);
+  w.vec(m_stepStartPosition);
+  w.vec(m_stepStartOrientation);
+  w.vec(m_sleepIsland);
+  w.pod(m_nextIsland);
+  w.vec(m_noCollide);
+  w.vec(m_islandLinks);
+  w.pod(std::int32_t(m_lastContactPoints));
+  w.pod(m_error);
+  w.pod(m_energy0);
+  w.pod(m_energyScale);
+  w.pod(m_externalWork);
+  w.pod(m_momentum0);
+  w.pod(m_externalImpulse);
+  w.pod(m_momentumScale);
+  w.pod(std::uint8_t(m_trackingStarted));
+  w.vec(m_broad->order());
+  w.pod(std::int32_t(m_broad->axis()));
+  w.pod(std::uint64_t(m_broad->lastSwaps()));
+  m_integration->saveSprings(w);
+  return w.take();
+}
+
+Status World::restoreState(const std::string& bytes) {
+  TUMBLE_ASSERT(!m_inStep, "restoreState inside a step");
+  ByteReader r(bytes);
+  if (r.pod<std::uint32_t>() != kStateMagic || !r.ok()) return makeError("not a world state");
+  if (const auto v = r.pod<std::uint32_t>(); v != kStateVersion)
+    return makeError("world state version " + std::to_string(v) + ", this build reads " + std::to_string(kStateVersion));
+  const auto settings = r.pod<WorldSettings>();
+  const auto slots = r.pod<std::uint64_t>();
+  if (!r.ok() || slots > kMaxSlots) return makeError("world state: damaged (body slots)");
+  if (slots != m_bodies.size())
+    return makeError("the saved world has " + std::to_string(slots) + " body slots, this one " +
+                     std::to_string(m_bodies.size()) + " (bodies were made or removed since; a snapshot goes back "
+                     "into the world with the same bodies)");
+  std::vector<SlotState> states(slots);
+  for (std::size_t i = 0; i < slots; ++i) {
+    const auto saved = r.pod<SlotShape>();
+    states[i] = r.pod<SlotState>();
+    if (!r.ok()) return makeError("world state: damaged (body " + std::to_string(i) + ")");
+    const SlotShape here = shapeOf(m_bodies[i]);
+    if (!sameShape(saved, here))
+      return makeError("body slot " + std::to_string(i) + " holds " + describe(here) + ", the saved world " +
+                       describe(saved) + " (a snapshot goes back into the world with the same bodies)");
+  }
+  auto freeList = r.vec<std::uint32_t>(kMaxSlots);
+  const auto bodyCount = r.pod<std::int32_t>();
+  auto manifolds = r.vec<Manifold>(kMaxSlots * 8);
+  auto startPos = r.vec<Vec3>(kMaxSlots);
+  auto startOri = r.vec<Quat>(kMaxSlots);
+  auto sleepIsland = r.vec<std::uint32_t>(kMaxSlots);
+  const auto nextIsland = r.pod<std::uint32_t>();
+  auto noCollide = r.vec<BodyPair>(kMaxSlots * 8);
+  auto islandLinks = r.vec<BodyPair>(kMaxSlots * 8);
+  const auto lastContacts = r.pod<std::int32_t>();
+  const auto error = r.pod<ErrorStats>();
+  const auto energy0 = r.pod<double>(), energyScale = r.pod<double>(), externalWork = r.pod<double>();
+  const auto momentum0 = r.pod<Eigen::Vector3d>(), externalImpulse = r.pod<Eigen::Vector3d>();
+  const auto momentumScale = r.pod<double>();
+  const auto tracking = r.pod<std::uint8_t>();
+  auto order = r.vec<std::uint32_t>(kMaxSlots);
+  const auto axis = r.pod<std::int32_t>();
+  const auto swaps = r.pod<std::uint64_t>();
+  if (!r.ok()) return makeError("world state: damaged (truncated)");
+  if (startPos.size() != slots || startOri.size() != slots || sleepIsland.size() != slots || axis < 0 || axis > 2)
+    return makeError("world state: damaged (per-slot arrays)");
+  // Indices are checked against this world, so that damaged or hand-made
+  // bytes cannot make the next step read outside its arrays.
+  // (Old manifolds are only matched by index and child, never followed into
+  // a body's shape, so a range check is enough for them.)
+  for (const Manifold& m : manifolds)
+    if (m.a >= slots || (m.b >= slots && m.b != kHeightFieldBody) || m.count < 0 || m.count > kMaxManifoldPoints)
+      return makeError("world state: damaged (contact cache)");
+  auto distinct = [](std::vector<std::uint32_t> v) {
+    std::sort(v.begin(), v.end());
+    return std::adjacent_find(v.begin(), v.end()) == v.end();
+  };
+  for (std::uint32_t i : order)
+    if (i >= slots) return makeError("world state: damaged (broad phase)");
+  for (std::uint32_t i : freeList)
+    if (i >= slots || m_bodies[i].alive) return makeError("world state: damaged (free slots)");
+  if (!distinct(order) || !distinct(freeList)) return makeError("world state: damaged (repeated slots)");
+  for (const auto* pairs : {&noCollide, &islandLinks})
+    for (const BodyPair& p : *pairs)
+      if (p.a >= slots || p.b >= slots) return makeError("world state: damaged (body pairs)");
+  if (Status st = m_integration->restoreSprings(r, std::uint32_t(slots)); !st) return st;
+  if (!r.atEnd()) return makeError("world state: damaged (bytes after the end)");
+  m_settings = settings;
+  for (std::size_t i = 0; i < slots; ++i) applyState(states[i], m_bodies[i]);
+  m_freeList = std::move(freeList);
+  m_bodyCount = bodyCount;
+  m_manifolds = std::move(manifolds);
+  m_stepStartPosition = std::move(startPos);
+  m_stepStartOrientation = std::move(startOri);
+  m_sleepIsland = std::move(sleepIsland);
+  m_nextIsland = nextIsland;
+  m_noCollide = std::move(noCollide);
+  m_islandLinks = std::move(islandLinks);
+  m_lastContactPoints = lastContacts;
+  m_error = error;
+  m_energy0 = energy0;
+  m_energyScale = energyScale;
+  m_externalWork = externalWork;
+  m_momentum0 = momentum0;
+  m_externalImpulse = externalImpulse;
+  m_momentumScale = momentumScale;
+  m_trackingStarted = tracking != 0;
+  m_broad->restore(std::move(order), axis, swaps);
+  m_events.clear();
+  return Ok{};
+}
+
+}  // namespace tumble::physics
+
+namespace tumble::physics {
+
+void BodyIntegration::saveSprings(ByteWriter& w) const {
+  static_assert(kBitwise<Slot>);
+  w.vec(m_springs);
+  w.vec(m_free);
+  w.pod(std::int32_t(m_springCount));
+  w.pod(std::int64_t(m_newtonFailures));
+}
+
+Status BodyIntegration::restoreSprings(ByteReader& r, std::uint32_t slotCount) {
+  auto springs = r.vec<Slot>(kMaxSlots);
+  auto freeSlots = r.vec<std::uint32_t>(kMaxSlots);
+  const auto count = r.pod<std::int32_t>();
+  const auto failures = r.pod<std::int64_t>();
+  if (!r.ok()) return makeError("world state: damaged (springs)");
+  for (const Slot& s : springs)
+    if (s.alive && (s.def.a.index >= slotCount || s.def.b.index >= slotCount))
+      return makeError("world state: damaged (a spring on a body slot the world does not have)");
+  for (std::uint32_t i : freeSlots)
+    if (i >= springs.size()) return makeError("world state: damaged (spring free slots)");
+  m_springs = std::move(springs);
+  m_free = std::move(freeSlots);
+  m_springCount = count;
+  m_newtonFailures = long(failures);
+  return Ok{};
+}
+
+}  // namespace tumble::physics

@@ -1,0 +1,45 @@
+-- The Lua state a snapshot keeps (docs/snapshots.md), in one scenario whose
+-- physics depends on all of it: a timer made in on_start kicks a ball with
+-- a random impulse from the scenario's generator, on_update pushes the
+-- boxes with math.random and a counter kept in ctx.state, and on_contact
+-- counts hits in ctx.state. A run split by --save-state / --load-state must
+-- end in the state hash of the run without a split (scene_state_test.cpp):
+-- it does only if the timer's schedule, both generators and ctx.state are
+-- restored exactly. With --set late_timer=1 a timer is also made after
+-- on_start, which a snapshot cannot hold: saving is refused, naming where
+-- its function is defined.
+local ball, boxes = nil, {}
+
+return {
+  title = "Timers, random numbers and ctx.state across a snapshot",
+  duration = 3,
+  params = {late_timer = {default = 0, description = "1: also make a timer after on_start (saving is then refused)"}},
+  on_start = function(ctx)
+    world.plane{}
+    ball = world.sphere{radius = 0.3, position = {0, 0.3, 0}}
+    for i = 1, 3 do boxes[i] = world.box{size = {0.5, 0.5, 0.5}, position = {2 * i, 0.25, 0}} end
+    ctx.state.pushes, ctx.state.hits, ctx.state.log = 0, 0, {}
+    timer.every(0.37, function()
+      ball:apply_impulse{random.float(-1, 1), random.float(0, 2), random.float(-1, 1)}
+    end)
+  end,
+  on_update = function(ctx, dt)
+    if ctx.step % 7 == 0 then
+      ctx.state.pushes = ctx.state.pushes + 1
+      local b = boxes[ctx.state.pushes % #boxes + 1]
+      b:apply_impulse{math.random() - 0.5, 0.5 * math.random(), math.random() - 0.5}
+      ctx.state.log[#ctx.state.log + 1] = {step = ctx.step, x = b:position().x}
+    end
+    if param("late_timer") == 1 and ctx.step == 10 then
+      timer.after(5, function() ball:apply_impulse{0, 1, 0} end)
+    end
+  end,
+  on_contact = function(ctx, a, b)
+    ctx.state.hits = ctx.state.hits + 1
+  end,
+  on_finish = function(ctx)
+    expect("the boxes were pushed", ctx.state.pushes, {min = 25})
+    expect("bodies touched", ctx.state.hits, {min = 1})
+    expect("the log has every push", #ctx.state.log == ctx.state.pushes)
+  end,
+}
