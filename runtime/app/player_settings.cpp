@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/file_util.h"
+#include "core/json_depth.h"
 #include "input/overrides_file.h"
 #include "render/renderer.h"
 
@@ -129,8 +130,10 @@ Result<PlayerSettings> loadPlayerSettings(const std::string& path) {
   if (path.empty() || !fs::exists(path, ec)) return s;
   auto text = readTextFile(path);
   if (!text) return makeError(text.error());
-  nlohmann::json j = nlohmann::json::parse(*text, nullptr, false);
-  if (j.is_discarded()) return makeError(path + ": not valid JSON; expected {\"format\": \"tumble-settings\", ...}");
+  // The settings nest one level; deeper is refused while parsing (core/json_depth.h).
+  auto parsed = parseJsonWithDepth(*text, 8);
+  if (!parsed) return makeError(path + ": " + parsed.error() + "; expected {\"format\": \"tumble-settings\", ...}");
+  nlohmann::json j = std::move(*parsed);
   if (!j.is_object()) return makeError(path + ": expected a JSON object {\"format\": \"tumble-settings\", ...}");
   if (auto f = j.find("format"); f != j.end() && *f != kFormat)
     return makeError(path + ": field 'format': expected \"tumble-settings\", got " + f->dump());

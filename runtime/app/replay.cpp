@@ -8,6 +8,7 @@
 #include "app/run_report.h"
 #include "core/file_util.h"
 #include "core/hash.h"
+#include "core/json_depth.h"
 #include "script/tunables.h"
 
 namespace tumble::app {
@@ -21,6 +22,9 @@ constexpr const char* kFormat = "tumble-replay";
 constexpr std::size_t kMaxChanges = 5'000'000;
 constexpr long long kMaxSteps = 60LL * 60 * 60 * 24;  // a day at 60 steps/s
 constexpr std::size_t kMaxReplayBytes = std::size_t(512) << 20;
+// A replay nests 3 levels (its action changes), its recorded tunable
+// overrides a few more; deeper is refused while parsing (core/json_depth.h).
+constexpr int kMaxReplayDepth = 32;
 
 int flagsOf(const input::InputSystem::StepState& s) { return (s.down ? 1 : 0) | (s.pressed ? 2 : 0) | (s.released ? 4 : 0); }
 
@@ -97,8 +101,7 @@ void ReplayRecorder::start(Scene& scene, const SceneOptions& options) {
   if (options.tuneOverrides) {
     auto text = readTextFile(script::tuneOverridesPath(scene.host().mod().name), std::size_t(4) << 20);
     if (text) {
-      auto parsed = nlohmann::json::parse(*text, nullptr, false);
-      if (!parsed.is_discarded()) r.tuneOverrides = std::move(parsed);
+      if (auto parsed = parseJsonWithDepth(*text, kMaxReplayDepth)) r.tuneOverrides = std::move(*parsed);
     }
   }
 }
@@ -179,9 +182,11 @@ nlohmann::json replayToJson(const Replay& r) {
 Result<Replay> loadReplay(const std::string& path) {
   auto text = readTextFile(path, kMaxReplayBytes);
   if (!text) return makeError("replay: " + text.error());
-  nlohmann::json doc = nlohmann::json::parse(*text, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object())
-    return makeError(path + ": not a replay (expected a JSON object written by `tumble play --record`)");
+  auto parsed = parseJsonWithDepth(*text, kMaxReplayDepth);
+  if (!parsed || !parsed->is_object())
+    return makeError(path + ": not a replay (" + (parsed ? std::string("not a JSON object") : parsed.error()) +
+                     "; expected a JSON object written by `tumble play --record`)");
+  nlohmann::json doc = std::move(*parsed);
   const Reader rd{path};
   if (!doc.contains("format") || doc["format"] != kFormat)
     return makeError(path + ": not a replay (its \"format\" is not \"" + kFormat + "\"; replays are written by "

@@ -4,6 +4,7 @@
 //
 //   local rope = deformable.rope{from = {0, 4, 0}, to = {3, 4, 0}, stiffness = 2e4}
 //   local flag = deformable.cloth{origin = {0, 3, 0}, u = {0, -1, 0}, v = {1.5, 0, 0}, wind = {0, 0, 8}}
+#include <algorithm>
 #include <cmath>
 
 #include "physics/deformable.h"
@@ -19,6 +20,9 @@ namespace tumble::script {
 /// terrain (one way: bodies do not feel them), and are drawn as lines.
 /// Particle indices start at 1; cloth particle (col, row) is
 /// row * columns + col + 1 with col, row from 0 (see Deformable:index).
+/// A scene's ropes and cloth together hold at most 16 384 particles x
+/// substeps (a 128 x 64 cloth at the default 2 substeps); making one past
+/// that is an error, so that no script makes a step take seconds.
 
 namespace {
 
@@ -61,10 +65,31 @@ physics::DeformableMaterial readMaterial(lua_State* L, physics::DeformableMateri
   return m;
 }
 
+// What one step of a scene's ropes and cloth may cost, in particles times
+// substeps over all of them: each particle-substep is a block row of a
+// conjugate-gradient solve of up to 400 iterations. Measured in a release
+// build on the 2-core machine the project runs on: a 128 x 128 cloth at 2
+// substeps (32 768) took 0.45 s a step, a 256 x 256 one at 1 substep 0.6 s,
+// so the largest cloth at 64 substeps would take some 40 s a step (found by
+// the scenario fuzzer as a run that never finished). The cap keeps a step's
+// ropes and cloth near a fifth of a second at most.
+constexpr long long kMaxParticleSubsteps = 16384;
+
+long long particleSubsteps(const physics::Deformable& d) {
+  return (long long)d.particleCount() * std::max(1, d.material().substeps);
+}
+
 int pushNew(lua_State* L, Result<std::unique_ptr<physics::Deformable>> made, const char* fn) {
   if (!made) throw LuaArgError(std::string(fn) + ": " + made.error());
   ScenarioHost& host = *ScenarioHost::from(L);
   physics::Deformable& d = *made.value();
+  long long total = particleSubsteps(d);
+  if (physics::DeformableSystem* sys = host.scene().deformablesIfAny())
+    sys->forEach([&](int, const physics::Deformable& other) { total += particleSubsteps(other); });
+  if (total > kMaxParticleSubsteps)
+    throw LuaArgError(std::string(fn) + ": the scene's ropes and cloth would hold " + std::to_string(total) +
+                      " particles x substeps, more than the " + std::to_string(kMaxParticleSubsteps) +
+                      " one step may cost; use fewer particles or substeps, or remove a rope or cloth first");
   Vec3 wind = Vec3::Zero();
   if (optVec3Field(L, 1, "wind", &wind)) d.setWind(wind);
   Vec3 color = d.kind() == physics::Deformable::Kind::Rope ? Vec3(0.9f, 0.6f, 0.2f) : Vec3(0.4f, 0.7f, 1.0f);
