@@ -95,7 +95,9 @@ TEST_P(SplitRun, EndsInTheSameStateAsTheRunWithoutASplit) {
   EXPECT_EQ(hashOf(loaded), hashOf(plain)) << "the run from the snapshot ends elsewhere\n" << loaded.output;
   EXPECT_EQ(plain.exitCode, 0) << plain.output;
   EXPECT_EQ(saving.exitCode, plain.exitCode) << saving.output;
-  if (!c.expectationsInLocals) EXPECT_EQ(loaded.exitCode, plain.exitCode) << loaded.output;
+  if (!c.expectationsInLocals) {
+    EXPECT_EQ(loaded.exitCode, plain.exitCode) << loaded.output;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BaseScenarios, SplitRun, testing::ValuesIn(splitCases()),

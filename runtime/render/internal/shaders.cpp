@@ -236,15 +236,10 @@ void main() {
 // Measured on llvmpipe: arithmetic noise beats sampling a precomputed noise
 // texture (trilinear fetches are the expensive part of a software
 // rasteriser), and per-vertex work is nearly free next to per-pixel work.
-const char* const kTerrainVertex = R"glsl(
-#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec4 aNormal;   // packed 2_10_10_10, normalised
-uniform mat4 uViewProjection;
-out vec3 vWorldPosition;
-out vec3 vNormal;
-out float vShade;   // large-scale brightness variation, per vertex
 
+// The large-scale brightness variation both terrain vertex shaders apply:
+// two octaves of value noise over the ground plane, 0.75..1.25.
+const char* const kGroundShade = R"glsl(
 float hash(vec2 p) {
   uvec2 q = uvec2(ivec2(p)) * uvec2(1597334673u, 3812015801u);
   return float(((q.x ^ q.y) * 1597334673u) >> 8) * (1.0 / 16777216.0);
@@ -253,14 +248,28 @@ float valueNoise(vec2 p) {
   vec2 i = floor(p), f = p - i, u = f * f * (3.0 - 2.0 * f);
   return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), u.x), u.y);
 }
+float groundShade(vec2 xz) {
+  return 0.75 + 0.3 * valueNoise(xz * (1.0 / 41.0)) + 0.2 * valueNoise(xz * (1.0 / 13.0));
+}
+)glsl";
 
+const std::string kTerrainVertexSource = std::string(R"glsl(
+#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec4 aNormal;   // packed 2_10_10_10, normalised
+uniform mat4 uViewProjection;
+out vec3 vWorldPosition;
+out vec3 vNormal;
+out float vShade;   // large-scale brightness variation, per vertex
+)glsl") + kGroundShade + R"glsl(
 void main() {
   vWorldPosition = aPosition;
   vNormal = aNormal.xyz;
-  vShade = 0.75 + 0.3 * valueNoise(aPosition.xz * (1.0 / 41.0)) + 0.2 * valueNoise(aPosition.xz * (1.0 / 13.0));
+  vShade = groundShade(aPosition.xz);
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )glsl";
+const char* const kTerrainVertex = kTerrainVertexSource.c_str();
 
 const std::string kTerrainFragmentSource = litFragment(R"glsl(
 in vec3 vWorldPosition;
@@ -329,7 +338,7 @@ const char* const kTerrainFragment = kTerrainFragmentSource.c_str();
 // shadows on the ground. On the ground's 1 m grid near the eye the light
 // varies too slowly across a block for the difference to show; far away the
 // coarse levels' big triangles smooth it.
-const char* const kTerrainVertexLit = R"glsl(
+const std::string kTerrainVertexLitSource = std::string(R"glsl(
 #version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec4 aNormal;   // packed 2_10_10_10, normalised
@@ -344,18 +353,10 @@ out vec3 vWorldPosition;
 out vec3 vLight;                // what multiplies the albedo (linear)
 out float vFog;                 // 0..1 of the fog colour
 
-float hash(vec2 p) {
-  uvec2 q = uvec2(ivec2(p)) * uvec2(1597334673u, 3812015801u);
-  return float(((q.x ^ q.y) * 1597334673u) >> 8) * (1.0 / 16777216.0);
-}
-float valueNoise(vec2 p) {
-  vec2 i = floor(p), f = p - i, u = f * f * (3.0 - 2.0 * f);
-  return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), u.x), u.y);
-}
-
+)glsl") + kGroundShade + R"glsl(
 void main() {
   vec3 n = normalize(aNormal.xyz);
-  float shade = 0.75 + 0.3 * valueNoise(aPosition.xz * (1.0 / 41.0)) + 0.2 * valueNoise(aPosition.xz * (1.0 / 13.0));
+  float shade = groundShade(aPosition.xz);
   float diffuse = max(dot(n, uLightDirection), 0.0);
   vLight = shade * (mix(uGroundAmbient, uSkyAmbient, 0.5 * n.y + 0.5) + uLightColor * diffuse);
   float d = length(uEye - aPosition) * uFogDensity;
@@ -364,6 +365,7 @@ void main() {
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )glsl";
+const char* const kTerrainVertexLit = kTerrainVertexLitSource.c_str();
 
 const char* const kTerrainFragmentLit = R"glsl(
 #version 330 core
