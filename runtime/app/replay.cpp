@@ -28,14 +28,6 @@ constexpr int kMaxReplayDepth = 32;
 
 int flagsOf(const input::InputSystem::StepState& s) { return (s.down ? 1 : 0) | (s.pressed ? 2 : 0) | (s.released ? 4 : 0); }
 
-std::string checksumOf(nlohmann::json doc) {
-  doc.erase("checksum");
-  Hasher h;
-  const std::string text = doc.dump();
-  h.bytes(text.data(), text.size());
-  return h.hex();
-}
-
 int noteCallback(dl_phdr_info* info, std::size_t, void* out) {
   // The first object is the executable itself.
   for (int i = 0; i < info->dlpi_phnum; ++i) {
@@ -73,6 +65,14 @@ struct Reader {
 };
 
 }  // namespace
+
+std::string checksumOf(nlohmann::json doc) {
+  doc.erase("checksum");
+  Hasher h;
+  const std::string text = doc.dump();
+  h.bytes(text.data(), text.size());
+  return h.hex();
+}
 
 std::string engineBuildId() {
   static const std::string id = [] {

@@ -32,6 +32,10 @@ namespace tumble::app {
 /// executable (hex), or "unknown" without one.
 std::string engineBuildId();
 
+/// The checksum a replay or a scene snapshot file carries: a hash of the
+/// document's JSON text without its "checksum" field (hex).
+std::string checksumOf(nlohmann::json doc);
+
 /// What scripts read of the input in one step.
 struct ReplayStep {
   std::vector<input::InputSystem::StepState> actions;  ///< in action order

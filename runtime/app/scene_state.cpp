@@ -64,14 +64,6 @@ bool doubleOf(const nlohmann::json& j, double& out) {
   return std::isfinite(out);
 }
 
-std::string checksumOf(nlohmann::json doc) {
-  doc.erase("checksum");
-  Hasher h;
-  const std::string text = doc.dump();
-  h.bytes(text.data(), text.size());
-  return h.hex();
-}
-
 /// The first system the snapshot cannot hold, or null.
 const char* unsupportedSystem(Scene& scene) {
   if (const physics::JointSystem* j = scene.jointsIfAny(); j && j->jointCount() > 0) return "joints";
