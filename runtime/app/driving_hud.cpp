@@ -82,6 +82,7 @@ std::string lapTimeText(std::optional<double> seconds) {
 }
 
 void GameHud::update(Scene& scene, double time_s) {
+  m_drawn = false;
   script::ScenarioHost& host = scene.host();
   m_messages.update(host, time_s);
   m_console.sync(host);
@@ -144,6 +145,7 @@ GameHud::~GameHud() {
 }
 
 void GameHud::draw() {
+  m_drawn = m_view.visible;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   const float s = std::clamp(std::min(display.x / 1280.0f, display.y / 720.0f), 0.4f, 3.0f);
   if (m_view.visible) {
@@ -343,6 +345,7 @@ nlohmann::json GameHud::report() const {
   const ScriptConsole::Rect& cb = m_console.clearButton();
   nlohmann::json out = {
       {"visible", v.visible},
+      {"drawn", m_drawn},
       {"vehicle", v.vehicle},
       {"messages", messages},
       {"console", {{"open", m_console.isOpen()},

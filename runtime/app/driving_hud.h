@@ -85,6 +85,7 @@ class GameHud {
   void drawMessages(float s);
 
   bool m_visible = true;
+  bool m_drawn = false;  ///< the widgets were drawn since the last update(): on screen in the last frame
   HudView m_view;
   MessageLog m_messages;
   ScriptConsole m_console;

@@ -372,8 +372,10 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
   bool backToDesigner = false;
   GameHud gameHud;  // speed, rpm, gear, lap, minimap, messages, script-error console
   gameHud.setRenderer(&renderer);
-  renderer.addHudPanel([&gameHud, &session] {
-    if (session) gameHud.draw();
+  renderer.addHudPanel([&gameHud, &session, &mainMenu] {
+    // A menu page opened over the game (Change vehicle, Settings) covers the
+    // screen; the HUD under it would show through its title.
+    if (session && !mainMenu.isOpen()) gameHud.draw();
   });
   auto openBindingsMenu = [&]() -> BindingsMenu* {
     if (session) return session->bindings->isOpen() ? session->bindings.get() : nullptr;

@@ -255,5 +255,37 @@ TEST(HudPlay, TheHudIsDrawnInTheCornersAndHKeyHidesIt) {
   EXPECT_LT(differing(a, b, 0.3, 0.45, 0.7, 0.65), 0.001);
 }
 
+TEST(HudPlay, AMenuPageOverTheGameHidesTheHud) {
+  // Escape, then Change vehicle from the pause menu: the vehicle picker
+  // covers the game. Its title sits where the scenario's HUD line is, so the
+  // HUD must not be drawn under it: the picture equals the one where H had
+  // hidden the HUD before (the pause menu stops the simulation, so the same
+  // state is drawn under the same page).
+  const std::string dir = outDir("hud_play_menu_page");
+  const std::string ref = "base:drive --set car=base:buggy";
+  const std::string size = "--width 640 --height 360";
+  const std::string toPicker =
+      "20 down key:Escape\n21 up key:Escape\n30 down key:Down\n31 up key:Down\n34 down key:Down\n35 up key:Down\n"
+      "40 down key:Return\n41 up key:Return\n";
+  auto shown = play(dir, "shown", ref, 60, toPicker, size, "--screenshot " + dir + "/shown.png");
+  auto hidden = play(dir, "hidden", ref, 60, "5 down key:H\n6 up key:H\n" + toPicker, size,
+                     "--screenshot " + dir + "/hidden.png");
+  ASSERT_EQ(shown.process.exitCode, 0) << shown.process.output;
+  ASSERT_EQ(hidden.process.exitCode, 0) << hidden.process.output;
+  EXPECT_EQ(shown.report["menu"]["page"], "vehicles") << shown.report["menu"].dump();
+  EXPECT_TRUE(shown.report["hud"]["visible"].get<bool>()) << "H was not pressed in this run";
+  EXPECT_FALSE(shown.report["hud"]["drawn"].get<bool>());
+  EXPECT_EQ(shown.report["state_hash"], hidden.report["state_hash"]);
+  const Picture a = load(dir + "/shown.png"), b = load(dir + "/hidden.png");
+  ASSERT_EQ(a.w, 640);
+  EXPECT_LT(differing(a, b, 0.0, 0.0, 1.0, 1.0), 0.001) << "the HUD shows through the page";
+  // Back in the game (Escape leaves the picker, Escape again resumes): drawn again.
+  auto back = play(dir, "back", ref, 80, toPicker + "60 down key:Escape\n61 up key:Escape\n"
+                   "70 down key:Escape\n71 up key:Escape\n", size);
+  ASSERT_EQ(back.process.exitCode, 0) << back.process.output;
+  EXPECT_FALSE(back.report["menu"]["open"].get<bool>()) << back.report["menu"].dump();
+  EXPECT_TRUE(back.report["hud"]["drawn"].get<bool>()) << back.report["pause_menu"].dump();
+}
+
 }  // namespace
 }  // namespace tumble::test
