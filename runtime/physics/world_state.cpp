@@ -34,19 +34,6 @@ static_assert(kBitwise<Manifold>);
 static_assert(kBitwise<WorldSettings>);
 static_assert(kBitwise<ErrorStats>);
 
-const char* shapeName(ShapeType t) {
-  switch (t) {
-    case ShapeType::Sphere: return "sphere";
-    case ShapeType::Box: return "box";
-    case ShapeType::Capsule: return "capsule";
-    case ShapeType::Hull: return "hull";
-    case ShapeType::Plane: return "plane";
-    case ShapeType::Compound: return "compound";
-    case ShapeType::Mesh: return "mesh";
-  }
-  return "?";
-}
-
 /// The part of a body that is structure, not state: it must match.
 struct SlotShape {
   std::uint32_t generation = 0;
@@ -121,7 +108,7 @@ bool sameShape(const SlotShape& a, const SlotShape& b) {
 std::string describe(const SlotShape& s) {
   if (!s.alive) return "no body";
   static const char* kTypes[] = {"static", "kinematic", "dynamic"};
-  return std::string(s.type < 3 ? kTypes[s.type] : "?") + " " + shapeName(ShapeType(s.shape)) + " (generation " +
+  return std::string(s.type < 3 ? kTypes[s.type] : "?") + " " + shapeTypeName(ShapeType(s.shape)) + " (generation " +
          std::to_string(s.generation) + ")";
 }
 
