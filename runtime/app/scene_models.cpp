@@ -124,7 +124,9 @@ void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render:
     m_rig.reset();
     camera.vehicleModes = m_target.has_value();
   }
-  const bool cockpit = m_target && camera.mode == render::CameraMode::Cockpit;
+  // The cockpit hides the car's own model when an interior is drawn in its
+  // place; an open car (no interior) keeps its model: its seat and cage.
+  const bool cockpit = m_target && camera.mode == render::CameraMode::Cockpit && !m_interior.empty();
   scene.hideModelOf(cockpit ? m_target : std::nullopt);
   if (!m_target) return;
   const auto pose = scene.bodyPose(*m_target, alpha);

@@ -146,6 +146,25 @@ const FieldTable<vehicle::SoundDef> kSound{
                "contact-patch slip speed where tyre noise starts"),
     }};
 
+const FieldTable<vehicle::ViewDef> kView{
+    "VehicleView", "cameras that ride in the car; eyes in the drawn model's frame (origin on the ground under "
+    "its middle, +Z forward, +Y up, +X left)",
+    {
+        vec3("hood_eye", &vehicle::ViewDef::hoodEye_m, "m", "hood camera eye, just above the bonnet"),
+        vec3("cockpit_eye", &vehicle::ViewDef::cockpitEye_m, "m", "cockpit camera eye, the driver's head"),
+        text("interior", &vehicle::ViewDef::interior,
+             "model drawn around the cockpit eye (origin at the eye, +Z forward), a path inside the mod; "
+             "default: the base mod's generic interior",
+             [](const std::string& path, const std::string& v) { insideMod(path, v); }),
+        boolean("open", &vehicle::ViewDef::open,
+                "an open car: the cockpit view draws the car's own model (roll cage, seat) and no interior"),
+    },
+    [](const std::string& path, const vehicle::ViewDef& v) {
+      if (v.open && !v.interior.empty())
+        throw FieldError(path + ".interior: an open car (open = true) draws its own model in the cockpit view, "
+                                "not an interior; give one or the other");
+    }};
+
 // Later axles start from the one before, so a file need only say what
 // differs; steered, driven, handbrake and drive_share are not copied.
 vehicle::AxleDef nextAxle(const std::vector<vehicle::AxleDef>& before) {
@@ -175,6 +194,7 @@ const FieldTable<VehicleDef> kVehicle{
         table("gearbox", &VehicleDef::gearbox, kGearbox, "ratios and shift points"),
         table("steering", &VehicleDef::steering, kSteering, "angles and rate"),
         table("sound", &VehicleDef::sound, kSound, "engine note and tyre noise"),
+        table("view", &VehicleDef::view, kView, "hood and cockpit cameras"),
     }};
 
 }  // namespace
@@ -183,7 +203,7 @@ std::string vehicleDefinitionDocBlocks() {
   std::string out;
   for (const std::string& block : {kVehicle.docBlock(), kChassis.docBlock(), kAxle.docBlock(), kSuspension.docBlock(),
                                    kTyre.docBlock(), kEngine.docBlock(), kGearbox.docBlock(), kSteering.docBlock(),
-                                   kSound.docBlock()})
+                                   kSound.docBlock(), kView.docBlock()})
     out += block + "\n";
   return out;
 }

@@ -80,6 +80,13 @@ Status validateVehicleDef(const VehicleDef& v, const std::string& where) {
     if (!s) return s;
   if (snd.cylinders != std::floor(snd.cylinders))
     return makeError(where + ": sound.cylinders must be a whole number (1..16), got " + std::to_string(snd.cylinders));
+  // A camera eye belongs on the car: no coordinate beyond the chassis
+  // length from the model's origin (a roof or bonnet may stand above the
+  // collision box, so the box itself is not the bound).
+  for (const auto& [field, eye] : {std::pair{"view.hood_eye", v.view.hoodEye_m}, {"view.cockpit_eye", v.view.cockpitEye_m}})
+    if (!eye.allFinite() || eye.cwiseAbs().maxCoeff() > c.size_m.z())
+      return makeError(where + ": " + field + " must be finite and on the car: {x, y, z} in the drawn model's frame, " +
+                       "m, each within the chassis length (size[3]) of its origin");
   if (!c.centerOfMass_m.allFinite() || (c.centerOfMass_m.array().abs() > c.size_m.array()).any())
     return makeError(where + ": chassis.com must be finite and within the chassis size (m from the box centre)");
   if (v.axles.size() < 2 || v.axles.size() > 8)

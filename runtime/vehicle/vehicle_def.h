@@ -129,6 +129,20 @@ struct SoundDef {
   std::string engineSamplePath;
 };
 
+/// Where the cameras that ride in the car sit, and what the cockpit view
+/// draws (docs/vehicles.md). Eyes are in the frame of the drawn model: origin
+/// on the ground line under the model's middle, +Z forward, +Y up, +X left.
+struct ViewDef {
+  Vec3 hoodEye_m = Vec3(0.0f, 1.07f, 1.6f);      ///< hood camera: just above the bonnet, m
+  Vec3 cockpitEye_m = Vec3(0.35f, 1.17f, -0.1f); ///< cockpit camera: the driver's eye, m
+  /// A model (a path inside the vehicle's mod) drawn around the cockpit eye,
+  /// origin at the eye, +Z forward; empty: the base mod's generic interior.
+  std::string interior;
+  /// An open car (no roof, no body around the driver): the cockpit view
+  /// draws the car's own model and no interior.
+  bool open = false;
+};
+
 struct VehicleDef {
   std::string name = "vehicle";  ///< shown to the player
   std::string description;       ///< the feel, in a sentence
@@ -139,6 +153,7 @@ struct VehicleDef {
   GearboxDef gearbox;
   SteeringDef steering;
   SoundDef sound;
+  ViewDef view;
 };
 
 /// Numbers derived from a VehicleDef (per axle, static loads on level ground).

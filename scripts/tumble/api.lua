@@ -840,6 +840,7 @@ function Vehicle:remove() end
 ---@field gearbox? VehicleGearbox ratios and shift points
 ---@field steering? VehicleSteering angles and rate
 ---@field sound? VehicleSound engine note and tyre noise
+---@field view? VehicleView hood and cockpit cameras
 
 ---body, mass, drag
 ---@class VehicleChassis
@@ -920,6 +921,13 @@ function Vehicle:remove() end
 ---@field engine_sample? string a loop (WAV or Ogg Vorbis) inside the mod played at pitch rpm / sample_rpm instead of the synthesised note
 ---@field sample_rpm? number rpm the engine sample was recorded at, rpm (default 3000)
 ---@field tyre_slip_threshold? number contact-patch slip speed where tyre noise starts, m/s (default 1.5)
+
+---cameras that ride in the car; eyes in the drawn model's frame (origin on the ground under its middle, +Z forward, +Y up, +X left)
+---@class VehicleView
+---@field hood_eye? number[] hood camera eye, just above the bonnet, m (default {0, 1.07, 1.6})
+---@field cockpit_eye? number[] cockpit camera eye, the driver's head, m (default {0.35, 1.17, -0.1})
+---@field interior? string model drawn around the cockpit eye (origin at the eye, +Z forward), a path inside the mod; default: the base mod's generic interior
+---@field open? boolean an open car: the cockpit view draws the car's own model (roll cage, seat) and no interior (default false)
 
 ---The view of the scene: free orbit, following a body, a chase camera, a
 ---hood camera or a cockpit view with its interior drawn as a model. Body

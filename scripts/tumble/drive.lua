@@ -313,8 +313,8 @@ local function model_ground(car, def)
 end
 
 -- Puts the chase camera on the car (camera.set_mode; the camera key then
--- steps through chase, hood and cockpit, the cockpit with the base mod's
--- interior model) and its definition's chassis mesh on the chassis body
+-- steps through chase, hood and cockpit, at the eyes and with the interior
+-- the definition's view gives) and its definition's chassis mesh on the chassis body
 -- (Body:set_model), each only when that API exists; returns how many of the
 -- two it could do. opts.camera: the mode to start in (default "chase").
 function drive.show(car, opts)
@@ -327,16 +327,25 @@ function drive.show(car, opts)
   local body = car:body()
   local z0, y0, slope = model_ground(car, def)
   if type(camera) == "table" and camera.set_mode then
-    -- The cockpit eye sits where the driver's head is in the shipped
-    -- models (x 0.35 m, 1.17 m above the model's ground, 0.1 m behind
-    -- its middle), in the body frame; the interior model is drawn there.
-    -- The hood eye is over the front of the bonnet (1.07 m up, 1.6 m ahead).
-    local eye = {-def.chassis.com[1] + 0.35, y0 + 1.17, z0 - 0.1}
-    local hood = {-def.chassis.com[1], y0 + 1.07, z0 + 1.6}
-    -- Without the base mod's interior model (mods loaded from elsewhere), no interior.
-    if not pcall(camera.set_mode, mode, {target = body, eye = eye, hood_eye = hood,
-                                         interior = "base:assets/models/cockpit.obj"}) then
-      camera.set_mode(mode, {target = body, eye = eye, hood_eye = hood})
+    -- The definition's view places the eyes in the drawn model's frame
+    -- (origin on the ground line under its middle); here they go into the
+    -- body frame, as the model is placed below.
+    local view, cx = def.view, -def.chassis.com[1]
+    local function body_frame(p) return {cx + p[1], y0 + p[2], z0 + p[3]} end
+    local opts = {target = body, eye = body_frame(view.cockpit_eye), hood_eye = body_frame(view.hood_eye)}
+    local mod = car:name():match("^([^:]+):")
+    if view.open then
+      camera.set_mode(mode, opts)  -- an open car: the cockpit view keeps the car's own model
+    elseif view.interior then
+      opts.interior = mod and (mod .. ":" .. view.interior) or view.interior
+      camera.set_mode(mode, opts)
+    else
+      -- The base mod's generic interior; without the base mod, none.
+      opts.interior = "base:assets/models/cockpit.obj"
+      if not pcall(camera.set_mode, mode, opts) then
+        opts.interior = nil
+        camera.set_mode(mode, opts)
+      end
     end
     done = done + 1
   end

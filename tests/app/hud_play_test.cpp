@@ -289,3 +289,79 @@ TEST(HudPlay, AMenuPageOverTheGameHidesTheHud) {
 
 }  // namespace
 }  // namespace tumble::test
+
+namespace tumble::test {
+namespace {
+
+// Share of the region's pixels (fractions of the picture) that `paint` accepts.
+template <class F>
+double shareOf(const Picture& p, double x0, double y0, double x1, double y1, F paint) {
+  int n = 0, hit = 0;
+  for (int y = int(y0 * p.h); y < int(y1 * p.h); ++y)
+    for (int x = int(x0 * p.w); x < int(x1 * p.w); ++x, ++n) {
+      const unsigned char* c = &p.rgb[(std::size_t(y) * std::size_t(p.w) + std::size_t(x)) * 3];
+      hit += paint(c[0], c[1], c[2]) ? 1 : 0;
+    }
+  return n ? double(hit) / n : 0;
+}
+
+// The camera key (C) steps chase -> hood -> cockpit on the player's car, and
+// each car's own view (its definition's `view`) is where a player expects
+// it: the hood view looks over the car's own bonnet, which fills the bottom
+// of the picture; the cockpit of a closed car draws the interior and hides
+// the body; the open buggy's cockpit shows its own roll cage. Played in the
+// showroom (a grey checker floor, so paint colours stand out) with the HUD
+// hidden by H.
+TEST(HudPlay, TheCameraKeyGivesEachCarItsHoodAndCockpitViews) {
+  const std::string dir = outDir("hud_play_car_views");
+  const std::string size = "--width 640 --height 360";
+  struct Car {
+    const char* name;
+    bool (*paint)(int r, int g, int b);
+    bool open;
+  };
+  const Car cars[] = {
+      {"hatchback", [](int r, int g, int b) { return r > 90 && r > g + 50 && r > b + 50; }, false},
+      {"truck", [](int r, int g, int b) { return g > r + 15 && g > b + 30 && r < 110; }, false},
+      {"buggy", [](int r, int g, int b) { return r > 90 && g > 0.6 * r && b < 0.4 * g; }, true},
+  };
+  const std::string hideHud = "2 down key:H\n3 up key:H\n";
+  const std::string cameraKey = "10 down key:C\n11 up key:C\n";
+  const std::string cameraKeyAgain = "14 down key:C\n15 up key:C\n";
+  for (const Car& car : cars) {
+    SCOPED_TRACE(car.name);
+    const std::string ref = std::string("base:showroom --set car=base:") + car.name;
+    auto hood = play(dir, std::string(car.name) + "_hood", ref, 40, hideHud + cameraKey, size,
+                     "--screenshot " + dir + "/" + car.name + "_hood.png");
+    ASSERT_EQ(hood.process.exitCode, 0) << hood.process.output;
+    EXPECT_EQ(hood.report["camera"], "hood");
+    const Picture h = load(dir + "/" + car.name + "_hood.png");
+    ASSERT_EQ(h.w, 640);
+    // The bottom fifth: measured 1.0 of it is the hatchback's bonnet, 0.68
+    // the truck's, 0.50 the buggy's front tube and rails. Without the car in
+    // view (an eye ahead of its front, or inside its body), none.
+    const double bonnet = shareOf(h, 0.0, 0.8, 1.0, 1.0, car.paint);
+    const double ahead = shareOf(h, 0.0, 0.0, 1.0, 0.6, car.paint);
+    RecordProperty(std::string(car.name) + "_hood_bottom_paint_share", std::to_string(bonnet));
+    EXPECT_GT(bonnet, 0.25) << "the car's front is at the bottom of the hood view";
+    EXPECT_LT(ahead, 0.03) << "above it the road ahead is open";
+
+    auto cockpit = play(dir, std::string(car.name) + "_cockpit", ref, 40, hideHud + cameraKey + cameraKeyAgain, size,
+                        "--screenshot " + dir + "/" + car.name + "_cockpit.png");
+    ASSERT_EQ(cockpit.process.exitCode, 0) << cockpit.process.output;
+    EXPECT_EQ(cockpit.report["camera"], "cockpit");
+    const Picture c = load(dir + "/" + car.name + "_cockpit.png");
+    ASSERT_EQ(c.w, 640);
+    auto dark = [](int r, int g, int b) { return r < 60 && g < 60 && b < 60; };
+    if (car.open) {
+      EXPECT_GT(shareOf(c, 0.0, 0.0, 1.0, 1.0, car.paint), 0.05) << "the buggy's own cage frames the view";
+    } else {
+      EXPECT_GT(shareOf(c, 0.1, 0.85, 0.9, 1.0, dark), 0.8) << "the dashboard across the bottom";
+      EXPECT_LT(shareOf(c, 0.0, 0.5, 1.0, 1.0, car.paint), 0.01) << "the body is hidden in the cockpit";
+    }
+    EXPECT_LT(shareOf(c, 0.3, 0.3, 0.7, 0.6, dark), 0.1) << "the view ahead is open";
+  }
+}
+
+}  // namespace
+}  // namespace tumble::test

@@ -1,6 +1,7 @@
 -- Showroom: the project's own models on bodies and as static scenery among
 -- rocks, trees, barriers, a building and a checkpoint arch, followed by the
--- chase camera. The player drives a hatchback (drive.player) between them.
+-- chase camera. The player drives a car (drive.player; --set car=MOD:NAME,
+-- the hatchback by default) between them.
 -- With --set autopilot=1 nobody drives: a hatchback-shaped box (collision
 -- stays a box; the picture is the model) slides towards the barriers
 -- instead; static models get static box collision bodies, so it stops
@@ -29,7 +30,7 @@ return {
                       friction = 0.3}
       car:set_model(M .. "hatchback.obj", {offset = {0, -0.87, 0}})
     else
-      car = vehicle.spawn("base:hatchback", {position = {0, 0, -6}, heading = 0})
+      car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -6}, heading = 0})
       player = drive.player(car)
       settle_y0 = car:body():position().y
     end

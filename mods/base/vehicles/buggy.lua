@@ -27,4 +27,9 @@ return {
              shift_up_rpm = 8000, shift_down_rpm = 4000, shift_time = 0.15},
   steering = {max_angle = 0.55, speed_sensitivity = 0.015, rate = 3.5},
   sound = {cylinders = 4, volume = 1.2},  -- a light, loud four
+  -- An open car: the cockpit view keeps the buggy's own seat and roll cage
+  -- (the seat is central, its top at y 0.9 m; the cage's roof 1.45-1.55 m).
+  -- No bonnet: the hood camera rides low at the front of the cage, looking
+  -- over the front cross tube (z 1.45 m, y 0.55 m).
+  view = {hood_eye = {0, 0.85, 0.55}, cockpit_eye = {0, 1.15, -0.35}, open = true},
 }

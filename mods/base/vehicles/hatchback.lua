@@ -26,4 +26,8 @@ return {
              shift_up_rpm = 6200, shift_down_rpm = 2500, shift_time = 0.25},
   steering = {max_angle = 0.6, speed_sensitivity = 0.02, rate = 2.5},
   sound = {cylinders = 4, volume = 0.9},
+  -- Eyes in the drawn model's frame: the hood camera just above the back of
+  -- the bonnet (the windscreen's foot is at z 1.25 m, y 0.92 m), the
+  -- driver on the left behind the dashboard.
+  view = {hood_eye = {0, 1.02, 1.15}, cockpit_eye = {0.35, 1.17, -0.1}},
 }

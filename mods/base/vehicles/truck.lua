@@ -28,4 +28,8 @@ return {
              shift_up_rpm = 3500, shift_down_rpm = 1400, shift_time = 0.4},
   steering = {max_angle = 0.55, speed_sensitivity = 0.03, rate = 1.8},
   sound = {cylinders = 6, volume = 1.1},  -- a straight-six diesel: low, steady note
+  -- Eyes in the drawn model's frame: the hood camera over the back of the
+  -- bonnet (the windscreen's foot is at z 1.6 m, y 1.5 m), the driver high
+  -- in the cab (floor 0.98 m, roof 2.25 m), the dashboard under the glass.
+  view = {hood_eye = {0, 1.64, 1.75}, cockpit_eye = {0.4, 1.85, 0.7}},
 }

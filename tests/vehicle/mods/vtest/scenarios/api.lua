@@ -22,7 +22,15 @@ return {
     expect("unknown control is an error", (fails_with("unknown field 'throtle'", car.set_controls, car, {throtle = 1})))
     expect("bad tune value names the field", (fails_with("engine.max_rpm", car.tune, car, {engine = {max_rpm = -5}})))
     expect("mesh path may not leave the mod", (fails_with("leaves the mod's folder", car.tune, car, {chassis = {mesh = "../x.glb"}})))
+    -- The cameras' view: eyes checked, the interior kept inside the mod, an open car without an interior.
+    expect("a NaN camera eye names the field", (fails_with("view.hood_eye", car.tune, car, {view = {hood_eye = {0, 0 / 0, 1}}})))
+    expect("a camera eye off the car is refused", (fails_with("view.cockpit_eye must be finite and on the car", car.tune, car,
+      {view = {cockpit_eye = {0, 40, 0}}})))
+    expect("interior path may not leave the mod", (fails_with("leaves the mod's folder", car.tune, car, {view = {interior = "../x.obj"}})))
+    expect("an open car has no interior", (fails_with("view.interior: an open car", car.tune, car,
+      {view = {open = true, interior = "x.obj"}})))
     local def = vehicle.definition("base:hatchback")
+    expect("definition gives the cameras' view", def.view.hood_eye[3] > 0 and def.view.open == false)
     expect("definition has every field", math.abs(def.axles[2].suspension.frequency - 1.6) < 1e-6 and def.engine.max_rpm == 6800)
     -- Part throttle: the kart pulls without wheelspin (a spinning tyre keeps
     -- pushing at sliding friction whatever the engine does).
