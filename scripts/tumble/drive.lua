@@ -175,9 +175,12 @@ function Player:update(dt)
   local throttle, brake = input.value("throttle"), input.value("brake")
   local controls = {throttle = throttle, brake = brake, steer = input.value("steer"),
                     handbrake = input.value("handbrake")}
-  -- Brake at standstill means reverse, as in most driving games.
+  -- Brake at standstill means reverse, as in most driving games. In
+  -- reverse the pedals swap: brake drives backwards and throttle brakes
+  -- until the car is nearly stopped, when the gearbox takes first gear
+  -- again (throttle in reverse gear must never speed the car backwards).
   local reverse = brake > 0.1 and throttle < 0.1 and car:speed() < 0.5
-  if reverse or car:controls().gear == -1 and brake > 0.1 then
+  if reverse or car:controls().gear == -1 then
     controls.throttle, controls.brake = brake, throttle
   end
   controls.throttle = self.traction:filter(dt, controls.throttle)

@@ -73,6 +73,23 @@ TEST(PlayEvents, HoldingThrottleDrivesTheCarAndSteeringTurnsIt) {
   EXPECT_LT(idle.report["vehicle"]["distance_m"].get<double>(), 5.0) << idle.report["vehicle"].dump(2);
 }
 
+// S at a standstill reverses; W then brakes the backwards roll and drives
+// forward again, as in driving games. Found playing: W held in reverse gear
+// drove the car backwards at 55 km/h. On the time trial's flat floor.
+TEST(PlayEvents, ThrottleAfterReversingBrakesThenDrivesForward) {
+  const std::string dir = outDir("play_events_reverse");
+  const std::string ref = "base:time_trial --set car=base:hatchback";
+  auto back = play(dir, "back", ref, 120, "0 down key:S\n");
+  ASSERT_EQ(back.process.exitCode, 0) << back.process.output;
+  EXPECT_LT(back.report["vehicle"]["speed_kmh"].get<double>(), -5.0) << "S held 2 s reverses: " << back.report["vehicle"].dump(2);
+  EXPECT_EQ(back.report["hud"]["gear"], "R");
+  auto forward = play(dir, "forward", ref, 360, "0 down key:S\n120 up key:S\n120 down key:W\n");
+  ASSERT_EQ(forward.process.exitCode, 0) << forward.process.output;
+  const auto& car = forward.report["vehicle"];
+  EXPECT_GT(car["speed_kmh"].get<double>(), 10.0) << "4 s of W after reversing drives forward: " << car.dump(2);
+  EXPECT_NE(forward.report["hud"]["gear"], "R");
+}
+
 TEST(PlayEvents, EscapeOpensThePauseMenuAndTheLoopGoesOn) {
   const std::string dir = outDir("play_events_pause");
   auto paused = play(dir, "paused", "base:drive", 120, "30 down key:Escape\n31 up key:Escape\n");
