@@ -44,7 +44,10 @@ return {
       local px, pz = -dz / len * 6, dx / len * 6
       post(g[1] - px, g[2] - pz, color)
       post(g[1] + px, g[2] + pz, color)
-      trigger.box{center = {g[1], 1, g[2]}, size = {9, 3, 9}, on_enter = function(body)
+      -- The trigger spans the whole opening between the posts (a car that
+      -- passes between them passes the gate), and at least 9 m each way.
+      local sx, sz = math.max(2 * math.abs(px), 9), math.max(2 * math.abs(pz), 9)
+      trigger.box{center = {g[1], 1, g[2]}, size = {sx, 3, sz}, on_enter = function(body)
         if finished or not car or body ~= car:body() or i ~= next_gate then return end
         next_gate = next_gate + 1
         if next_gate > #gates then
