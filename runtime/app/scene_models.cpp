@@ -1,7 +1,12 @@
 #include "app/scene_models.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "app/scene.h"
 #include "core/log.h"
+#include "core/math.h"
+#include "vehicle/vehicle_system.h"
 
 namespace tumble::app {
 
@@ -113,6 +118,9 @@ void CameraDirector::update(Scene& scene, double alpha, float frameDt_s, render:
     if (auto mode = render::cameraModeFromName(request.mode)) camera.mode = *mode;
     m_target = request.target;
     m_interior = request.interiorFile;
+    m_speedGauge_m = request.speedGauge_m;
+    m_rpmGauge_m = request.rpmGauge_m;
+    m_gaugeRadius_m = request.gaugeRadius_m;
     render::CameraRigSettings s;  // defaults, then what the script gave
     if (request.offset_m) s.chaseOffset_m = request.offset_m->cast<float>();
     if (request.lookAt_m) s.chaseLookAt_m = request.lookAt_m->cast<float>();
@@ -146,6 +154,43 @@ void CameraDirector::decorate(const Scene& scene, double alpha, const render::Ca
   interior.position = pose->position_m + pose->orientation * m_rig.settings.cockpitEye_m;
   interior.orientation = pose->orientation;
   frame.models.push_back(interior);
+  if (!m_speedGauge_m && !m_rpmGauge_m) return;
+  // The dials read the vehicle whose chassis the camera follows.
+  const vehicle::VehicleSystem* vehicles = scene.vehiclesIfAny();
+  if (!vehicles) return;
+  std::optional<vehicle::VehicleTelemetry> t;
+  Real maxRpm = 0;
+  vehicles->forEach([&](vehicle::VehicleId id) {
+    if (vehicles->chassis(id) != *m_target) return;
+    t = vehicles->telemetry(id);
+    maxRpm = vehicles->def(id).engine.maxRpm;
+  });
+  if (!t) return;
+  // A dark dial facing the driver and a needle from its centre: 270 degrees
+  // from lower left (zero) through the top to lower right (full scale), as
+  // the driver sees it (+X is the driver's left).
+  const float r = float(m_gaugeRadius_m);
+  auto dial = [&](const Vec3& centre_m, double fraction) {
+    const double angle = (-135.0 + 270.0 * std::clamp(fraction, 0.0, 1.0)) * kPi / 180.0;
+    const Eigen::Quaternionf spin(Eigen::AngleAxisf(float(angle), Eigen::Vector3f::UnitZ()));
+    render::DrawShape face;
+    face.position = interior.position + pose->orientation * (centre_m.cast<float>() - Eigen::Vector3f(0, 0, 0.004f));
+    face.orientation = pose->orientation;
+    face.halfExtents = {r, r, 0.002f};
+    face.color = {0.03f, 0.03f, 0.035f};
+    frame.shapes.push_back(face);
+    render::DrawShape needle;
+    const Eigen::Vector3f along = spin * Eigen::Vector3f(0, 0.45f * r, 0);
+    needle.position =
+        interior.position + pose->orientation * (centre_m.cast<float>() + along - Eigen::Vector3f(0, 0, 0.008f));
+    needle.orientation = pose->orientation * spin;
+    needle.halfExtents = {0.06f * r, 0.45f * r, 0.002f};
+    needle.color = {1.0f, 0.42f, 0.05f};
+    frame.shapes.push_back(needle);
+  };
+  constexpr double kFullScale_mps = 200.0 / 3.6;  // the speedometer's 200 km/h
+  if (m_speedGauge_m) dial(*m_speedGauge_m, std::abs(double(t->speed_mps)) / kFullScale_mps);
+  if (m_rpmGauge_m && maxRpm > 0) dial(*m_rpmGauge_m, double(t->rpm) / double(maxRpm));
 }
 
 }  // namespace tumble::app

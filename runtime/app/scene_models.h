@@ -70,7 +70,8 @@ class CameraDirector {
   /// hidden from the next snapshot (the eye is inside it) and decorate()
   /// draws the interior instead.
   void update(Scene& scene, double alpha, float frameDt_s, render::Camera& camera);
-  /// Adds the cockpit interior to `frame` in Cockpit mode.
+  /// Adds the cockpit interior to `frame` in Cockpit mode, with its dials'
+  /// needles at the followed vehicle's speed and rpm.
   void decorate(const Scene& scene, double alpha, const render::Camera& camera, render::FrameSnapshot& frame) const;
   /// True once a scenario named a body to follow.
   bool hasTarget() const { return m_target.has_value(); }
@@ -80,6 +81,8 @@ class CameraDirector {
   std::uint64_t m_revision = 0;
   std::optional<physics::BodyId> m_target;
   std::string m_interior;
+  std::optional<Vec3> m_speedGauge_m, m_rpmGauge_m;  // interior frame
+  Real m_gaugeRadius_m = Real(0.05);
 };
 
 }  // namespace tumble::app

@@ -31,6 +31,9 @@ const std::set<std::string> kModes = {"orbit", "follow", "chase", "hood", "cockp
 /// @field hood_eye? Vec3Arg hood: eye position in the target's frame, m (wins over eye for the hood view, so one call can place both)
 /// @field distance? number orbit / follow: distance of the eye from the target, m
 /// @field interior? string cockpit: interior model ("MOD:path"), drawn with the body; placed at the eye
+/// @field speed_gauge? Vec3Arg cockpit: centre of a speedometer dial in the interior's frame (origin at the eye, +Z forward), m; its needle sweeps 270 degrees for 0..200 km/h of the followed vehicle
+/// @field rpm_gauge? Vec3Arg cockpit: centre of a rev counter dial, as speed_gauge; 0 to the vehicle's max_rpm
+/// @field gauge_radius? number cockpit: dial radius, m (default 0.05; 0.01..0.5)
 
 /// @function camera.set_mode
 /// Switches the camera. Options not given keep the mode's defaults.
@@ -50,7 +53,8 @@ int cameraSetMode(lua_State* L) {
   r.mode = lua_tostring(L, 1);
   if (!lua_isnoneornil(L, 2)) {
     if (!lua_istable(L, 2)) throw LuaArgError(std::string(fn) + ": options must be a table {target = body, ...}");
-    checkFields(L, 2, fn, {"target", "offset", "look_at", "stiffness", "eye", "hood_eye", "distance", "interior"});
+    checkFields(L, 2, fn, {"target", "offset", "look_at", "stiffness", "eye", "hood_eye", "distance", "interior",
+                           "speed_gauge", "rpm_gauge", "gauge_radius"});
     try {
       if (rawGetField(L, 2, "target") != LUA_TNIL) r.target = checkBody(L, -1);
       lua_pop(L, 1);
@@ -59,6 +63,14 @@ int cameraSetMode(lua_State* L) {
       if (optVec3Field(L, 2, "look_at", &v)) r.lookAt_m = v;
       if (optVec3Field(L, 2, "eye", &v)) r.eye_m = v;
       if (optVec3Field(L, 2, "hood_eye", &v)) r.hoodEye_m = v;
+      if (optVec3Field(L, 2, "speed_gauge", &v)) r.speedGauge_m = v;
+      if (optVec3Field(L, 2, "rpm_gauge", &v)) r.rpmGauge_m = v;
+      if (rawGetField(L, 2, "gauge_radius") != LUA_TNIL) {
+        const double g = checkNumber(L, -1, "option 'gauge_radius'");
+        if (!(g >= 0.01 && g <= 0.5)) throw LuaArgError("option 'gauge_radius' must be 0.01..0.5 m");
+        r.gaugeRadius_m = Real(g);
+      }
+      lua_pop(L, 1);
       if (rawGetField(L, 2, "stiffness") != LUA_TNIL) {
         const double k = checkNumber(L, -1, "option 'stiffness'");
         if (!(k > 0)) throw LuaArgError("option 'stiffness' must be > 0 (1/s)");

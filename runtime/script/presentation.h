@@ -64,6 +64,11 @@ struct CameraRequest {
   std::optional<Real> stiffness_per_s; ///< chase: spring rate (critically damped)
   std::optional<Real> distance_m;      ///< orbit / follow: distance from the target
   std::string interiorFile;            ///< cockpit: absolute path of the interior model ("" none)
+  /// cockpit: centres of the speed and rpm dials in the interior's frame
+  /// (origin at the eye, +Z forward), faces towards the driver; drawn with
+  /// needles that follow the followed vehicle's telemetry.
+  std::optional<Vec3> speedGauge_m, rpmGauge_m;
+  Real gaugeRadius_m = Real(0.05);     ///< cockpit: dial radius, m
   std::uint64_t revision = 0;          ///< bumped by every camera.set_mode
 };
 

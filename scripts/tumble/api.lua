@@ -151,6 +151,9 @@ function Body:clear_model() end
 ---@field hood_eye? Vec3Arg hood: eye position in the target's frame, m (wins over eye for the hood view, so one call can place both)
 ---@field distance? number orbit / follow: distance of the eye from the target, m
 ---@field interior? string cockpit: interior model ("MOD:path"), drawn with the body; placed at the eye
+---@field speed_gauge? Vec3Arg cockpit: centre of a speedometer dial in the interior's frame (origin at the eye, +Z forward), m; its needle sweeps 270 degrees for 0..200 km/h of the followed vehicle
+---@field rpm_gauge? Vec3Arg cockpit: centre of a rev counter dial, as speed_gauge; 0 to the vehicle's max_rpm
+---@field gauge_radius? number cockpit: dial radius, m (default 0.05; 0.01..0.5)
 
 ---@class RopeDef
 ---@field from Vec3Arg first particle (m)

@@ -343,10 +343,13 @@ function drive.show(car, opts)
       opts.interior = mod and (mod .. ":" .. view.interior) or view.interior
       camera.set_mode(mode, opts)
     else
-      -- The base mod's generic interior; without the base mod, none.
+      -- The base mod's generic interior, with its two dials on the face of
+      -- the dashboard under the instrument hood (in the interior's frame:
+      -- origin at the eye; the face is at z 0.58 m); without the base mod, none.
       opts.interior = "base:assets/models/cockpit.obj"
+      opts.speed_gauge, opts.rpm_gauge, opts.gauge_radius = {0.075, -0.25, 0.578}, {-0.075, -0.25, 0.578}, 0.045
       if not pcall(camera.set_mode, mode, opts) then
-        opts.interior = nil
+        opts.interior, opts.speed_gauge, opts.rpm_gauge, opts.gauge_radius = nil, nil, nil, nil
         camera.set_mode(mode, opts)
       end
     end

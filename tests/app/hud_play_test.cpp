@@ -365,3 +365,75 @@ TEST(HudPlay, TheCameraKeyGivesEachCarItsHoodAndCockpitViews) {
 
 }  // namespace
 }  // namespace tumble::test
+
+namespace tumble::test {
+namespace {
+
+// The orange needle's pixels in a region: their centroid and main direction.
+struct Needle {
+  int pixels = 0;
+  double cx = 0, cy = 0;  // centroid, px
+  double dx = 0, dy = 0;  // unit direction of the pixel cloud's long axis
+};
+Needle needleIn(const Picture& p, double x0, double y0, double x1, double y1) {
+  std::vector<std::pair<double, double>> pts;
+  for (int y = int(y0 * p.h); y < int(y1 * p.h); ++y)
+    for (int x = int(x0 * p.w); x < int(x1 * p.w); ++x) {
+      const unsigned char* c = &p.rgb[(std::size_t(y) * std::size_t(p.w) + std::size_t(x)) * 3];
+      // The lit orange needle (measured about 133, 92, 38 in the showroom's light).
+      if (c[0] > 90 && c[0] > c[1] + 20 && c[1] > c[2] + 25 && c[2] < 80) pts.emplace_back(x, y);
+    }
+  Needle n;
+  n.pixels = int(pts.size());
+  if (pts.empty()) return n;
+  for (auto [x, y] : pts) n.cx += x, n.cy += y;
+  n.cx /= n.pixels, n.cy /= n.pixels;
+  double sxx = 0, sxy = 0, syy = 0;
+  for (auto [x, y] : pts) sxx += (x - n.cx) * (x - n.cx), sxy += (x - n.cx) * (y - n.cy), syy += (y - n.cy) * (y - n.cy);
+  const double a = 0.5 * std::atan2(2 * sxy, sxx - syy);
+  n.dx = std::cos(a), n.dy = std::sin(a);
+  return n;
+}
+
+// The cockpit's speedometer needle turns with the car's speed, as the player
+// sees it: at rest it points to the lower left (zero); after driving it has
+// turned clockwise by the speed's share of the dial's 270 degrees for
+// 200 km/h. The needle's pivot is where the two pictures' needle lines cross.
+TEST(HudPlay, TheCockpitSpeedometerNeedleFollowsTheSpeed) {
+  const std::string dir = outDir("hud_play_gauges");
+  const std::string size = "--width 640 --height 360";
+  const std::string ref = "base:showroom";
+  const std::string cockpit = "2 down key:H\n3 up key:H\n10 down key:C\n11 up key:C\n14 down key:C\n15 up key:C\n";
+  auto rest = play(dir, "rest", ref, 40, cockpit, size, "--screenshot " + dir + "/rest.png");
+  auto moving = play(dir, "moving", ref, 200, cockpit + "20 down key:W\n", size, "--screenshot " + dir + "/moving.png");
+  ASSERT_EQ(rest.process.exitCode, 0) << rest.process.output;
+  ASSERT_EQ(moving.process.exitCode, 0) << moving.process.output;
+  ASSERT_EQ(moving.report["camera"], "cockpit");
+  const double speed_kmh = moving.report["vehicle"]["speed_kmh"].get<double>();
+  ASSERT_GT(speed_kmh, 20.0) << moving.report["vehicle"].dump(2);
+  ASSERT_LT(std::fabs(rest.report["vehicle"]["speed_kmh"].get<double>()), 1.0);
+  const Picture a = load(dir + "/rest.png"), b = load(dir + "/moving.png");
+  ASSERT_EQ(a.w, 640);
+  // The speedometer is the dial on the driver's left (screen left of centre).
+  const Needle n0 = needleIn(a, 0.3, 0.6, 0.5, 1.0), n1 = needleIn(b, 0.3, 0.6, 0.5, 1.0);
+  ASSERT_GT(n0.pixels, 10) << "a needle is drawn at rest";
+  ASSERT_GT(n1.pixels, 10) << "a needle is drawn while driving";
+  // Pivot: where the lines through the two needles cross.
+  const double det = n0.dx * (-n1.dy) - n0.dy * (-n1.dx);
+  ASSERT_GT(std::fabs(det), 0.3) << "the needle turned";
+  const double s = ((n1.cx - n0.cx) * (-n1.dy) - (n1.cy - n0.cy) * (-n1.dx)) / det;
+  const double px = n0.cx + s * n0.dx, py = n0.cy + s * n0.dy;
+  // Angles on screen (x right, y down), clockwise positive as the driver sees it.
+  const double a0 = std::atan2(n0.cy - py, n0.cx - px), a1 = std::atan2(n1.cy - py, n1.cx - px);
+  EXPECT_LT(n0.cx - px, 0) << "at rest the needle points left of its pivot";
+  EXPECT_GT(n0.cy - py, 0) << "and down: zero is at the lower left";
+  double turned = (a1 - a0) * 180 / 3.14159265358979;
+  while (turned < 0) turned += 360;
+  const double expected = 270.0 * speed_kmh / 200.0;
+  RecordProperty("needle_turned_deg", std::to_string(turned));
+  RecordProperty("speed_kmh", std::to_string(speed_kmh));
+  EXPECT_NEAR(turned, expected, 8.0) << "speed " << speed_kmh << " km/h";
+}
+
+}  // namespace
+}  // namespace tumble::test

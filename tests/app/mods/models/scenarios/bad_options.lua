@@ -21,6 +21,10 @@ return {duration = 0.1, on_start = function()
   fails("unknown camera mode", function() camera.set_mode("helicopter") end, "mode must be \"orbit\"")
   fails("bad interior", function() camera.set_mode("cockpit", {target = crate, interior = M .. "nothing.obj"}) end,
         "option 'interior'")
+  fails("huge gauge", function() camera.set_mode("cockpit", {target = crate, gauge_radius = 5}) end,
+        "option 'gauge_radius' must be 0.01..0.5 m")
+  fails("NaN gauge centre", function() camera.set_mode("cockpit", {target = crate, speed_gauge = {0, 0 / 0, 1}}) end,
+        "speed_gauge")
   -- And the good calls work: a model on the crate, then cleared.
   crate:set_model(M .. "barrier.obj", {offset = {0, -0.4, 0}, rotation = {0, 0.5, 0}, scale = {1, 1, 2}})
   expect("clear_model reports the model it removed", crate:clear_model())
