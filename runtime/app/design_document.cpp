@@ -186,6 +186,13 @@ struct DesignDocument::State {
     changed.include(r);
     if (!r.empty()) ++revision;
   }
+  /// Puts every object and the start back on the ground after the heights
+  /// changed (a brush, a line, undo, redo): their y is the terrain's at
+  /// their (x, z), never a height the ground has left.
+  void resnap() {
+    for (auto& [id, o] : meta.objects) o.position_m.y() = terrain->heightAt(o.position_m.x(), o.position_m.z());
+    meta.start.position_m.y() = terrain->heightAt(meta.start.position_m.x(), meta.start.position_m.z());
+  }
 };
 
 void DesignDocument::State::end() {
@@ -424,6 +431,7 @@ SampleRect DesignDocument::dab(const Brush& brush, double x, double z, double dt
   m->saveHeightTiles(terrain::samplesInRadius(*m->terrain, x, z, brush.radius_m));
   const SampleRect r = terrain::applyBrush(*m->terrain, brush, x, z, dt, m->scratch);
   m->touched(r);
+  if (!r.empty()) m->resnap();
   if (implicit) m->end();
   return r;
 }
@@ -437,6 +445,7 @@ SampleRect DesignDocument::line(bool ridge, Vec2 from, Vec2 to, double width, do
   m->saveHeightTiles(area);  // the box around both end discs holds the whole band
   const SampleRect r = terrain::applyLine(*m->terrain, ridge, from.x(), from.y(), to.x(), to.y(), width, height);
   m->touched(r);
+  if (!r.empty()) m->resnap();
   if (implicit) m->end();
   return r;
 }
@@ -549,6 +558,7 @@ bool DesignDocument::undo() {
   m->applyHeights(step.heights, true);
   m->applyMaterials(step.materials, true);
   if (step.metaBefore) m->meta = *step.metaBefore;
+  if (!step.heights.empty()) m->resnap();
   m->redo.push_back(std::move(step));
   ++m->revision;
   return true;
@@ -562,6 +572,7 @@ bool DesignDocument::redo() {
   m->applyHeights(step.heights, false);
   m->applyMaterials(step.materials, false);
   if (step.metaAfter) m->meta = *step.metaAfter;
+  if (!step.heights.empty()) m->resnap();
   m->undo.push_back(std::move(step));
   ++m->revision;
   return true;

@@ -423,6 +423,35 @@ TEST(DesignObjects, PlacedOnTheGroundMovedDuplicatedRemoved) {
   EXPECT_DOUBLE_EQ(d.start().heading_rad, 1.0);
 }
 
+// Objects and the start stay on the ground when it is brushed or cut under
+// them later, and undo and redo put them back with the ground.
+TEST(DesignObjects, ObjectsAndTheStartFollowTheGroundBrushedUnderThem) {
+  DesignDocument d = flatDoc(129, 1.0, 10.0);
+  PlacedObject tree;
+  tree.kind = PlacedKind::Model;
+  tree.asset = "base:assets/models/tree.obj";
+  tree.position_m = Vec3(20, 0, 20);
+  const std::uint32_t id = d.addObject(tree);
+  ASSERT_NE(id, 0u);
+  d.setStart(Vec3(-30, 0, 0), 0.0);
+  Brush b;
+  b.radius_m = 10;
+  b.falloff = 0;
+  b.strength_m_per_s = 5;
+  d.dab(b, 20, 20, 1);  // a 5 m plateau under the tree
+  EXPECT_NEAR(d.objects().at(id).position_m.y(), d.groundHeight_m(20, 20), 1e-4);
+  EXPECT_NEAR(d.objects().at(id).position_m.y(), 15.0, 2e-3);
+  d.line(false, Vec2(-40, 0), Vec2(-20, 0), 6, 2);  // a 2 m ditch along the start
+  EXPECT_NEAR(d.start().position_m.y(), d.groundHeight_m(-30, 0), 1e-4);
+  EXPECT_LT(d.start().position_m.y(), 9.0);
+  ASSERT_TRUE(d.undo());
+  EXPECT_NEAR(d.start().position_m.y(), 10.0, 2e-3) << "the ditch undone";
+  ASSERT_TRUE(d.undo());
+  EXPECT_NEAR(d.objects().at(id).position_m.y(), 10.0, 2e-3) << "the plateau undone";
+  ASSERT_TRUE(d.redo());
+  EXPECT_NEAR(d.objects().at(id).position_m.y(), 15.0, 2e-3) << "the plateau again";
+}
+
 // ---- undo ------------------------------------------------------------------------------------
 
 TEST(DesignUndo, EveryEditUndoesAndRedoesBitIdentically) {
