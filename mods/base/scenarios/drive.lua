@@ -50,6 +50,7 @@ return {
     speed = {default = 16, unit = "m/s", description = "the autopilot's cruising speed"},
     grip = {default = 1, description = "scales the tyre's friction curves (peak and sliding friction), a ratio"},
     spring_rate = {default = 1, description = "scales every axle's suspension spring rate, a ratio"},
+    camera = {default = "chase", description = "the view to start in: chase, hood or cockpit (C steps through them)"},
   },
 
   on_start = function(ctx)
@@ -94,7 +95,7 @@ return {
       player = drive.player(car)
     end
     effects = drive.effects(car)
-    drive.show(car)
+    drive.show(car, {camera = param("camera")})
     start = car:position()
     last = start
   end,
