@@ -71,6 +71,63 @@
 // step time, boxes_3000 0.67x (penetration 0.40 vs 0.65 m), highspeed_1000
 // 0.68x with no escapes.
 //
+// Normal blocks (2026-11-26). A 100 kg box on a column of ten 1 kg boxes
+// swayed until the column fell (sleep off, 13 m of drift in 60 s), and an
+// 8-box column alternating 1 kg and 100 kg drifted 30 mm: the rows of one
+// face contact (3 or 4 points, one body pair) were solved one after the
+// other, once per sweep; each row undoes part of the others, and what the
+// rows leave between them is a torque on the light box (its inertia is 1/100
+// of the heavy box's) that rocks it. Sweeping a manifold's rows until they
+// agree (at most 8 sweeps, 1e-4 relative) made these stacks stand but cost
+// 1.7x on boxes_3000_stacked, where every box has two face manifolds and
+// square faces converge slowly under Gauss-Seidel whatever the masses (K of
+// two equal cubes is (1/mA + 1/mB) times a matrix of geometry alone).
+// Instead each face manifold's normal rows are solved as one block, exactly:
+//   K = J M^-1 J^T (N x N, N points). Each row is n . (vB - vA) plus
+//   (rB x n) . wB - (rA x n) . wA, and r x n is affine in the point's
+//   coordinates in the contact plane, so K = P G P^T with P = [1, u, v]
+//   (N x 3; the points' coordinates from their centroid along the principal
+//   axes of their spread) and G (3 x 3) the pair's response to a force and
+//   two moments. For four coplanar points K has rank 3 and no inverse (this
+//   is why Box2D v2's two-point block solver does not carry over), but
+//   K^+ = P^+T G^-1 P^+ is its pseudo-inverse, built once per step in
+//   prepareNormalBlock (double).
+//   Solve: r = vn + bias (the speculative bias sep / h of separated points),
+//   lambda' = lambda - K^+ r. Accepted when it is a solution of the
+//   complementarity problem with every point pushing: no pull (lambda' >= 0)
+//   and r in K's range (r's part along K's null vector, the twist t with
+//   P^T t = 0, is round-off: under 1e-3 of |r|; a larger part means a point
+//   must let go). If some lambda' < 0, the distribution is moved along the
+//   twist, which changes no velocity, to the nearest one without pull.
+//   Otherwise (a box tipping onto an edge, curved or uneven points) the
+//   rows are swept one by one as before.
+// The block is applied to manifolds of 3 and 4 points (faces). Two-point
+// manifolds (edges, capsules lying on something) are rank 2 and K is
+// invertible, so the block would be Box2D's two-point solver; measured
+// with it, the Lagrange rag-doll pile (Ragdoll.TenPiledUnderTheLagrangeSolver
+// StayTogether, 10 dolls, 8 s) opened its joints by 13.5 cm against its
+// 10 cm bound (4.3 cm before), and at dt 1/30 twisted hinges 109 degrees
+// off their axis (49 before): so two-point manifolds keep the sweep.
+// Measured (tests/physics/mass_ratio_test.cpp, 60 s, sleep off, largest
+// sideways drift of any box; tumble_compare boxes_3000_stacked, old and new
+// binary alternating in one run window, median CPU time per step):
+//   stack                              rows one by one   face blocks
+//   100 kg on ten 1 kg boxes           fell (13.3 m)       0.36 mm
+//   10 kg on ten 1 kg boxes            3.1 mm              0.00 mm
+//   1 kg on ten 100 kg boxes           1.6 mm              0.02 mm
+//   alternating 1 / 10 kg, 8 boxes     52 mm               0.02 mm
+//   alternating 1 / 100 kg, 8 boxes    30 mm               0.02 mm
+//   pyramid of 5, top 2 rows 100 kg    1.1 mm              0.89 mm
+//   1000 kg on one 1 kg box            31 mm               0.19 mm
+//   pyramid of 5, top 2 rows 1000 kg   252 mm              29 mm
+//   1000 kg on ten 1 kg boxes          fell                fell
+//   alternating 1 / 1000 kg            fell                fell
+//   Ragdoll pile (lagrange)            4.3 cm              4.9 cm
+//   boxes_3000_stacked CPU per step    28.8, 25.7 ms       28.3, 27.5 ms (1.02x)
+//   boxes_3000_stacked drift, penetr.  306 mm, 1.7 mm      196 mm, 1.0 mm
+// At 1:1000 the light boxes of a column still tip over: the sweeps over
+// manifolds (Gauss-Seidel between the blocks) do not carry a 1000 kg load
+// through ten 1 kg boxes in 4 iterations.
 // Data layout (after measuring the first version: solveContacts 36%,
 // applyImpulse 21%, relativeVelocity 7% of a pyramid_20 run, Bullet's solver
 // loop 4%): the substeps read a compact array of body velocities (gathered
@@ -137,6 +194,9 @@
 #include "physics/internal/contact_solver.h"
 
 #include <algorithm>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
 
 #include "physics/internal/height_field_collision.h"
 #include "physics/internal/narrow_phase.h"
@@ -145,6 +205,17 @@ namespace tumble::physics {
 namespace {
 
 bool takesImpulses(const Body& b) { return b.isDynamic() && b.awake; }
+
+// Normal blocks (see the top of this file): numerical limits, not tuning.
+// Points closer than a micrometre (squared spread per point, m^2) count as
+// one; a spread whose minor axis is under 1/1000 of its major in length is
+// a line; a G whose eigenvalues span more than 1e9 is singular (double);
+// r may have a part along K's null space of 1e-3 of its size (float
+// round-off of rows summed over bodies 1000x apart in mass).
+constexpr double kBlockCoincident_m2 = 1e-12;
+constexpr double kBlockCollinear = 1e-6;
+constexpr double kBlockSingular = 1e-9;
+constexpr Real kBlockConsistency = Real(1e-3);
 
 /// Coulomb's cone: scales the tangential impulse (l0, l1) back onto the
 /// circle of radius maxF (friction x normal impulse) when it lies outside.
@@ -179,6 +250,7 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
   m_constraints.clear();
   m_points.clear();
   m_rolling.clear();
+  m_blocks.clear();
   m_roundOffset.clear();
   m_external.clear();
   const Mat3 zero = Mat3::Zero();
@@ -282,11 +354,94 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
       c.rolling = std::int32_t(m_rolling.size());
       m_rolling.push_back(r);
     }
+    // Round children off the centre of mass turn their levers every
+    // substep, which a block built once per step would not follow.
+    if (m.count >= 3 && !c.roundOffsetA && !c.roundOffsetB) prepareNormalBlock(c, m);
     if (!c.movesA || !c.movesB) m_external.push_back(std::uint32_t(m_constraints.size()));
     if (c.roundOffsetA || c.roundOffsetB)
       m_roundOffset.push_back({std::uint32_t(m_constraints.size()), IA, IB, radiusA, radiusB});
     m_constraints.push_back(c);
   }
+}
+
+void ContactSolver::prepareNormalBlock(Constraint& c, const Manifold& m) {
+  // See "Normal blocks" at the top of this file. In double: K of a light box
+  // under a heavy one mixes terms 1000x apart. Fixed 4 x 4 sizes, the rows
+  // and columns past the manifold's points zero.
+  const int count = m.count;
+  const ConstraintPoint* pts = &m_points[c.firstPoint];
+  const double mass = double(c.invMassA) + double(c.invMassB);
+  Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
+  for (int i = 0; i < count; ++i)
+    for (int j = 0; j < count; ++j)
+      K(i, j) = mass + narrow(pts[i].rnA).cast<double>().dot(narrow(pts[j].inA).cast<double>()) +
+                narrow(pts[i].rnB).cast<double>().dot(narrow(pts[j].inB).cast<double>());
+  // The points' coordinates in the contact plane, from their centroid, along
+  // the principal axes of their spread.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int i = 0; i < count; ++i) centroid += m.points[i].point_m.cast<double>();
+  centroid /= count;
+  const Eigen::Vector3d t0 = narrow(c.tangent[0]).cast<double>(), t1 = narrow(c.tangent[1]).cast<double>();
+  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d uv[kMaxManifoldPoints];
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = m.points[i].point_m.cast<double>() - centroid;
+    uv[i] = Eigen::Vector2d(d.dot(t0), d.dot(t1));
+    spread += uv[i] * uv[i].transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes;
+  axes.computeDirect(spread);
+  const double major = axes.eigenvalues()(1), minor = axes.eigenvalues()(0);
+  // Points that coincide (to a micrometre) give one row: nothing to block.
+  if (!(major > count * kBlockCoincident_m2)) return;
+  const int rank = minor > kBlockCollinear * major ? 3 : 2;
+  // A null space of more than one dimension (four points on a line) is
+  // left to the sweep.
+  if (count - rank > 1) return;
+  // P: K = P G P^T with P = [1, coordinates]; P^T P is diagonal (N, major,
+  // minor), so P^+ = (P^T P)^-1 P^T is P's columns over those.
+  Eigen::Matrix<double, 4, 3> P = Eigen::Matrix<double, 4, 3>::Zero();
+  for (int i = 0; i < count; ++i) {
+    P(i, 0) = 1;
+    P(i, 1) = uv[i].dot(axes.eigenvectors().col(1));
+    if (rank == 3) P(i, 2) = uv[i].dot(axes.eigenvectors().col(0));
+  }
+  const double diag[3] = {double(count), major, minor};
+  Eigen::Matrix<double, 3, 4> Pplus = Eigen::Matrix<double, 3, 4>::Zero();
+  for (int k = 0; k < rank; ++k) Pplus.row(k) = P.col(k).transpose() / diag[k];
+  Eigen::Matrix3d G = Pplus * K * Pplus.transpose();
+  // A body that cannot turn about some axis (zero inverse inertia) leaves G
+  // singular: no block.
+  Eigen::Vector3d gl;
+  if (rank == 3) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e;
+    e.computeDirect(G, Eigen::EigenvaluesOnly);
+    gl = e.eigenvalues();
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> e;
+    e.computeDirect(G.topLeftCorner<2, 2>().eval(), Eigen::EigenvaluesOnly);
+    gl = Eigen::Vector3d(e.eigenvalues()(0), e.eigenvalues()(1), 0);
+  }
+  if (!(gl(0) > kBlockSingular * gl(rank - 1))) return;
+  Eigen::Matrix3d Ginv = Eigen::Matrix3d::Zero();
+  if (rank == 3) Ginv = G.inverse();
+  else Ginv.topLeftCorner<2, 2>() = G.topLeftCorner<2, 2>().inverse();
+  const Eigen::Matrix4d Kplus = Pplus.transpose() * Ginv * Pplus;
+  NormalBlock b;
+  for (int i = 0; i < count; ++i)
+    for (int j = 0; j < count; ++j) b.invK[i][j] = Real(Kplus(i, j));
+  if (count > rank) {
+    // The twist: the column of I - P P^+ (the projector on K's null space)
+    // with the largest norm, normalised.
+    const Eigen::Matrix4d Q = Eigen::Matrix4d::Identity() - P * Pplus;
+    int best = 0;
+    for (int j = 1; j < count; ++j)
+      if (Q.col(j).head(count).squaredNorm() > Q.col(best).head(count).squaredNorm()) best = j;
+    const double len = Q.col(best).head(count).norm();
+    for (int i = 0; i < count; ++i) b.twist[i] = Real(Q(i, best) / len);
+  }
+  c.block = std::int32_t(m_blocks.size());
+  m_blocks.push_back(b);
 }
 
 void ContactSolver::warmStart(std::vector<SolverVelocity>& vel) const {
@@ -438,6 +593,63 @@ inline Real rowDotFixed(const Vec4r& n, const Vec4r& vA, const Vec4r& vB, const 
 }  // namespace
 
 template <int kFixedSide>
+bool ContactSolver::solveNormalBlock(const Constraint& c, Vec4r& vA, Vec4r& wA, Vec4r& vB, Vec4r& wB, Real invH,
+                                     Real& residual) {
+  // See "Normal blocks" at the top of this file: lambda' = lambda - K^+ r,
+  // accepted when it is a solution (no pull, r in K's range).
+  constexpr bool moveA = kFixedSide != 1, moveB = kFixedSide != 2;
+  const NormalBlock& b = m_blocks[std::size_t(c.block)];
+  ConstraintPoint* pts = &m_points[c.firstPoint];
+  const int count = c.count;
+  const Vec4r n = c.normal;
+  Real r[kMaxManifoldPoints], lambda[kMaxManifoldPoints];
+  Real twistPart = 0, size2 = 0;
+  for (int i = 0; i < count; ++i) {
+    const ConstraintPoint& p = pts[i];
+    const Real vn = rowDotFixed<kFixedSide>(n, vA, vB, p.rnB, wB, p.rnA, wA);
+    r[i] = vn + (p.separation_m > 0 ? p.separation_m * invH : Real(0));
+    twistPart += b.twist[i] * r[i];
+    size2 += r[i] * r[i];
+  }
+  // The part of r along the twist is what no impulse on this manifold can
+  // change: beyond round-off, some point must let go, which the sweep finds.
+  if (twistPart * twistPart > kBlockConsistency * kBlockConsistency * size2) return false;
+  bool negative = false;
+  for (int i = 0; i < count; ++i) {
+    Real d = 0;
+    for (int j = 0; j < count; ++j) d += b.invK[i][j] * r[j];
+    lambda[i] = pts[i].normalImpulse - d;
+    negative = negative || lambda[i] < 0;
+  }
+  if (negative) {
+    // Move along the twist (which changes no velocity) to the nearest
+    // distribution without pull, if there is one.
+    Real lo = -std::numeric_limits<Real>::infinity(), hi = std::numeric_limits<Real>::infinity();
+    for (int i = 0; i < count; ++i) {
+      const Real t = b.twist[i];
+      if (t > 0) lo = std::max(lo, -lambda[i] / t);
+      else if (t < 0) hi = std::min(hi, -lambda[i] / t);
+      else if (lambda[i] < 0) return false;
+    }
+    if (!(lo <= hi)) return false;
+    const Real s = std::clamp<Real>(0, lo, hi);
+    for (int i = 0; i < count; ++i) lambda[i] = std::max<Real>(lambda[i] + s * b.twist[i], 0);
+  }
+  const Real mA = c.invMassA, mB = c.invMassB;
+  for (int i = 0; i < count; ++i) {
+    ConstraintPoint& p = pts[i];
+    const Real impulse = lambda[i] - p.normalImpulse;
+    p.normalImpulse = lambda[i];
+    p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
+    residual += impulse * impulse;
+    const Vec4r P = impulse * n;
+    if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
+    if constexpr (moveB) vB += mB * P, wB += impulse * p.inB;
+  }
+  return true;
+}
+
+template <int kFixedSide>
 void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVelocity>& vel,
                                     std::vector<SolverVelocity>& pseudo, const SweepConstants& k, Real& residual,
                                     Real& magnitude) {
@@ -452,7 +664,8 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
   ConstraintPoint* pts = &m_points[c.firstPoint];
   const int count = c.count;
   Real totalNormal = 0;
-  for (int i = 0; i < count; ++i) {
+  const bool blockSolved = c.block >= 0 && !k.soft && solveNormalBlock<kFixedSide>(c, vA, wA, vB, wB, k.invH, residual);
+  for (int i = 0; i < count && !blockSolved; ++i) {
     ConstraintPoint& p = pts[i];
     const Real sep = p.separation_m;
     Real bias = 0, massScale = 1, impulseScale = 0;
@@ -469,12 +682,14 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
     impulse = newImpulse - p.normalImpulse;
     p.normalImpulse = newImpulse;
     p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
-    totalNormal += newImpulse;
     residual += impulse * impulse;
-    magnitude += newImpulse * newImpulse;
     const Vec4r P = impulse * n;
     if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
     if constexpr (moveB) vB += mB * P, wB += impulse * p.inB;
+  }
+  for (int i = 0; i < count; ++i) {
+    totalNormal += pts[i].normalImpulse;
+    magnitude += pts[i].normalImpulse * pts[i].normalImpulse;
   }
   // Friction, clamped to the cone.
   const Vec4r t0 = c.tangent[0], t1 = c.tangent[1];

@@ -281,39 +281,47 @@ void cradle(std::vector<AccuracyRow>& rows) {
                   "1 % of the speed (asked of the contact solver)"));
 }
 
-void stacks(std::vector<AccuracyRow>& rows) {
-  for (double ratio : {10.0, 100.0, 1000.0}) {
-    for (bool heavyOnTop : {true, false}) {
-      World w;
-      addStatic(w, Shape::plane(), Vec3::Zero(), Quat::Identity(), Real(0.6));
-      const double light = 1, heavy = light * ratio;
-      const Shape box = Shape::box(Vec3::Constant(Real(0.5)));
-      addDynamic(w, box, Vec3(0, Real(0.5), 0), Real(heavyOnTop ? light : heavy));
-      const BodyId top = addDynamic(w, box, Vec3(0, Real(1.5), 0), Real(heavyOnTop ? heavy : light));
-      const Vec3 start = w.body(top).position_m;
-      simulate(w, 60);
-      const double moved = double((w.body(top).position_m - start).norm());
-      AccuracyRow row = makeRow("stack", std::string("two boxes, 1:") + fmt("%.0f", ratio) +
-                                   (heavyOnTop ? " heavy on light" : " light on heavy") + ": top moved in 60 s",
-                      "m", 0, moved, 0.01, "1 cm (asked of the contact solver)");
-      row.knownLimit = !row.pass();
-      if (row.knownLimit) row.note = "known limit of the contact solver at this mass ratio";
-      rows.push_back(row);
-    }
-  }
-  // A 100 kg box on a column of ten 1 kg boxes.
+/// The largest distance any box moved from its start in 60 s (bodies never
+/// sleep here: addDynamic), for one-metre boxes at `positions` with `masses`.
+double stackMoved(const std::vector<Vec3>& positions, const std::vector<double>& masses) {
   World w;
   addStatic(w, Shape::plane(), Vec3::Zero(), Quat::Identity(), Real(0.6));
   const Shape box = Shape::box(Vec3::Constant(Real(0.5)));
-  for (int i = 0; i < 10; ++i) addDynamic(w, box, Vec3(0, Real(0.5 + i), 0), 1);
-  const BodyId top = addDynamic(w, box, Vec3(0, Real(10.5), 0), 100);
-  const Vec3 start = w.body(top).position_m;
+  std::vector<BodyId> ids;
+  for (std::size_t i = 0; i < positions.size(); ++i) ids.push_back(addDynamic(w, box, positions[i], Real(masses[i])));
   simulate(w, 60);
-  AccuracyRow row = makeRow("stack", "100 kg on a column of ten 1 kg boxes: top moved in 60 s", "m", 0,
-                  double((w.body(top).position_m - start).norm()), 0.01, "1 cm (asked of the contact solver)");
-  row.knownLimit = !row.pass();
-  if (row.knownLimit) row.note = "known limit of the contact solver at this mass ratio";
-  rows.push_back(row);
+  double moved = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    moved = std::max(moved, double((w.body(ids[i]).position_m - positions[i]).norm()));
+  return moved;
+}
+
+// Mass ratios up to 1:100 must hold (tests/physics/mass_ratio_test.cpp
+// sweeps more shapes); 1:1000 is measured, and a row that misses the
+// bound there is shown as a known limit of the contact solver.
+void stacks(std::vector<AccuracyRow>& rows) {
+  for (double ratio : {10.0, 100.0, 1000.0}) {
+    const std::string r = std::string("1:") + fmt("%.0f", ratio);
+    auto add = [&](const std::string& what, const std::vector<Vec3>& positions, const std::vector<double>& masses) {
+      AccuracyRow row = makeRow("stack", what + ", " + r + ": largest move of a box in 60 s", "m", 0,
+                                stackMoved(positions, masses), 0.01, "1 cm (asked of the contact solver)");
+      if (ratio > 100 && !row.pass()) {
+        row.knownLimit = true;
+        row.note = "known limit of the contact solver at this mass ratio";
+      }
+      rows.push_back(row);
+    };
+    for (bool heavyOnTop : {true, false})
+      add(heavyOnTop ? "two boxes, heavy on light" : "two boxes, light on heavy", {Vec3(0, Real(0.5), 0), Vec3(0, Real(1.5), 0)},
+          {heavyOnTop ? 1 : ratio, heavyOnTop ? ratio : 1});
+    std::vector<Vec3> column;
+    for (int i = 0; i < 11; ++i) column.push_back(Vec3(0, Real(0.5 + i), 0));
+    std::vector<double> heavyOnTen(11, 1.0), lightOnTen(11, ratio);
+    heavyOnTen[10] = ratio;
+    lightOnTen[10] = 1;
+    add("heavy box on a column of ten light boxes", column, heavyOnTen);
+    add("light box on a column of ten heavy boxes", column, lightOnTen);
+  }
 }
 
 }  // namespace

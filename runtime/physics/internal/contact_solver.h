@@ -101,6 +101,17 @@ struct Constraint {
   Real friction = 0, restitution = 0;
   Real rollingArm_m = 0;
   std::int32_t rolling = -1;  ///< index into the rolling rows, -1 without rolling resistance
+  std::int32_t block = -1;    ///< index into the normal blocks, -1: normal rows solved one by one
+};
+
+/// A manifold's normal rows solved as one block (contact_solver.cpp,
+/// "Normal blocks"): the pseudo-inverse of their effective-mass matrix K
+/// (N s per m/s; K is singular for four coplanar points, rank 3) and, when
+/// K has a one-dimensional null space, its unit null vector, the twist that
+/// redistributes the points' impulses without changing the bodies' motion.
+struct NormalBlock {
+  Real invK[kMaxManifoldPoints][kMaxManifoldPoints] = {};  ///< K^+, kg
+  Real twist[kMaxManifoldPoints] = {};  ///< unit null vector of K (all zero when K has none)
 };
 
 /// What a constraint with a round side off its body's centre of mass
@@ -169,6 +180,12 @@ class ContactSolver {
   std::vector<Constraint> m_constraints;
   std::vector<ConstraintPoint> m_points;
   std::vector<RollingRows> m_rolling;
+  std::vector<NormalBlock> m_blocks;
+  /// Builds c's normal block if its rows allow one (contact_solver.cpp).
+  void prepareNormalBlock(Constraint& c, const Manifold& m);
+  template <int kFixedSide>
+  bool solveNormalBlock(const Constraint& c, Vec4r& vA, Vec4r& wA, Vec4r& vB, Vec4r& wB, Real invH,
+                        Real& residual);
   std::vector<RoundOffsetRows> m_roundOffset;
   void turnRoundOffsetLevers(const std::vector<SolverPose>& pose);
   std::vector<std::uint32_t> m_external;  ///< constraints with one non-moving side
