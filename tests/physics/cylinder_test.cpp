@@ -407,9 +407,36 @@ TEST(Cylinder, ShapeCastAndOverlapFindACylinder) {
   ASSERT_TRUE(w.shapeCast(Shape::sphere(Real(0.1)), Vec3(-3, Real(0.5), 0), Quat::Identity(), Vec3::UnitX(), 10, &hit));
   EXPECT_EQ(hit.body, c);
   EXPECT_NEAR(hit.distance_m, Real(2.4), Real(0.01));
+  // A lying cylinder (r 0.2) cast straight down from y = 3 onto the top cap (y = 1) travels 1.8 m.
+  ASSERT_TRUE(w.shapeCast(Shape::cylinder(Real(0.2), Real(0.3)), Vec3(0, 3, 0), kLyingAlongZ, -Vec3::UnitY(), 10, &hit));
+  EXPECT_NEAR(hit.distance_m, Real(1.8), Real(0.01));
+  EXPECT_TRUE(hit.normal.isApprox(Vec3::UnitY(), Real(1e-3)));
   // A box overlapping the top cap is found; one above it is not.
   EXPECT_EQ(w.overlapShape(Shape::box(Vec3::Constant(Real(0.1))), Vec3(0, Real(1.05), 0), Quat::Identity()).size(), 1u);
   EXPECT_EQ(w.overlapShape(Shape::box(Vec3::Constant(Real(0.1))), Vec3(0, Real(1.2), 0), Quat::Identity()).size(), 0u);
+}
+
+// A 0.3 m cylinder thrown end-on and side-on at 150 m/s at a 0.1 m wall:
+// speculative contacts (GJK distance within this step's travel) stop it.
+TEST(Cylinder, FastCylinderDoesNotTunnelThroughAThinWall) {
+  for (const Quat& q : {Quat::Identity(), kLyingAlongZ, kLyingAlongX}) {
+    World w;
+    w.settings().gravity_mps2 = Vec3::Zero();
+    BodyDef wall;
+    wall.type = BodyType::Static;
+    wall.shape = Shape::box(Vec3(Real(0.05), 5, 5));
+    w.createBody(wall).value();
+    BodyDef d;
+    d.shape = Shape::cylinder(Real(0.15), Real(0.3));
+    d.position_m = Vec3(-5, 0, 0);
+    d.orientation = q;
+    d.linearVelocity_mps = Vec3(150, 0, 0);
+    d.mass_kg = 2;
+    const BodyId c = w.createBody(d).value();
+    simulate(w, Real(0.2));
+    EXPECT_LT(w.body(c).position_m.x(), Real(-0.05)) << "went through the wall";
+    EXPECT_LE(w.body(c).linearVelocity_mps.x(), Real(1e-3)) << "not stopped";
+  }
 }
 
 }  // namespace tumble::physics::test
