@@ -378,9 +378,19 @@ void featureOf(const ConvexPiece& piece, const Vec3& dir, Feature& f) {
       const Real r = piece.radius_m, hh = piece.halfHeight_m;
       if (std::abs(dl.y()) >= kFeatureCos) {
         const Real sy = dl.y() > 0 ? 1 : -1;
+        // A cap tipped a little reaches deepest between two octagon points,
+        // up to r (1 - cos(pi / 8)) sin(tilt) beyond them: past EPA's own
+        // tolerance, the exact rim point goes in too, in its place in the ring.
+        const Real across = std::hypot(dl.x(), dl.z());
+        const bool addDeepest = r * (1 - std::cos(kPi / kCapPoints)) * across > Real(kDepthTolerance_m);
+        Real deepestAng = addDeepest ? std::atan2(dl.z(), dl.x()) : 0;
+        if (deepestAng < 0) deepestAng += 2 * kPi;
         for (int k = 0; k < kCapPoints; ++k) {
           const Real ang = Real(2) * kPi * Real(k) / kCapPoints;
           f.add(c + R * Vec3(r * std::cos(ang), sy * hh, r * std::sin(ang)), std::uint32_t(k));
+          const Real next = Real(2) * kPi * Real(k + 1) / kCapPoints;
+          if (addDeepest && deepestAng > ang && deepestAng < next)
+            f.add(c + R * Vec3(dl.x() * r / across, sy * hh, dl.z() * r / across), std::uint32_t(kCapPoints));
         }
         f.normal = R.col(1) * sy;
         f.key = sy > 0 ? 1 : 2;

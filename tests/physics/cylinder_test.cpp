@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
@@ -414,6 +415,94 @@ TEST(Cylinder, ShapeCastAndOverlapFindACylinder) {
   // A box overlapping the top cap is found; one above it is not.
   EXPECT_EQ(w.overlapShape(Shape::box(Vec3::Constant(Real(0.1))), Vec3(0, Real(1.05), 0), Quat::Identity()).size(), 1u);
   EXPECT_EQ(w.overlapShape(Shape::box(Vec3::Constant(Real(0.1))), Vec3(0, Real(1.2), 0), Quat::Identity()).size(), 0u);
+}
+
+// Any orientation, pressed up to 5 cm into a box's top face (and a
+// cylinder's cap): the deepest point is the rim's lowest, hh |a.y| + r
+// sqrt(1 - a.y^2) below the centre, and the normal is the face's.
+TEST(Cylinder, DepthAgainstAFaceIsTheLowestRimPointAtAnyOrientation) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  const Shape floorBox = Shape::box(Vec3(3, Real(0.5), 3));
+  const Shape floorCyl = Shape::cylinder(3, Real(0.5));
+  for (int i = 0; i < 400; ++i) {
+    const Real r = Real(0.15) + Real(0.1) * (u(rng) + 1), hh = Real(0.1) + Real(0.2) * (u(rng) + 1);
+    const Quat q(Eigen::AngleAxis<Real>(Real(kPi) * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+    const Real ay = std::abs((q * Vec3::UnitY()).y());
+    const Real below = hh * ay + r * std::sqrt(std::max<Real>(1 - ay * ay, 0));
+    const Real depth = Real(0.025) * (u(rng) + 1);
+    const Vec3 c(Real(0.5) * u(rng), below - depth, Real(0.5) * u(rng));
+    for (const Shape* floor : {&floorBox, &floorCyl}) {
+      Manifold m;
+      ASSERT_GE(collide(*floor, Vec3(0, Real(-0.5), 0), Quat::Identity(), Shape::cylinder(r, hh), c, q, m), 1)
+          << "case " << i;
+      EXPECT_NEAR(minSeparation(m), -depth, Real(2e-4)) << "case " << i << " a.y " << ay << " " << shapeTypeName(floor->type);
+      EXPECT_TRUE(m.normal.isApprox(Vec3::UnitY(), Real(1e-3)))
+          << "case " << i << " normal " << m.normal.transpose() << " " << shapeTypeName(floor->type);
+    }
+  }
+}
+
+// A pile: 24 cylinders of mixed sizes, boxes, capsules and spheres dropped
+// at random orientations into a bin of static boxes. Every pair kind with a cylinder
+// meets at odd angles; all must settle on or above the floor, nothing NaN.
+TEST(Cylinder, APileOfMixedShapesSettlesAboveTheFloor) {
+  World w;
+  BodyDef floor;
+  floor.type = BodyType::Static;
+  floor.shape = Shape::box(Vec3(6, Real(0.5), 6));
+  floor.position_m = Vec3(0, Real(-0.5), 0);
+  w.createBody(floor).value();
+  // Walls 2.5 m out: round bodies roll, and the test is the contacts, not how far they roll.
+  for (int k = 0; k < 4; ++k) {
+    BodyDef wall = floor;
+    const Real sx = k < 2 ? Real(k == 0 ? -1 : 1) : 0, sz = k >= 2 ? Real(k == 2 ? -1 : 1) : 0;
+    wall.shape = Shape::box(Vec3(k < 2 ? Real(0.2) : 3, 1, k < 2 ? 3 : Real(0.2)));
+    wall.position_m = Vec3(Real(2.7) * sx, 1, Real(2.7) * sz);
+    w.createBody(wall).value();
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  std::vector<BodyId> bodies;
+  for (int i = 0; i < 48; ++i) {
+    BodyDef d;
+    switch (i % 4) {
+      case 0:
+      case 1: d.shape = Shape::cylinder(Real(0.15) + Real(0.1) * (u(rng) + 1), Real(0.1) + Real(0.2) * (u(rng) + 1)); break;
+      case 2: d.shape = Shape::box(Vec3(Real(0.2), Real(0.15), Real(0.25))); break;
+      default: d.shape = i % 8 == 3 ? Shape::capsule(Real(0.12), Real(0.2)) : Shape::sphere(Real(0.2)); break;
+    }
+    // A 3 x 3 grid per layer, 1.4 m apart: no two bounding spheres (radius <= 0.65 m) start overlapping.
+    const int slot = i % 9, layer = i / 9;
+    d.position_m = Vec3(Real(1.4) * Real(slot % 3 - 1) + Real(0.05) * u(rng), Real(0.8) + Real(1.4) * Real(layer),
+                        Real(1.4) * Real(slot / 3 - 1) + Real(0.05) * u(rng));
+    d.orientation = Quat(Eigen::AngleAxis<Real>(Real(kPi) * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+    d.mass_kg = 1 + (u(rng) + 1);
+    bodies.push_back(w.createBody(d).value());
+  }
+  simulate(w, 10);
+  int awake = 0;
+  for (BodyId id : bodies) {
+    const Body& b = w.body(id);
+    ASSERT_TRUE(b.position_m.allFinite());
+    Vec3 lo, hi;
+    b.shape.bounds(b.position_m, b.orientation, &lo, &hi);
+    EXPECT_GT(lo.y(), Real(-0.02)) << shapeTypeName(b.shape.type) << " sank into the floor: at "
+                                   << b.position_m.transpose() << " axis " << (b.orientation * Vec3::UnitY()).transpose()
+                                   << " r " << b.shape.radius_m << " hh " << b.shape.halfHeight_m;
+    EXPECT_LT(std::abs(b.position_m.x()), 6);
+    awake += b.awake;
+    // Spheres have no rolling resistance here and may roll on along a wall for ever.
+    if (b.shape.type != ShapeType::Sphere)
+      EXPECT_LT(b.linearVelocity_mps.norm(), Real(0.05)) << shapeTypeName(b.shape.type) << " still moving at "
+                                                       << b.linearVelocity_mps.transpose() << " at "
+                                                       << b.position_m.transpose();
+  }
+  std::printf("mixed pile of 48: %d awake after 10 s, deepest penetration %.4f m\n", awake,
+              double(w.errorStats().penetrationMax_m));
+  // Not bounded here: the deepest transient overlap of bodies falling up to
+  // 8 m into a pile measured 0.153 m, and 0.229 m with capsules in place of
+  // the cylinders (2026-11-26): a property of the pile, not of cylinders.
 }
 
 // A 0.3 m cylinder thrown end-on and side-on at 150 m/s at a 0.1 m wall:
