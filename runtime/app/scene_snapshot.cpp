@@ -158,6 +158,11 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
         s.radius_m = float(shape.radius_m);
         s.halfHeight_m = float(shape.halfHeight_m);
         break;
+      case physics::ShapeType::Cylinder:
+        s.kind = render::ShapeKind::Cylinder;
+        s.radius_m = float(shape.radius_m);
+        s.halfHeight_m = float(shape.halfHeight_m);
+        break;
       case physics::ShapeType::Hull:
         s.kind = render::ShapeKind::ConvexMesh;
         s.convexMesh = meshOf(shape.hull);

@@ -51,6 +51,13 @@ Real rollingRadius(const Shape& s) {
   return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius_m : 0;
 }
 
+/// The same for the touching side of shape s at orientation q, normal n: a
+/// cylinder rolls on its side (normal across its axis), not on a cap.
+Real rollingRadius(const Shape& s, const Quat& q, const Vec3& n) {
+  if (s.type != ShapeType::Cylinder) return rollingRadius(s);
+  return std::abs((q * Vec3::UnitY()).dot(n)) < Real(0.035) ? s.radius_m : 0;
+}
+
 /// Last step's manifold of pair (a, b) between the same children, or null.
 const Manifold* findOld(const StepScratch& st, std::uint32_t a, std::uint32_t b, std::uint16_t childA,
                         std::uint16_t childB) {
@@ -256,10 +263,14 @@ void World::finishPairManifold(Manifold& m, Real dt) {
   const Shape& shapeB = childShape(b.shape, m.childB);
   m.friction = std::sqrt(a.friction * b.friction);
   m.restitution = std::max(a.restitution, b.restitution);
-  m.roundA = rollingRadius(shapeA) > 0;
-  m.roundB = rollingRadius(shapeB) > 0;
-  m.rollingArm_m =
-      std::max(a.rollingResistance, b.rollingResistance) * std::max(rollingRadius(shapeA), rollingRadius(shapeB));
+  const Quat qA = a.shape.type == ShapeType::Compound ? a.orientation * a.shape.compound->children[m.childA].orientation
+                                                      : a.orientation;
+  const Quat qB = b.shape.type == ShapeType::Compound ? b.orientation * b.shape.compound->children[m.childB].orientation
+                                                      : b.orientation;
+  const Real rollA = rollingRadius(shapeA, qA, m.normal), rollB = rollingRadius(shapeB, qB, m.normal);
+  m.roundA = rollA > 0;
+  m.roundB = rollB > 0;
+  m.rollingArm_m = std::max(a.rollingResistance, b.rollingResistance) * std::max(rollA, rollB);
   // A moving body touching a sleeping one wakes it (and its island), and so
   // does one that will close the gap during this step: the speculative
   // contact acts before the bodies touch, and a sleeper still counts as
@@ -327,9 +338,13 @@ void World::collideHeightField(Real dt, int& points) {
       const Shape& shape = childShape(b.shape, m.childA);
       m.friction = std::sqrt(b.friction * std::max<Real>(m_heightField->frictionAt(p.x(), p.z()), 0));
       m.restitution = b.restitution;
-      m.roundA = rollingRadius(shape) > 0;
+      const Quat q =
+          b.shape.type == ShapeType::Compound ? b.orientation * b.shape.compound->children[m.childA].orientation
+                                              : b.orientation;
+      const Real roll = rollingRadius(shape, q, m.normal);
+      m.roundA = roll > 0;
       m.roundB = false;
-      m.rollingArm_m = b.rollingResistance * rollingRadius(shape);
+      m.rollingArm_m = b.rollingResistance * roll;
       // Warm start from the old manifold of this body (and child) with the closest normal.
       if (const Manifold* prev = findOldByNormal(st, i, kHeightFieldBody, m, false)) inheritImpulses(*prev, m);
       for (int j = 0; j < m.count; ++j)

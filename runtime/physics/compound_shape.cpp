@@ -71,6 +71,10 @@ Result<Shape> offsetCentreOfMass(const Shape& shape, const Vec3& offset_m) {
       inside = (offset_m - Vec3(0, y, 0)).norm() <= shape.radius_m + slack;
       break;
     }
+    case ShapeType::Cylinder:
+      inside = std::abs(offset_m.y()) <= shape.halfHeight_m + slack &&
+               Vec3(offset_m.x(), 0, offset_m.z()).norm() <= shape.radius_m + slack;
+      break;
     case ShapeType::Hull:
       for (const HullFace& f : shape.hull->faces) inside = inside && f.normal.dot(offset_m) <= f.offset_m + slack;
       break;

@@ -61,6 +61,7 @@
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
 #include "physics/integrate.h"
+#include "physics/internal/convex_collision.h"
 #include "physics/internal/mesh_collision.h"
 #include "physics/world.h"
 
@@ -151,6 +152,15 @@ bool shapeContact(const Shape& shape, const Eigen::Vector3d& p, const Eigen::Qua
       if (len >= R) return false;
       *n = len > 1e-12 ? Eigen::Vector3d(d / len) : Eigen::Vector3d::UnitY();
       *depth = R - len;
+      return true;
+    }
+    case ShapeType::Cylinder: {
+      Vec3 closest, out;
+      const Real dist = pointCylinderDistance(x.cast<Real>(), Pose{p.cast<Real>(), q.cast<Real>().toRotationMatrix()},
+                                              shape.radius_m, shape.halfHeight_m, closest, out);
+      if (dist >= r) return false;
+      *n = d3(out);
+      *depth = r - double(dist);
       return true;
     }
     case ShapeType::Capsule: {

@@ -37,6 +37,11 @@
 // vertices against the hull's lowest face (the face whose normal points most
 // downwards) where they reach deeper than every vertex.
 //
+// Cylinders: as boxes, with the rim points of cylinderSurfacePoints for
+// corners (the deepest rim point of each cap for the terrain normal under the
+// centre, three more on the lower cap), and terrain vertices against the
+// cylinder (pointCylinderDistance) where they reach deeper than every rim point.
+//
 // Contacts are then grouped by normal (within kSameNormalCos) into at most
 // kMaxHeightFieldManifolds manifolds of at most 4 points each, deepest first.
 #include "physics/internal/height_field_collision.h"
@@ -46,6 +51,7 @@
 #include <limits>
 
 #include "physics/convex_hull.h"
+#include "physics/internal/convex_collision.h"
 
 namespace tumble::physics {
 namespace {
@@ -342,6 +348,40 @@ void capsuleContacts(const Body& b, Real margin, HeightFieldScratch& s) {
     }
 }
 
+void cylinderContacts(const Body& b, const HeightField& field, Real margin, HeightFieldScratch& s) {
+  const Pose P{b.position_m, b.orientation.toRotationMatrix()};
+  const Real r = b.shape.radius_m, hh = b.shape.halfHeight_m;
+  Real h0;
+  Vec3 n0 = Vec3::UnitY();
+  if (!field.surfaceAt(b.position_m.x(), b.position_m.z(), &h0, &n0)) n0 = Vec3::UnitY();
+  Vec3 pts[5];
+  std::uint32_t ids[5];
+  const int k = cylinderSurfacePoints(P, r, hh, n0, pts, ids);
+  for (int i = 0; i < k; ++i) {
+    Real h;
+    Vec3 n;
+    if (!field.surfaceAt(pts[i].x(), pts[i].z(), &h, &n)) continue;
+    const Real sep = (pts[i].y() - h) * n.y();
+    if (sep > margin) continue;
+    s.contacts.push_back({n, pts[i] - n * (sep / 2), sep, ids[i]});
+  }
+  const Real deepest = minSeparation(s.contacts) - kPeakTolerance_m;
+  const std::size_t rims = s.contacts.size();
+  for (const HeightFieldTriangle& t : s.triangles)
+    for (const Vec3& v : t.v) {
+      Vec3 closest, out;
+      const Real sep = pointCylinderDistance(v, P, r, hh, closest, out);
+      if (sep > margin || sep >= deepest) continue;
+      const Vec3 n = -out;  // from the surface into the body
+      if (n.dot(t.normal) <= 0) continue;
+      const std::uint32_t id = vertexId(v);
+      bool seen = false;
+      for (std::size_t j = rims; j < s.contacts.size(); ++j) seen |= s.contacts[j].id == id;
+      if (seen) continue;
+      s.contacts.push_back({n, v + n * (sep / 2), sep, id});
+    }
+}
+
 }  // namespace
 
 int collideHeightField(const Body& body, const HeightField& field, const Vec3& lo, const Vec3& hi, Real margin,
@@ -356,6 +396,7 @@ int collideHeightField(const Body& body, const HeightField& field, const Vec3& l
     case ShapeType::Box: boxContacts(body, field, margin, s); break;
     case ShapeType::Capsule: capsuleContacts(body, margin, s); break;
     case ShapeType::Hull: hullContacts(body, field, margin, s); break;
+    case ShapeType::Cylinder: cylinderContacts(body, field, margin, s); break;
     case ShapeType::Plane: break;
     case ShapeType::Compound: break;  // World passes compounds child by child
     case ShapeType::Mesh: break;      // static only: never against the (static) height field

@@ -53,6 +53,7 @@
 
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
+#include "physics/internal/convex_collision.h"
 #include "physics/internal/hull_collision.h"
 
 namespace tumble::physics {
@@ -133,7 +134,9 @@ void pieceContacts(const Shape& shape, const Vec3& pL, const Mat3& RL, const Qua
   lo.array() -= margin;
   hi.array() += margin;
   ++stats.pairs;
-  const bool polytope = shape.type == ShapeType::Box || shape.type == ShapeType::Hull;
+  // Cylinders come back from collideConvex with the polytopes' id layout.
+  const bool polytope =
+      shape.type == ShapeType::Box || shape.type == ShapeType::Hull || shape.type == ShapeType::Cylinder;
   auto testTriangle = [&](std::uint32_t ti) {
     const MeshTriangle& t = mesh.triangles[ti];
     ++stats.trianglesTested;
@@ -146,6 +149,11 @@ void pieceContacts(const Shape& shape, const Vec3& pL, const Mat3& RL, const Qua
       case ShapeType::Sphere: reach = shape.radius_m; break;
       case ShapeType::Capsule: reach = shape.radius_m + std::abs(RL.col(1).dot(t.normal)) * shape.halfHeight_m; break;
       case ShapeType::Box: reach = (RL.transpose() * t.normal).cwiseAbs().dot(shape.halfExtents_m); break;
+      case ShapeType::Cylinder: {
+        const Real along = std::abs(RL.col(1).dot(t.normal));
+        reach = shape.halfHeight_m * along + shape.radius_m * std::sqrt(std::max<Real>(1 - along * along, 0));
+        break;
+      }
       default: reach = shape.boundingRadius(); break;
     }
     if (centre - reach > margin) return;
@@ -166,6 +174,14 @@ void pieceContacts(const Shape& shape, const Vec3& pL, const Mat3& RL, const Qua
       case ShapeType::Hull:
         collidePolytopes(Pose{pL, RL}, *shape.hull, Vec3::Ones(), triPose, s.tri, Vec3::Ones(), margin, m);
         break;
+      case ShapeType::Cylinder: {
+        ConvexPiece piece, tri;
+        convexPiece(shape, Pose{pL, RL}, &piece);
+        tri.kind = ConvexPiece::Kind::Hull;
+        tri.hull = &s.tri;
+        collideConvex(piece, tri, margin, m);
+        break;
+      }
       default: return;
     }
     if (m.count == 0) return;

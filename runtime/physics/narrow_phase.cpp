@@ -18,6 +18,7 @@
 #include <array>
 
 #include "physics/compound_shape.h"
+#include "physics/internal/convex_collision.h"
 #include "physics/internal/hull_collision.h"
 #include "physics/internal/mesh_collision.h"
 
@@ -343,6 +344,31 @@ int capsuleBox(const Xf& A, const Shape& a, const Xf& B, const Vec3& hB, Real ma
   return m.count;
 }
 
+// ---- cylinders (convex_collision.cpp) ------------------------------------------
+
+/// Any convex shape (as a) against a cylinder (as b), through their support mappings.
+int convexCylinder(const Shape& a, const Xf& A, const Shape& b, const Xf& B, Real margin, Manifold& m) {
+  ConvexPiece pa, pb;
+  if (!convexPiece(a, Pose{A.p, A.R}, &pa) || !convexPiece(b, Pose{B.p, B.R}, &pb)) return 0;
+  return collideConvex(pa, pb, margin, m);
+}
+
+int sphereCylinder(const Vec3& c, Real r, const Xf& B, const Shape& cyl, Real margin, Manifold& m) {
+  Vec3 closest, nOut;
+  const Real sep = pointCylinderDistance(c, Pose{B.p, B.R}, cyl.radius_m, cyl.halfHeight_m, closest, nOut) - r;
+  if (sep > margin) return 0;
+  m.normal = -nOut;  // from the sphere to the cylinder
+  addPoint(m, closest + nOut * (sep / 2), sep, 0);
+  return m.count;
+}
+
+int planeCylinder(const Xf& plane, const Xf& B, const Shape& cyl, Real margin, Manifold& m) {
+  Vec3 pts[5];
+  std::uint32_t ids[5];
+  const int n = cylinderSurfacePoints(Pose{B.p, B.R}, cyl.radius_m, cyl.halfHeight_m, plane.R.col(1), pts, ids);
+  return planePoints(plane, pts, n, 0, margin, m, true);
+}
+
 }  // namespace
 
 void closestSegmentPoints(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Real& s, Real& t) {
@@ -432,6 +458,7 @@ int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Sha
         case ShapeType::Plane: planePoints(B, &A.p, 1, sa.radius_m, margin, m, false); break;
         case ShapeType::Compound: break;
         case ShapeType::Mesh: break;
+        case ShapeType::Cylinder: sphereCylinder(A.p, sa.radius_m, B, sb, margin, m); break;
       }
       break;
     case ShapeType::Box:
@@ -449,6 +476,7 @@ int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Sha
           planePoints(B, v.data(), 8, 0, margin, m, false);
           break;
         }
+        case ShapeType::Cylinder: convexCylinder(sa, A, sb, B, margin, m); break;
         default: break;
       }
       break;
@@ -464,6 +492,7 @@ int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Sha
           planePoints(B, ends, 2, sa.radius_m, margin, m, false);
           break;
         }
+        case ShapeType::Cylinder: convexCylinder(sa, A, sb, B, margin, m); break;
         default: break;
       }
       break;
@@ -471,12 +500,16 @@ int collideShapes(const Shape& shapeA, const Vec3& pa, const Quat& qa, const Sha
       switch (sb.type) {
         case ShapeType::Hull: collidePolytopes(PA, *sa.hull, Vec3::Ones(), PB, *sb.hull, Vec3::Ones(), margin, m); break;
         case ShapeType::Plane: collideHullPlane(PA, *sa.hull, B.p, B.R.col(1), margin, m); break;
+        case ShapeType::Cylinder: convexCylinder(sa, A, sb, B, margin, m); break;
         default: break;
       }
       break;
-    case ShapeType::Plane: break;     // plane-plane never collides
+    case ShapeType::Plane:  // plane-plane never collides
+      if (sb.type == ShapeType::Cylinder) planeCylinder(A, B, sb, margin, m);
+      break;
     case ShapeType::Compound: break;  // children are handled by collidePair
     case ShapeType::Mesh: break;      // collidePair hands meshes to collideMeshPair
+    case ShapeType::Cylinder: convexCylinder(sa, A, sb, B, margin, m); break;  // cylinder-cylinder
   }
   if (swapped && m.count > 0) m.normal = -m.normal;
   return m.count;

@@ -1,5 +1,6 @@
 #include "physics/shape.h"
 
+#include <cmath>
 #include <string>
 
 #include "physics/compound_shape.h"
@@ -27,6 +28,13 @@ Shape Shape::capsule(Real r, Real hh) {
   s.halfHeight_m = hh;
   return s;
 }
+Shape Shape::cylinder(Real r, Real hh) {
+  Shape s;
+  s.type = ShapeType::Cylinder;
+  s.radius_m = r;
+  s.halfHeight_m = hh;
+  return s;
+}
 Shape Shape::plane() {
   Shape s;
   s.type = ShapeType::Plane;
@@ -44,6 +52,7 @@ Real Shape::volume() const {
     case ShapeType::Hull: return hull ? hull->volume_m3 : 0;
     case ShapeType::Compound: return compound ? compound->volume_m3 : 0;
     case ShapeType::Plane: return 0;
+    case ShapeType::Cylinder: return kPi * radius_m * radius_m * 2 * halfHeight_m;
     case ShapeType::Mesh: return 0;  // a surface: no inside, no mass (static bodies only)
   }
   return 0;
@@ -75,6 +84,12 @@ Vec3 Shape::unitInertia() const {
     case ShapeType::Compound: return compound ? compound->unitInertia_m2 : Vec3::Zero();
     case ShapeType::Plane: return Vec3::Zero();
     case ShapeType::Mesh: return Vec3::Zero();
+    case ShapeType::Cylinder: {
+      // Solid cylinder of height h: m r^2 / 2 about its axis, m (3 r^2 + h^2) / 12 across it.
+      const Real r2 = radius_m * radius_m, h = 2 * halfHeight_m;
+      const Real across = (3 * r2 + h * h) / 12;
+      return Vec3(across, r2 / 2, across);
+    }
   }
   return Vec3::Zero();
 }
@@ -88,6 +103,7 @@ Real Shape::boundingRadius() const {
     case ShapeType::Compound: return compound ? compound->boundingRadius_m : 0;
     case ShapeType::Plane: return std::numeric_limits<Real>::infinity();
     case ShapeType::Mesh: return mesh ? mesh->boundingRadius_m : 0;
+    case ShapeType::Cylinder: return std::hypot(radius_m, halfHeight_m);
   }
   return 0;
 }
@@ -101,6 +117,7 @@ Real Shape::innerRadius() const {
     case ShapeType::Compound: return compound ? std::max<Real>(compound->innerRadius_m, 0) : 0;
     case ShapeType::Plane: return 0;
     case ShapeType::Mesh: return 0;
+    case ShapeType::Cylinder: return std::min(radius_m, halfHeight_m);
   }
   return 0;
 }
@@ -130,6 +147,14 @@ void Shape::bounds(const Vec3& p, const Quat& q, Vec3* lo, Vec3* hi) const {
       return;
     }
     case ShapeType::Plane: ext = Vec3::Constant(std::numeric_limits<Real>::infinity()); break;
+    case ShapeType::Cylinder: {
+      // Each cap disc spans r sqrt(1 - a_i^2) = r sqrt(a_j^2 + a_k^2) along
+      // world axis i (a the unit axis; the second form has no cancellation).
+      const Vec3 a = q * Vec3::UnitY();
+      const Vec3 disc = Vec3(std::hypot(a.y(), a.z()), std::hypot(a.x(), a.z()), std::hypot(a.x(), a.y())) * radius_m;
+      ext = a.cwiseAbs() * halfHeight_m + disc;
+      break;
+    }
     case ShapeType::Mesh: {
       const MeshNode& root = mesh->nodes[0];
       const Mat3 R = q.toRotationMatrix();
@@ -169,6 +194,10 @@ Status validateShape(const Shape& s) {
       if (!s.compound || s.compound->children.empty() || !(s.compound->volume_m3 > 0))
         return makeError("a compound shape must be made with makeCompoundShape (it has no children or no volume)");
       break;
+    case ShapeType::Cylinder:
+      if (!positiveFinite(s.radius_m)) return bad("radius", s.radius_m);
+      if (!positiveFinite(s.halfHeight_m)) return bad("half_height", s.halfHeight_m);
+      break;
     case ShapeType::Plane: break;
     case ShapeType::Mesh:
       if (!s.mesh || s.mesh->nodes.empty() || s.mesh->triangles.empty())
@@ -187,6 +216,7 @@ const char* shapeTypeName(ShapeType t) {
     case ShapeType::Plane: return "plane";
     case ShapeType::Compound: return "compound";
     case ShapeType::Mesh: return "mesh";
+    case ShapeType::Cylinder: return "cylinder";
   }
   return "?";
 }

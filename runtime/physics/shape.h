@@ -14,7 +14,8 @@
 namespace tumble::physics {
 
 /// The order matters: the narrow phase handles each pair once, as (lower, higher).
-enum class ShapeType { Sphere, Box, Capsule, Hull, Plane, Compound, Mesh };
+/// Cylinder comes last so that the pairs of the older shapes keep their order.
+enum class ShapeType { Sphere, Box, Capsule, Hull, Plane, Compound, Mesh, Cylinder };
 
 struct ConvexHull;     // physics/convex_hull.h
 struct CompoundShape;  // physics/compound_shape.h
@@ -29,9 +30,10 @@ struct ShapeFrame {
 
 struct Shape {
   ShapeType type = ShapeType::Sphere;
-  Real radius_m = Real(0.5);                    ///< Sphere, Capsule
+  Real radius_m = Real(0.5);                    ///< Sphere, Capsule, Cylinder
   Vec3 halfExtents_m = Vec3::Constant(Real(0.5));  ///< Box: half size along local x, y, z
-  Real halfHeight_m = Real(0.5);  ///< Capsule: half length of the core segment along local Y, caps excluded
+  Real halfHeight_m = Real(0.5);  ///< Capsule: half length of the core segment along local Y, caps excluded;
+                                  ///< Cylinder: half its height along local Y (the caps are flat discs at +-halfHeight_m)
   // Plane: the body's local +Y is the plane normal; the plane passes through
   // the body position. Planes are always static and infinite.
   /// Hull: vertices and faces in the body frame (shared, immutable; see makeHullShape).
@@ -45,6 +47,8 @@ struct Shape {
   static Shape sphere(Real radius_m);
   static Shape box(const Vec3& halfExtents_m);
   static Shape capsule(Real radius_m, Real halfHeight_m);
+  /// A solid cylinder whose axis is the body's local Y, centred on the body.
+  static Shape cylinder(Real radius_m, Real halfHeight_m);
   static Shape plane();
 
   /// Volume in m^3 (0 for planes).

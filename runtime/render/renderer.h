@@ -35,7 +35,8 @@ union SDL_Event;  // render.h does not include SDL; hooks get events by referenc
 
 namespace tumble::render {
 
-enum class ShapeKind { Box, Sphere, Capsule, Plane, ConvexMesh };
+/// ConvexMesh stays last: the kinds before it are instanced batches (ShapePass).
+enum class ShapeKind { Box, Sphere, Capsule, Plane, Cylinder, ConvexMesh };
 
 /// Vertices and triangles of a convex mesh (a physics hull) in its shape's
 /// local frame. Drawn flat shaded (one normal per triangle), uploaded to the
@@ -52,9 +53,10 @@ struct DrawShape {
   // Rotation from local to world. Plane: maps local +Y to the plane normal.
   Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
   Eigen::Vector3f halfExtents{0.5f, 0.5f, 0.5f};  // m, Box
-  float radius_m = 0.5f;                          // Sphere, Capsule
+  float radius_m = 0.5f;                          // Sphere, Capsule, Cylinder
   // Capsule: half length of the core segment along local Y (caps excluded),
   // so the capsule's total height is 2 * (halfHeight_m + radius_m).
+  // Cylinder: half its height along local Y (flat caps).
   float halfHeight_m = 0.5f;
   std::shared_ptr<const ConvexMeshData> convexMesh;  // ConvexMesh: the mesh (shared; not copied per frame)
   Eigen::Vector3f color{0.8f, 0.8f, 0.8f};  // linear RGB 0..1; Plane: colour of the light squares

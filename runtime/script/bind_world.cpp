@@ -162,7 +162,7 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 }
 
 /// @class BodyDef
-/// Fields shared by world.box, world.sphere, world.capsule and world.plane.
+/// Fields shared by world.box, world.sphere, world.capsule, world.cylinder and world.plane.
 /// Unknown fields are refused, so a typo is an error, not a silent default.
 /// @field position? Vec3Arg the shape's centre, m (default {0, 0, 0}); the body's centre of mass unless center_of_mass moves it
 /// @field rotation? Vec3Arg rotation vector: axis times angle, rad
@@ -193,6 +193,11 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 /// @field radius? number m (default 0.3)
 /// @field length? number length of the core segment along the local Y axis, m (default 1)
 /// @field half_height? number half the core segment, m (instead of length)
+
+/// @class CylinderDef: BodyDef
+/// @field radius? number m (default 0.3)
+/// @field height? number full height along the local Y axis, cap to cap, m (default 1)
+/// @field half_height? number half the height, m (instead of height)
 
 /// @class PlaneDef: BodyDef
 /// @field normal? Vec3Arg the plane's normal (default {0, 1, 0})
@@ -254,6 +259,26 @@ int worldCapsule(lua_State* L) {
     throw LuaArgError(std::string("world.capsule: ") + e.what());
   }
   return create(L, d, "world.capsule", readColor(L, 1, "world.capsule", {0.95f, 0.8f, 0.25f}));
+}
+
+/// @function world.cylinder
+/// Creates a solid cylinder: its axis is the local Y axis, flat caps at +-height / 2.
+/// @param def CylinderDef radius, height and common body fields
+/// @return Body the new body
+/// @example world.cylinder{radius = 0.4, height = 0.3, position = {0, 2, 0}, rotation = {math.pi / 2, 0, 0}}
+int worldCylinder(lua_State* L) {
+  checkTable(L, "world.cylinder", "{radius = 0.3, height = 1, position = {0, 2, 0}}");
+  checkBodyFields(L, 1, "world.cylinder", {"radius", "height", "half_height"});
+  physics::BodyDef d = readCommon(L, 1, "world.cylinder");
+  try {
+    const Real r = Real(optNumberField(L, 1, "radius", 0.3));
+    Real hh = Real(optNumberField(L, 1, "half_height", 0.5));
+    hh = Real(optNumberField(L, 1, "height", 2 * hh)) / 2;
+    d.shape = physics::Shape::cylinder(r, hh);
+  } catch (const LuaArgError& e) {
+    throw LuaArgError(std::string("world.cylinder: ") + e.what());
+  }
+  return create(L, d, "world.cylinder", readColor(L, 1, "world.cylinder", {0.45f, 0.75f, 0.45f}));
 }
 
 /// @function world.plane
@@ -321,12 +346,18 @@ physics::Shape readShapeDef(lua_State* L, int t, physics::ShapeFrame* frame) {
     hh = Real(optNumberField(L, t, "length", 2 * hh)) / 2;
     return physics::Shape::capsule(Real(optNumberField(L, t, "radius", 0.3)), hh);
   }
+  if (kind == "cylinder") {
+    Real hh = Real(optNumberField(L, t, "half_height", 0.5));
+    hh = Real(optNumberField(L, t, "height", 2 * hh)) / 2;
+    return physics::Shape::cylinder(Real(optNumberField(L, t, "radius", 0.3)), hh);
+  }
   if (kind == "hull") {
     auto hull = physics::makeHullShape(readPoints(L, t, "points"), frame);
     if (!hull) throw LuaArgError(hull.error());
     return hull.value();
   }
-  throw LuaArgError("field 'shape' must be \"box\", \"sphere\", \"capsule\" or \"hull\", got \"" + kind + "\"");
+  throw LuaArgError("field 'shape' must be \"box\", \"sphere\", \"capsule\", \"cylinder\" or \"hull\", got \"" + kind +
+                    "\"");
 }
 
 /// Optional pose fields position / rotation of the table at t.
@@ -340,7 +371,7 @@ void readPose(lua_State* L, int t, Vec3* p, Quat* q) {
 
 // A shape description's fields (world.compound children, query shapes) and `extra`.
 void checkShapeFields(lua_State* L, int t, const std::string& fn, std::initializer_list<const char*> extra) {
-  std::set<std::string> allowed = {"shape", "size", "half_extents", "radius", "length", "half_height", "points",
+  std::set<std::string> allowed = {"shape", "size", "half_extents", "radius", "length", "height", "half_height", "points",
                                    "position", "rotation"};
   allowed.insert(extra.begin(), extra.end());
   checkFields(L, t, fn, allowed);
@@ -371,12 +402,13 @@ void refuseZeroMass(lua_State* L, const char* fn) {
 /// @class ShapeDef
 /// A shape with its pose: a compound's child (pose relative to the compound's
 /// frame) or the shape of a query (pose in the world).
-/// @field shape string "box", "sphere", "capsule" or "hull"
+/// @field shape string "box", "sphere", "capsule", "cylinder" or "hull"
 /// @field size? Vec3Arg box: full size, m (default {1, 1, 1})
 /// @field half_extents? Vec3Arg box: half size, m (instead of size)
-/// @field radius? number sphere (default 0.5) or capsule (default 0.3) radius, m
+/// @field radius? number sphere (default 0.5), capsule or cylinder (default 0.3) radius, m
 /// @field length? number capsule: core segment along local Y, m (default 1)
-/// @field half_height? number capsule: half the core segment, m
+/// @field height? number cylinder: cap to cap along local Y, m (default 1)
+/// @field half_height? number capsule: half the core segment; cylinder: half the height, m
 /// @field points? Vec3Arg[] hull: at least 4 points spanning a volume, m
 /// @field position? Vec3Arg the shape's origin, m (default {0, 0, 0})
 /// @field rotation? Vec3Arg rotation vector (axis times angle), rad
@@ -386,7 +418,7 @@ void refuseZeroMass(lua_State* L, const char* fn) {
 /// one density; the centre of mass and principal axes are computed, so
 /// body:position() is the centre of mass, not the frame origin the children
 /// were given in (that frame is placed by position / rotation).
-/// @field children ShapeDef[] 1 to 64 children (box, sphere, capsule, hull)
+/// @field children ShapeDef[] 1 to 64 children (box, sphere, capsule, cylinder, hull)
 
 /// @function world.hull
 /// Creates a convex hull of a point cloud (rocks, wedges, dice, tops).
@@ -662,6 +694,7 @@ const luaL_Reg kWorld[] = {
     {"box", guarded<worldBox>},
     {"sphere", guarded<worldSphere>},
     {"capsule", guarded<worldCapsule>},
+    {"cylinder", guarded<worldCylinder>},
     {"plane", guarded<worldPlane>},
     {"hull", guarded<worldHull>},
     {"compound", guarded<worldCompound>},

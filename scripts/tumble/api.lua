@@ -705,7 +705,7 @@ function Vehicle:remove() end
 ---@field drive_torque number at the wheels, N m, total
 ---@field wheels WheelTelemetry[] axle by axle, left then right
 
----Fields shared by world.box, world.sphere, world.capsule and world.plane.
+---Fields shared by world.box, world.sphere, world.capsule, world.cylinder and world.plane.
 ---Unknown fields are refused, so a typo is an error, not a silent default.
 ---@class BodyDef
 ---@field position? Vec3Arg the shape's centre, m (default {0, 0, 0}); the body's centre of mass unless center_of_mass moves it
@@ -738,6 +738,11 @@ function Vehicle:remove() end
 ---@field length? number length of the core segment along the local Y axis, m (default 1)
 ---@field half_height? number half the core segment, m (instead of length)
 
+---@class CylinderDef: BodyDef
+---@field radius? number m (default 0.3)
+---@field height? number full height along the local Y axis, cap to cap, m (default 1)
+---@field half_height? number half the height, m (instead of height)
+
 ---@class PlaneDef: BodyDef
 ---@field normal? Vec3Arg the plane's normal (default {0, 1, 0})
 ---@field point? Vec3Arg a point on the plane, m (default {0, 0, 0})
@@ -751,12 +756,13 @@ function Vehicle:remove() end
 ---A shape with its pose: a compound's child (pose relative to the compound's
 ---frame) or the shape of a query (pose in the world).
 ---@class ShapeDef
----@field shape string "box", "sphere", "capsule" or "hull"
+---@field shape string "box", "sphere", "capsule", "cylinder" or "hull"
 ---@field size? Vec3Arg box: full size, m (default {1, 1, 1})
 ---@field half_extents? Vec3Arg box: half size, m (instead of size)
----@field radius? number sphere (default 0.5) or capsule (default 0.3) radius, m
+---@field radius? number sphere (default 0.5), capsule or cylinder (default 0.3) radius, m
 ---@field length? number capsule: core segment along local Y, m (default 1)
----@field half_height? number capsule: half the core segment, m
+---@field height? number cylinder: cap to cap along local Y, m (default 1)
+---@field half_height? number capsule: half the core segment; cylinder: half the height, m
 ---@field points? Vec3Arg[] hull: at least 4 points spanning a volume, m
 ---@field position? Vec3Arg the shape's origin, m (default {0, 0, 0})
 ---@field rotation? Vec3Arg rotation vector (axis times angle), rad
@@ -766,7 +772,7 @@ function Vehicle:remove() end
 ---body:position() is the centre of mass, not the frame origin the children
 ---were given in (that frame is placed by position / rotation).
 ---@class CompoundDef: BodyDef
----@field children ShapeDef[] 1 to 64 children (box, sphere, capsule, hull)
+---@field children ShapeDef[] 1 to 64 children (box, sphere, capsule, cylinder, hull)
 
 ---@class ShapeCastHit
 ---@field body Body? the body hit; nil when the shape hit the terrain
@@ -1695,6 +1701,15 @@ function world.sphere(def) end
 ---@param def CapsuleDef radius, length and common body fields
 ---@return Body # the new body
 function world.capsule(def) end
+
+---Creates a solid cylinder: its axis is the local Y axis, flat caps at +-height / 2.
+---
+---```lua
+---world.cylinder{radius = 0.4, height = 0.3, position = {0, 2, 0}, rotation = {math.pi / 2, 0, 0}}
+---```
+---@param def CylinderDef radius, height and common body fields
+---@return Body # the new body
+function world.cylinder(def) end
 
 ---Creates an infinite static plane (the ground). Always static.
 ---

@@ -181,6 +181,24 @@ void rollingSpheres(std::vector<AccuracyRow>& rows) {
   }
 }
 
+/// A solid cylinder (I = m r^2 / 2) rolls at g sin / (1 + 1/2) = 2/3 g sin.
+void rollingCylinders(std::vector<AccuracyRow>& rows) {
+  for (double deg : {12.0, 31.0}) {
+    const double angle = deg * kPi / 180, t = 2, r = 0.3;
+    World w;
+    const Quat q = ramp(angle);
+    addStatic(w, Shape::plane(), Vec3::Zero(), q, Real(0.7));
+    const Vec3 start = (q * Vec3::UnitY()) * Real(r);
+    const Quat acrossTheSlope = q * Quat(Eigen::AngleAxis<Real>(Real(kPi / 2), Vec3::UnitX()));  // axis along z
+    const BodyId b = addDynamic(w, Shape::cylinder(Real(r), Real(0.25)), start, 2, Real(0.7), 0, acrossTheSlope);
+    simulate(w, t);
+    const double a = 2.0 / 3.0 * kG * std::sin(angle);
+    rows.push_back(makeRow("rolling", "cylinder rolls, " + fmt("%.0f", deg) + " deg: distance in 2 s (2/3 g sin)", "m",
+                    0.5 * a * t * t, downhill(start, w.body(b).position_m, angle), a * kH * t,
+                    "a h t (first order)"));
+  }
+}
+
 // ---- oscillators ---------------------------------------------------------------------
 
 /// Mean period (s) from the upward zero crossings of x(t) sampled at 60 Hz
@@ -335,6 +353,7 @@ std::vector<AccuracyRow> runAccuracyCases() {
   bounces(rows);
   slidingBlocks(rows);
   rollingSpheres(rows);
+  rollingCylinders(rows);
   springMass(rows);
   pendulums(rows);
   cradle(rows);

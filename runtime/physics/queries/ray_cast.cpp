@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "physics/compound_shape.h"
+#include "physics/internal/convex_collision.h"
 #include "physics/internal/hull_collision.h"
 #include "physics/internal/mesh_collision.h"
 #include "physics/internal/ray_shape.h"
@@ -131,6 +132,9 @@ bool rayShapeAt(const Shape& s, const Vec3& position, const Quat& orientation, c
     case ShapeType::Hull:
       return rayHull(o, d, maxT, Pose{position, orientation.toRotationMatrix()}, *s.hull, inflate, tHit, nHit);
     case ShapeType::Mesh: return rayMesh(o, d, maxT, position, orientation, *s.mesh, inflate, tHit, nHit, meshStats);
+    case ShapeType::Cylinder:
+      return rayCylinder(o, d, maxT, Pose{position, orientation.toRotationMatrix()}, s.radius_m, s.halfHeight_m, inflate,
+                         tHit, nHit);
     case ShapeType::Compound: {
       bool any = false;
       for (const CompoundChild& c : s.compound->children) {

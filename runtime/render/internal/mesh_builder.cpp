@@ -109,6 +109,41 @@ MeshData buildCapsuleMesh(int slices, int stacksPerCap) {
   return buildRings(rings, slices);
 }
 
+MeshData buildCylinderMesh(int slices) {
+  TUMBLE_ASSERT(slices >= 3, "buildCylinderMesh needs slices >= 3");
+  MeshData mesh;
+  const float step = 2.0f * std::numbers::pi_v<float> / static_cast<float>(slices);
+  // Side: two rings (y = +1 above y = -1) with radial normals; going along +t
+  // is to the viewer's left seen from outside, as in buildRings.
+  for (float y : {1.0f, -1.0f})
+    for (int j = 0; j <= slices; ++j) {
+      const float t = step * static_cast<float>(j);
+      const V3 n{std::cos(t), 0.0f, std::sin(t)};
+      mesh.vertices.push_back(vertex({n.x, y, n.z}, n));
+    }
+  const auto columns = static_cast<std::uint32_t>(slices + 1);
+  for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(slices); ++j) {
+    const std::uint32_t a = j, b = columns + j, c = columns + j + 1, d = j + 1;
+    mesh.indices.insert(mesh.indices.end(), {a, c, b, a, d, c});
+  }
+  // Caps: a fan around the centre, normal +Y on top and -Y below.
+  for (float y : {1.0f, -1.0f}) {
+    const auto centre = static_cast<std::uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back(vertex({0.0f, y, 0.0f}, {0.0f, y, 0.0f}));
+    for (int j = 0; j <= slices; ++j) {
+      const float t = step * static_cast<float>(j);
+      mesh.vertices.push_back(vertex({std::cos(t), y, std::sin(t)}, {0.0f, y, 0.0f}));
+    }
+    for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(slices); ++j) {
+      // Seen from above (+Y), increasing t runs clockwise (x towards z), so
+      // the top cap takes (centre, j + 1, j) and the bottom (centre, j, j + 1).
+      if (y > 0) mesh.indices.insert(mesh.indices.end(), {centre, centre + 2 + j, centre + 1 + j});
+      else mesh.indices.insert(mesh.indices.end(), {centre, centre + 1 + j, centre + 2 + j});
+    }
+  }
+  return mesh;
+}
+
 MeshData buildPlaneMesh() {
   MeshData mesh;
   // Same corner construction as a box face, then pushed back down onto y = 0.

@@ -34,6 +34,9 @@ MeshData buildBoxMesh();
 MeshData buildSphereMesh(int slices, int stacks);
 /// slices around Y (>= 3), stacksPerCap from pole to equator (>= 1).
 MeshData buildCapsuleMesh(int slices, int stacksPerCap);
+/// Unit cylinder (radius 1, y from -1 to 1; scale = radius, half height,
+/// radius): slices around Y (>= 3), smooth side, flat caps.
+MeshData buildCylinderMesh(int slices);
 MeshData buildPlaneMesh();
 
 }  // namespace tumble::render

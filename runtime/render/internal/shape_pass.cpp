@@ -28,6 +28,7 @@ MeshData meshFor(ShapeKind kind) {
     case ShapeKind::Sphere: return buildSphereMesh(kRoundSlices, kSphereStacks);
     case ShapeKind::Capsule: return buildCapsuleMesh(kRoundSlices, kCapsuleStacksPerCap);
     case ShapeKind::Plane: return buildPlaneMesh();
+    case ShapeKind::Cylinder: return buildCylinderMesh(kRoundSlices);
     case ShapeKind::ConvexMesh: break;  // drawn by ConvexMeshPass
   }
   return buildBoxMesh();
@@ -76,6 +77,10 @@ ShapeInstance makeInstance(const DrawShape& shape) {
       }
       break;
     }
+    case ShapeKind::Cylinder:
+      instance.scale[0] = instance.scale[2] = safeSize(shape.radius_m);
+      instance.scale[1] = safeSize(shape.halfHeight_m);
+      break;
     case ShapeKind::Plane:
       instance.scale[0] = instance.scale[2] = kPlaneHalfSize_m;
       instance.scale[1] = 1.0f;
@@ -100,7 +105,7 @@ Status ShapePass::init() {
   m_depthProgram = std::move(*depth);
   m_depthViewProjection = uniformLocation(m_depthProgram, "uViewProjection");
 
-  for (ShapeKind kind : {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule, ShapeKind::Plane}) {
+  for (ShapeKind kind : {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule, ShapeKind::Plane, ShapeKind::Cylinder}) {
     Batch& batch = m_batches[kindIndex(kind)];
     const MeshData mesh = meshFor(kind);
     batch.vao = makeVertexArray();

@@ -45,7 +45,7 @@ class ShapePass {
   void draw(const FrameView& view, const Environment& environment);
 
  private:
-  static constexpr std::size_t kKindCount = 4;
+  static constexpr std::size_t kKindCount = 5;  // every ShapeKind before ConvexMesh
   struct Batch {
     GlVertexArray vao;
     GlBuffer vertices, indices, instances;
