@@ -466,40 +466,6 @@ void featureOf(const ConvexPiece& piece, const Vec3& dir, Feature& f) {
   }
 }
 
-struct Cand {
-  Vec3 p;
-  Real sep;
-  std::uint32_t id;
-};
-
-/// At most four candidates: the deepest, the farthest from it, and the two
-/// spanning the largest area on either side of that line (the support polygon).
-int reduceToFour(Cand* c, int k, const Vec3& normal) {
-  if (k <= 4) return k;
-  int i0 = 0;
-  for (int i = 1; i < k; ++i)
-    if (c[i].sep < c[i0].sep) i0 = i;
-  int i1 = -1;
-  Real best = -1;
-  for (int i = 0; i < k; ++i)
-    if (Real d2 = (c[i].p - c[i0].p).squaredNorm(); i != i0 && d2 > best) best = d2, i1 = i;
-  int i2 = -1, i3 = -1;
-  Real maxPos = 0, maxNeg = 0;
-  const Vec3 e = c[i1].p - c[i0].p;
-  for (int i = 0; i < k; ++i) {
-    if (i == i0 || i == i1) continue;
-    const Real area = normal.dot(e.cross(c[i].p - c[i0].p));
-    if (area > maxPos) maxPos = area, i2 = i;
-    if (area < maxNeg) maxNeg = area, i3 = i;
-  }
-  Cand kept[4];
-  int n = 0;
-  for (int idx : {i0, i1, i2, i3})
-    if (idx >= 0) kept[n++] = c[idx];
-  std::copy(kept, kept + n, c);
-  return n;
-}
-
 /// Clips the incident feature against the side planes of face `ref`; the
 /// points left, with their separations from the reference plane, go into m.
 int clipAgainstFace(const Feature& ref, const Feature& inc, bool refIsB, Real margin, Manifold& m) {
@@ -544,14 +510,14 @@ int clipAgainstFace(const Feature& ref, const Feature& inc, bool refIsB, Real ma
     }
     poly.swap(tmp);
   }
-  Cand cands[40];
+  ContactCandidate cands[40];
   int k = 0;
   for (const auto& [q, id] : poly) {
     const Real sep = ref.normal.dot(q - ref.p[0]);
     if (sep <= margin && k < 40) cands[k++] = {q - ref.normal * (sep / 2), sep, id};
   }
   if (k == 0) return 0;
-  k = reduceToFour(cands, k, ref.normal);
+  k = reduceToFourCandidates(cands, k, ref.normal);
   m.normal = refIsB ? Vec3(-ref.normal) : ref.normal;
   const std::uint32_t key = (std::uint32_t(refIsB) << 31) | ((ref.key & 0x3FFu) << 20) | ((inc.key & 0x3FFu) << 10);
   for (int i = 0; i < k; ++i) addPoint(m, cands[i].p, cands[i].sep, key | (cands[i].id & 0x3FFu));
@@ -567,7 +533,7 @@ int parallelLines(const Feature& la, const Feature& lb, const Vec3& n, Real marg
   const Real t0 = dir.dot(b0 - a0), t1 = dir.dot(b0 + db - a0);
   const Real lo = std::max<Real>(0, std::min(t0, t1)), hi = std::min(lenA, std::max(t0, t1));
   if (lo > hi) return 0;
-  Cand c[2];
+  ContactCandidate c[2];
   int k = 0;
   for (Real t : {lo, hi}) {
     const Vec3 qa = a0 + dir * t;

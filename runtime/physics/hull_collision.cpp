@@ -70,40 +70,6 @@ Scratch& scratch() {
   return s;
 }
 
-struct Cand {
-  Vec3 p;
-  Real sep;
-  std::uint32_t id;
-};
-
-/// Keeps at most four candidates: the deepest, the one farthest from it, and
-/// the two that span the largest area on either side of that line.
-int reduceToFour(Cand* c, int k, const Vec3& normal) {
-  if (k <= 4) return k;
-  int i0 = 0;
-  for (int i = 1; i < k; ++i)
-    if (c[i].sep < c[i0].sep) i0 = i;
-  int i1 = -1;
-  Real best = -1;
-  for (int i = 0; i < k; ++i)
-    if (Real d2 = (c[i].p - c[i0].p).squaredNorm(); i != i0 && d2 > best) best = d2, i1 = i;
-  int i2 = -1, i3 = -1;
-  Real maxPos = 0, maxNeg = 0;
-  const Vec3 e = c[i1].p - c[i0].p;
-  for (int i = 0; i < k; ++i) {
-    if (i == i0 || i == i1) continue;
-    const Real area = normal.dot(e.cross(c[i].p - c[i0].p));
-    if (area > maxPos) maxPos = area, i2 = i;
-    if (area < maxNeg) maxNeg = area, i3 = i;
-  }
-  Cand kept[4];
-  int n = 0;
-  for (int idx : {i0, i1, i2, i3})
-    if (idx >= 0) kept[n++] = c[idx];
-  std::copy(kept, kept + n, c);
-  return n;
-}
-
 /// Largest separation over the face normals of `ref` (minimum of the other's vertices along each).
 Real faceQuery(const WorldHull& ref, const WorldHull& other, int& bestFace) {
   Real best = -std::numeric_limits<Real>::max();
@@ -184,14 +150,14 @@ int faceContact(const WorldHull& R, int refFace, const WorldHull& I, bool refIsB
     if (clip(s.poly, side, side.dot(a), k, s.tmp) == 0) return 0;
     s.poly.swap(s.tmp);
   }
-  thread_local std::vector<Cand> cands;
+  thread_local std::vector<ContactCandidate> cands;
   cands.clear();
   for (const auto& [p, id] : s.poly) {
     const Real sep = nRef.dot(p) - R.d[refFace];
     if (sep <= margin) cands.push_back({p - nRef * (sep / 2), sep, id});
   }
   if (cands.empty()) return 0;
-  const int k = reduceToFour(cands.data(), int(cands.size()), nRef);
+  const int k = reduceToFourCandidates(cands.data(), int(cands.size()), nRef);
   m.normal = refIsB ? Vec3(-nRef) : nRef;
   const std::uint32_t key =
       (std::uint32_t(refIsB) << 31) | ((std::uint32_t(refFace) & 0x3FFu) << 20) | ((std::uint32_t(inc) & 0x3FFu) << 10);
@@ -321,7 +287,7 @@ int collideCapsuleHull(const Vec3& p0, const Vec3& p1, Real r, const Pose& B, co
 
 int collideHullPlane(const Pose& A, const ConvexHull& h, const Vec3& planePoint, const Vec3& normal, Real margin,
                      Manifold& m) {
-  thread_local std::vector<Cand> cands;
+  thread_local std::vector<ContactCandidate> cands;
   cands.clear();
   for (std::size_t i = 0; i < h.vertices_m.size(); ++i) {
     const Vec3 v = A.p + A.R * h.vertices_m[i];
@@ -329,7 +295,7 @@ int collideHullPlane(const Pose& A, const ConvexHull& h, const Vec3& planePoint,
     if (sep <= margin) cands.push_back({v - normal * (sep / 2), sep, std::uint32_t(i)});
   }
   if (cands.empty()) return 0;
-  const int k = reduceToFour(cands.data(), int(cands.size()), normal);
+  const int k = reduceToFourCandidates(cands.data(), int(cands.size()), normal);
   m.normal = -normal;  // from the hull to the plane
   for (int i = 0; i < k; ++i) addPoint(m, cands[i].p, cands[i].sep, cands[i].id);
   return m.count;

@@ -238,46 +238,15 @@ int boxBox(const Xf& A, const Vec3& hA, const Xf& B, const Vec3& hB, Real margin
   }
   Vec3 refCenter = R.p + nRef * hR[refAxis];
   // Collect points within the margin.
-  struct Cand {
-    Vec3 p;
-    Real sep;
-    std::uint32_t id;
-  };
-  Cand cands[16];
+
+  ContactCandidate cands[16];
   int k = 0;
   for (int i = 0; i < n; ++i) {
     Real sep = nRef.dot(poly[i].p - refCenter);
     if (sep <= margin) cands[k++] = {poly[i].p - nRef * (sep / 2), sep, poly[i].id};
   }
   if (k == 0) return 0;
-  // Reduce to four: deepest, farthest from it, then the two that span the
-  // largest area on either side (keeps the support polygon).
-  if (k > 4) {
-    int i0 = 0;
-    for (int i = 1; i < k; ++i)
-      if (cands[i].sep < cands[i0].sep) i0 = i;
-    int i1 = -1;
-    Real best = -1;
-    for (int i = 0; i < k; ++i) {
-      Real d2 = (cands[i].p - cands[i0].p).squaredNorm();
-      if (i != i0 && d2 > best) best = d2, i1 = i;
-    }
-    int i2 = -1, i3 = -1;
-    Real maxPos = 0, maxNeg = 0;
-    Vec3 e = cands[i1].p - cands[i0].p;
-    for (int i = 0; i < k; ++i) {
-      if (i == i0 || i == i1) continue;
-      Real area = nRef.dot(e.cross(cands[i].p - cands[i0].p));
-      if (area > maxPos) maxPos = area, i2 = i;
-      if (area < maxNeg) maxNeg = area, i3 = i;
-    }
-    Cand kept[4];
-    int kk = 0;
-    for (int idx : {i0, i1, i2, i3})
-      if (idx >= 0) kept[kk++] = cands[idx];
-    std::copy(kept, kept + kk, cands);
-    k = kk;
-  }
+  k = reduceToFourCandidates(cands, k, nRef);
   m.normal = useB ? Vec3(-nRef) : nRef;
   std::uint32_t faceKey = (std::uint32_t(useB) << 15) | (std::uint32_t(refAxis) << 12) | (std::uint32_t(incAxis) << 10);
   for (int i = 0; i < k; ++i) addPoint(m, cands[i].p, cands[i].sep, faceKey | cands[i].id);

@@ -499,10 +499,11 @@ TEST(Cylinder, APileOfMixedShapesSettlesAboveTheFloor) {
     // solver changed the pile's course), so only its overlap is checked.
     const Real axisUp = std::abs((b.orientation * Vec3::UnitY()).y());
     const bool onRim = b.shape.type == ShapeType::Cylinder && axisUp > Real(0.035) && axisUp < Real(0.999);
-    if (b.shape.type != ShapeType::Sphere && !onRim)
+    if (b.shape.type != ShapeType::Sphere && !onRim) {
       EXPECT_LT(b.linearVelocity_mps.norm(), Real(0.05)) << shapeTypeName(b.shape.type) << " still moving at "
                                                        << b.linearVelocity_mps.transpose() << " at "
                                                        << b.position_m.transpose();
+    }
   }
   std::printf("mixed pile of 48: %d awake after 10 s, deepest penetration %.4f m\n", awake,
               double(w.errorStats().penetrationMax_m));

@@ -1,5 +1,6 @@
 #pragma once
 // Contact manifolds shared by the narrow phase and the contact solver.
+#include <algorithm>
 #include <cstdint>
 
 #include "core/math.h"
@@ -50,6 +51,43 @@ inline void addPoint(Manifold& m, const Vec3& p, Real sep, std::uint32_t id) {
   c.point_m = p;
   c.separation_m = sep;
   c.id = id;
+}
+
+/// A candidate contact point of a clipped feature: world point, separation
+/// (m) and feature id.
+struct ContactCandidate {
+  Vec3 p;
+  Real sep;
+  std::uint32_t id;
+};
+
+/// Keeps at most four of the k candidates c (in place; returns how many):
+/// the deepest, the one farthest from it, and the two that span the largest
+/// area on either side of that line about `normal` (the support polygon).
+inline int reduceToFourCandidates(ContactCandidate* c, int k, const Vec3& normal) {
+  if (k <= 4) return k;
+  int i0 = 0;
+  for (int i = 1; i < k; ++i)
+    if (c[i].sep < c[i0].sep) i0 = i;
+  int i1 = -1;
+  Real best = -1;
+  for (int i = 0; i < k; ++i)
+    if (Real d2 = (c[i].p - c[i0].p).squaredNorm(); i != i0 && d2 > best) best = d2, i1 = i;
+  int i2 = -1, i3 = -1;
+  Real maxPos = 0, maxNeg = 0;
+  const Vec3 e = c[i1].p - c[i0].p;
+  for (int i = 0; i < k; ++i) {
+    if (i == i0 || i == i1) continue;
+    const Real area = normal.dot(e.cross(c[i].p - c[i0].p));
+    if (area > maxPos) maxPos = area, i2 = i;
+    if (area < maxNeg) maxNeg = area, i3 = i;
+  }
+  ContactCandidate kept[4];
+  int n = 0;
+  for (int idx : {i0, i1, i2, i3})
+    if (idx >= 0) kept[n++] = c[idx];
+  std::copy(kept, kept + n, c);
+  return n;
 }
 
 /// Pair key, order independent.
