@@ -543,6 +543,24 @@ void DesignDocument::setVehicle(const std::string& vehicle) {
 }
 const std::string& DesignDocument::vehicle() const { return m->meta.vehicle; }
 
+std::string checkSky(const DesignSky& sky) {
+  if (!std::isfinite(sky.timeOfDay_h) || sky.timeOfDay_h < 0 || sky.timeOfDay_h > 24)
+    return "'sky.time_of_day_h': expected hours in [0, 24]";
+  if (sky.weather != "clear" && sky.weather != "cloudy" && sky.weather != "storm")
+    return "'sky.weather': expected \"clear\", \"cloudy\" or \"storm\"";
+  if (!std::isfinite(sky.cloudCover) || sky.cloudCover < 0 || sky.cloudCover > 1)
+    return "'sky.clouds': expected a fraction in [0, 1]";
+  return {};
+}
+
+bool DesignDocument::setSky(const DesignSky& sky) {
+  if (!checkSky(sky).empty()) return false;
+  if (sky == m->meta.sky) return true;
+  editMeta([&](DesignMeta& meta) { meta.sky = sky; });
+  return true;
+}
+const DesignSky& DesignDocument::sky() const { return m->meta.sky; }
+
 void DesignDocument::setTitle(const std::string& title) {
   editMeta([&](DesignMeta& meta) { meta.title = title; });
 }
@@ -630,6 +648,10 @@ std::uint64_t DesignDocument::contentHash() const {
   h.value(meta.vehicle.size());
   h.bytes(meta.title.data(), meta.title.size());
   h.value(meta.title.size());
+  h.value(meta.sky.timeOfDay_h);
+  h.bytes(meta.sky.weather.data(), meta.sky.weather.size());
+  h.value(meta.sky.weather.size());
+  h.value(meta.sky.cloudCover);
   return h.digest();
 }
 

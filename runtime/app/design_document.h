@@ -110,6 +110,19 @@ struct VehicleStart {
   bool operator==(const VehicleStart&) const = default;
 };
 
+/// The scenario's sky and weather (environment.set in the saved scenario,
+/// and what the designer draws): the outdoor afternoon of base:drive unless
+/// changed.
+struct DesignSky {
+  double timeOfDay_h = 16.5;    ///< local solar time, hours in [0, 24]
+  std::string weather = "clear";  ///< "clear", "cloudy" or "storm"
+  double cloudCover = 0.45;     ///< fraction of the sky under the cloud layers, [0, 1]
+  bool operator==(const DesignSky&) const = default;
+};
+
+/// Empty if `sky` is one environment.set accepts, else what is wrong: "'FIELD': expected ...".
+std::string checkSky(const DesignSky& sky);
+
 /// Everything of a design besides the terrain: what an object edit's undo step keeps.
 struct DesignMeta {
   std::map<std::uint32_t, PlacedObject> objects;
@@ -117,6 +130,7 @@ struct DesignMeta {
   VehicleStart start;
   std::string vehicle = "base:hatchback";  ///< the car driven from the start, "MOD:NAME"
   std::string title = "A designed course"; ///< the scenario's title
+  DesignSky sky;
   bool operator==(const DesignMeta&) const = default;
 };
 
@@ -176,6 +190,10 @@ class DesignDocument {
   void setVehicle(const std::string& vehicle);  ///< "MOD:NAME" (base:hatchback)
   const std::string& vehicle() const;
   void setTitle(const std::string& title);      ///< the scenario's title
+  /// The sky and weather (one undo step); false, changing nothing, when
+  /// checkSky refuses it.
+  bool setSky(const DesignSky& sky);
+  const DesignSky& sky() const;
   const std::string& title() const;
 
   // --- undo ---

@@ -38,7 +38,8 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kDesignFormatVersion = 1;
+// 2: the sky (version 1 files have none and get DesignSky's defaults).
+constexpr int kDesignFormatVersion = 2;
 constexpr terrain::PngEncoding kFastPng{1, 2, true};
 
 // ---- names and numbers ---------------------------------------------------------------
@@ -220,7 +221,9 @@ std::string scenarioLua(const DesignMeta& meta, const std::string& modName, cons
     << "    autopilot = {default = 0, description = \"0: the player drives; 1: the autopilot drives through the gates\"},\n"
     << "    speed = {default = 12, unit = \"m/s\", description = \"the autopilot's cruising speed\"},\n"
     << "  },\n\n"
-    << "  on_start = function(ctx)\n";
+    << "  on_start = function(ctx)\n"
+    << "    environment.set{time_of_day = " << num(meta.sky.timeOfDay_h) << ", weather = " << luaString(meta.sky.weather)
+    << ", clouds = " << num(meta.sky.cloudCover) << "}\n";
   for (const auto& [id, o] : meta.objects)
     if (o.kind != PlacedKind::Gate) s << objectLine(id, o);
   s << "    for i, g in ipairs(GATES) do gate(i, g) end\n"
@@ -297,6 +300,7 @@ json designJson(const DesignMeta& meta, const std::string& scenario) {
           {"scenario", "scenarios/" + scenario + ".lua"},
           {"start", {{"position_m", vec3Json(meta.start.position_m)}, {"heading_rad", meta.start.heading_rad}}},
           {"next_id", meta.nextId},
+          {"sky", {{"time_of_day_h", meta.sky.timeOfDay_h}, {"weather", meta.sky.weather}, {"clouds", meta.sky.cloudCover}}},
           {"objects", objects}};
 }
 
@@ -373,6 +377,15 @@ Result<DesignMeta> parseDesign(const std::string& text, const std::string& file,
       !r.number(*start, "heading_rad", "start.heading_rad", &heading))
     return makeError(r.error);
   meta.start.heading_rad = heading;
+  if (version >= 2) {
+    const json* sky = r.get(j, "sky", "sky");
+    if (!sky || !sky->is_object()) return makeError(r.error.empty() ? file + ": field 'sky': expected an object" : r.error);
+    if (!r.number(*sky, "time_of_day_h", "sky.time_of_day_h", &meta.sky.timeOfDay_h) ||
+        !r.text(*sky, "weather", "sky.weather", &meta.sky.weather) ||
+        !r.number(*sky, "clouds", "sky.clouds", &meta.sky.cloudCover))
+      return makeError(r.error);
+    if (const std::string bad = checkSky(meta.sky); !bad.empty()) return makeError(file + ": field " + bad);
+  }
   const json* objects = r.get(j, "objects", "objects");
   if (!objects || !objects->is_array()) return makeError(r.error.empty() ? file + ": field 'objects': expected an array" : r.error);
   for (std::size_t k = 0; k < objects->size(); ++k) {

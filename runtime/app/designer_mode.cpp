@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "app/paths.h"
+#include "app/scene_sky.h"
 #include "core/log.h"
 #include "render/model.h"
 
@@ -634,6 +635,14 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
   loadModels();
   fillSurface();
   snap.terrain = &m_surfaceView;
+  // The sky the saved scenario will set (environment.set), so the designer
+  // shows the light and weather the course is played in.
+  const DesignSky& sky = m_skyDrag ? *m_skyDrag : m_doc->sky();
+  script::EnvironmentRequest environment;
+  environment.timeOfDay_h = sky.timeOfDay_h;
+  environment.weather = sky.weather;
+  environment.cloudCover = sky.cloudCover;
+  snap.sky = skySettingsOf(environment);
   addObjectDrawing(snap);
   if (m_hit && m_menu == Menu::None) addBrushCircle(snap, *m_hit);
   const render::TerrainStats& stats = renderer.terrainStats();
@@ -875,6 +884,7 @@ void DesignerMode::drawToolPanel() {
       }
     }
     ImGui::Separator();
+    drawSkyControls();
     const auto& vehicles = m_catalog.vehiclesFor("base");
     if (!vehicles.empty()) {
       m_vehicleIndex = std::clamp(m_vehicleIndex, 0, int(vehicles.size()) - 1);
@@ -899,6 +909,31 @@ void DesignerMode::drawToolPanel() {
     ImGui::TextDisabled("[ ] radius  , . next  Esc menu");
   }
   ImGui::End();
+}
+
+void DesignerMode::drawSkyControls() {
+  DesignSky sky = m_skyDrag ? *m_skyDrag : m_doc->sky();
+  float hours = float(sky.timeOfDay_h), clouds = float(sky.cloudCover);
+  bool dragged = ImGui::SliderFloat("time of day (h)", &hours, 0.0f, 24.0f, "%.1f");
+  bool released = ImGui::IsItemDeactivatedAfterEdit();
+  dragged |= ImGui::SliderFloat("clouds", &clouds, 0.0f, 1.0f, "%.2f");
+  released |= ImGui::IsItemDeactivatedAfterEdit();
+  sky.timeOfDay_h = double(hours);
+  sky.cloudCover = double(clouds);
+  if (dragged) m_skyDrag = sky;
+  const char* kinds[] = {"clear", "cloudy", "storm"};
+  if (ImGui::BeginCombo("weather", sky.weather.c_str())) {
+    for (const char* k : kinds)
+      if (ImGui::Selectable(k, sky.weather == k)) {
+        sky.weather = k;
+        released = true;
+      }
+    ImGui::EndCombo();
+  }
+  if (released) {
+    m_doc->setSky(sky);
+    m_skyDrag.reset();
+  }
 }
 
 void DesignerMode::drawStatusBar() {
@@ -1101,6 +1136,8 @@ nlohmann::json DesignerMode::report() const {
   d["unsaved"] = m_doc->revision() != m_savedRevision;
   d["saved_as"] = m_mod.empty() ? nlohmann::json(nullptr) : nlohmann::json(m_mod + ":" + m_scenario);
   d["vehicle"] = m_doc->vehicle();
+  d["sky"] = {{"time_of_day_h", m_doc->sky().timeOfDay_h}, {"weather", m_doc->sky().weather},
+              {"clouds", m_doc->sky().cloudCover}};
   if (m_hit) {
     d["cursor_m"] = vec(toVec3(*m_hit));
     d["height_at_cursor_m"] = m_doc->groundHeight_m(double(m_hit->x()), double(m_hit->z()));

@@ -131,6 +131,7 @@ class DesignerMode {
   void drawMenu();
   void drawSaveAs();
   void drawStatusBar();
+  void drawSkyControls();  ///< time of day, clouds, weather: the document's sky
 
   GameCatalog& m_catalog;
   std::vector<std::string> m_modDirs;
@@ -160,6 +161,9 @@ class DesignerMode {
   int m_nextGateOrder = 1;
   std::string m_collision = "mesh";
   int m_vehicleIndex = 0;
+  /// The sky while a slider is dragged (drawn at once; the document takes
+  /// it as one undo step when the slider is let go).
+  std::optional<DesignSky> m_skyDrag;
   int m_placedCount = 0;
   int m_lastChunksUploaded = 0, m_lastChunksInvalidated = 0;  // the renderer's, last frame
   struct ItemRect {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -460,9 +461,9 @@ TEST(DesignUndo, EveryEditUndoesAndRedoesBitIdentically) {
   std::uint64_t rng = 7;
   auto u = [&] { return double(splitmix64(rng) >> 11) * 0x1.0p-53; };
   Brush b;
-  for (int step = 0; step < 30; ++step) {
+  for (int step = 0; step < 35; ++step) {
     const double x = -120 + 240 * u(), z = -120 + 240 * u();
-    switch (step % 6) {
+    switch (step % 7) {
       case 0:  // a stroke of dabs of every kind
         d.beginStroke();
         for (int k = 0; k < 8; ++k) {
@@ -494,6 +495,7 @@ TEST(DesignUndo, EveryEditUndoesAndRedoesBitIdentically) {
         }
         break;
       case 5: d.setVehicle("base:car" + std::to_string(step)); break;
+      case 6: ASSERT_TRUE(d.setSky({24 * u(), step % 2 ? "storm" : "cloudy", u()})); break;
     }
     hashes.push_back(d.contentHash());
     ASSERT_NE(hashes.back(), hashes[hashes.size() - 2]) << "step " << step << " changed nothing";
@@ -514,6 +516,25 @@ TEST(DesignUndo, EveryEditUndoesAndRedoesBitIdentically) {
   d.undo();
   d.addObject(PlacedObject{});
   EXPECT_FALSE(d.canRedo());
+}
+
+TEST(DesignSky, OutOfRangeValuesAreRefusedNamingTheFieldAndChangeNothing) {
+  DesignDocument d = flatDoc(33, 1.0, 5.0);
+  const std::uint64_t before = d.contentHash();
+  for (const auto& [sky, field] : std::vector<std::pair<DesignSky, std::string>>{
+           {{24.5, "clear", 0.5}, "sky.time_of_day_h"},
+           {{std::nan(""), "clear", 0.5}, "sky.time_of_day_h"},
+           {{12, "fog", 0.5}, "sky.weather"},
+           {{12, "clear", 1.5}, "sky.clouds"},
+           {{12, "clear", std::numeric_limits<double>::infinity()}, "sky.clouds"}}) {
+    EXPECT_NE(checkSky(sky).find(field), std::string::npos) << checkSky(sky);
+    EXPECT_FALSE(d.setSky(sky)) << field;
+  }
+  EXPECT_EQ(d.contentHash(), before);
+  EXPECT_FALSE(d.canUndo());
+  EXPECT_EQ(d.sky(), DesignSky{});
+  EXPECT_TRUE(checkSky({0, "storm", 0}).empty());
+  EXPECT_TRUE(checkSky({24, "cloudy", 1}).empty());
 }
 
 TEST(DesignUndo, AStrokeKeepsOnlyWhatItTouchedAndTheBudgetDropsTheOldest) {

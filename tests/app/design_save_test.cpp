@@ -88,6 +88,7 @@ DesignDocument course() {
   d.setStart(Vec3(0, 0, -10), 0.0);
   d.setVehicle("base:buggy");
   d.setTitle("Test course: a hill, a ditch, mud, trees and gates");
+  EXPECT_TRUE(d.setSky({19.0, "cloudy", 0.7}));
   return d;
 }
 
@@ -111,6 +112,7 @@ TEST(DesignSave, WritesAModThatOpensBitIdentically) {
   EXPECT_EQ(opened->contentHash(), d.contentHash());
   EXPECT_TRUE(opened->terrain().heights() == d.terrain().heights());
   EXPECT_EQ(opened->meta(), d.meta());
+  EXPECT_EQ(opened->sky(), (DesignSky{19.0, "cloudy", 0.7}));
   for (int l = 0; l < terrain::kMaterialLayerCount; ++l)
     EXPECT_EQ(opened->terrain().materials()->layer(terrain::MaterialLayer(l)),
               d.terrain().materials()->layer(terrain::MaterialLayer(l)))
@@ -251,6 +253,23 @@ TEST(DesignSave, ADamagedDesignFileIsNamedWithItsField) {
   EXPECT_NE(r.error().find("objects[2].kind"), std::string::npos) << r.error();
   EXPECT_NE(r.error().find("course.design.json"), std::string::npos) << r.error();
   j["objects"][2]["kind"] = "box";
+  for (const auto& [field, bad] : std::vector<std::pair<std::string, nlohmann::json>>{
+           {"weather", "fog"}, {"time_of_day_h", 25}, {"clouds", -0.5}, {"time_of_day_h", "noon"}}) {
+    nlohmann::json broken = j;
+    broken["sky"][field] = bad;
+    ASSERT_TRUE(writeFileAtomic(file.string(), broken.dump()).ok());
+    r = DesignDocument::open((mods / "mymap").string(), "course");
+    ASSERT_FALSE(r.ok()) << field;
+    EXPECT_NE(r.error().find("sky." + field), std::string::npos) << r.error();
+  }
+  // A design saved before the sky was kept (version 1) opens with the default sky.
+  nlohmann::json older = j;
+  older["version"] = 1;
+  older.erase("sky");
+  ASSERT_TRUE(writeFileAtomic(file.string(), older.dump()).ok());
+  r = DesignDocument::open((mods / "mymap").string(), "course");
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ(r->sky(), DesignSky{});
   j["heightmap"] = "../../outside.png";
   ASSERT_TRUE(writeFileAtomic(file.string(), j.dump()).ok());
   r = DesignDocument::open((mods / "mymap").string(), "course");
@@ -298,6 +317,11 @@ TEST(DesignSaveCli, TheSavedModPassesCheckAndRunsTheSameTwice) {
   EXPECT_EQ(a["state_hash"], b["state_hash"]);
   EXPECT_EQ(failedExpectations(a), "");
   EXPECT_EQ(a["expectations"].size(), 2u) << a["expectations"].dump();
+  // The designed sky is set through the modders' API.
+  std::ifstream lua(mods / "mymap" / "scenarios" / "course.lua");
+  const std::string text((std::istreambuf_iterator<char>(lua)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("environment.set{time_of_day = 19, weather = \"cloudy\", clouds = 0.7}"), std::string::npos)
+      << text.substr(0, 3000);
   const auto subsystems = a["subsystems"].dump();
   EXPECT_NE(subsystems.find("terrain"), std::string::npos) << subsystems;
   // Without a single step the car has no wheel contact yet: the scenario's

@@ -6,6 +6,7 @@
 // state, where it was saved. Every test isolates HOME, so saves land in a
 // folder of its own.
 #include <gtest/gtest.h>
+#include <stb/stb_image.h>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <string>
 
+#include "app/design_document.h"
 #include "app/fly_camera.h"
 #include "tumble_process.h"
 
@@ -161,6 +163,49 @@ TEST(Designer, F5DrivesTheMapAndF5ComesBackWithNothingLost) {
   EXPECT_TRUE(back.report["scenario"].is_null()) << "the drive's scene is gone";
   EXPECT_EQ(d["document"]["revision"], designer(before)["document"]["revision"]) << "driving changes nothing";
   EXPECT_EQ(d["camera"], designer(before)["camera"]) << "the camera is where it was";
+}
+
+/// Mean of the screenshot's pixel values (0..255), -1 if it does not load.
+double meanBrightness(const std::string& path) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
+  if (!data) return -1;
+  double sum = 0;
+  for (int i = 0; i < w * h * 3; ++i) sum += data[i];
+  stbi_image_free(data);
+  return sum / (w * h * 3);
+}
+
+// The designer draws the sky the course will be played in: a design saved
+// at midnight opens dark, one saved at noon bright (the panel and the
+// flat ground are the same in both).
+TEST(Designer, ShowsTheSkyOfTheDesignItOpens) {
+  const std::string dir = outDir("designer_sky");
+  const std::string mods = dir + "/home/.local/share/tumble/mods";
+  for (const auto& [name, sky] : {std::pair{"noon", app::DesignSky{12.0, "clear", 0.2}},
+                                  std::pair{"midnight", app::DesignSky{0.0, "clear", 0.2}}}) {
+    app::NewMapOptions o;
+    o.size_samples = 65;
+    o.minHeight_m = 0;
+    o.maxHeight_m = 1;
+    auto created = app::DesignDocument::create(o);
+    ASSERT_TRUE(created.ok()) << created.error();
+    ASSERT_TRUE(created->setSky(sky));
+    const Status st = created->saveAsMod(mods, "skies", name);
+    ASSERT_TRUE(st.ok()) << st.error();
+  }
+  double mean[2] = {-1, -1};
+  int k = 0;
+  for (const char* name : {"noon", "midnight"}) {
+    const std::string shot = dir + "/" + name + ".png";
+    auto p = run(dir, name, std::string("design skies:") + name + " --screenshot " + shot, 4, "");
+    expectRan(p);
+    EXPECT_EQ(designer(p)["document"]["sky"]["time_of_day_h"].get<double>(), k == 0 ? 12.0 : 0.0);
+    mean[k++] = meanBrightness(shot);
+  }
+  ASSERT_GT(mean[0], 0);
+  ASSERT_GE(mean[1], 0);
+  EXPECT_LT(mean[1], 0.8 * mean[0]) << "midnight " << mean[1] << " against noon " << mean[0];
 }
 
 TEST(Designer, EscapeOpensItsMenuAndQuitWithUnsavedChangesAsks) {
