@@ -914,12 +914,13 @@ void DesignerMode::drawToolPanel() {
 void DesignerMode::drawSkyControls() {
   DesignSky sky = m_skyDrag ? *m_skyDrag : m_doc->sky();
   float hours = float(sky.timeOfDay_h), clouds = float(sky.cloudCover);
-  bool dragged = ImGui::SliderFloat("time of day (h)", &hours, 0.0f, 24.0f, "%.1f");
-  bool released = ImGui::IsItemDeactivatedAfterEdit();
-  dragged |= ImGui::SliderFloat("clouds", &clouds, 0.0f, 1.0f, "%.2f");
+  // Only the slider moved changes its field (the float round trip would
+  // change the other by a rounding error).
+  bool dragged = false, released = false;
+  if (ImGui::SliderFloat("hour", &hours, 0.0f, 24.0f, "%.1f")) sky.timeOfDay_h = double(hours), dragged = true;
   released |= ImGui::IsItemDeactivatedAfterEdit();
-  sky.timeOfDay_h = double(hours);
-  sky.cloudCover = double(clouds);
+  if (ImGui::SliderFloat("clouds", &clouds, 0.0f, 1.0f, "%.2f")) sky.cloudCover = double(clouds), dragged = true;
+  released |= ImGui::IsItemDeactivatedAfterEdit();
   if (dragged) m_skyDrag = sky;
   const char* kinds[] = {"clear", "cloudy", "storm"};
   if (ImGui::BeginCombo("weather", sky.weather.c_str())) {

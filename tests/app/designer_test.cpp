@@ -32,12 +32,12 @@ struct Played {
 
 
 Played run(const std::string& dir, const std::string& name, const std::string& command, int frames,
-           const std::string& events) {
+           const std::string& events, const std::string& size = kSize) {
   const std::string eventsPath = dir + "/" + name + ".events", reportPath = dir + "/" + name + ".json";
   std::ofstream(eventsPath) << events;
   Played p;
   p.process = runTumble(command + " --frames " + std::to_string(frames) + " --events " + eventsPath + " --report " +
-                            reportPath + kSize,
+                            reportPath + size,
                         isolated(dir));
   std::ifstream in(reportPath);
   p.report = nlohmann::json::parse(in, nullptr, false);
@@ -206,6 +206,30 @@ TEST(Designer, ShowsTheSkyOfTheDesignItOpens) {
   ASSERT_GT(mean[0], 0);
   ASSERT_GE(mean[1], 0);
   EXPECT_LT(mean[1], 0.8 * mean[0]) << "midnight " << mean[1] << " against noon " << mean[0];
+}
+
+// A slider dragged with the mouse follows it (the HUD keeps a button held
+// from its down event to its up event and the pointer from the events):
+// dragging the panel's hour slider to its left end turns the afternoon into
+// night, and Ctrl+Z brings the afternoon back as one step.
+TEST(Designer, DraggingTheHourSliderSetsTheSkyAndCtrlZUndoesIt) {
+  const std::string dir = outDir("designer_hour");
+  const std::string size = " --width 1280 --height 720 --quality low --mute";
+  // The panel's hour slider spans x 16..164 at y 314 (its value 16.5 h sits at x 117).
+  std::string drag = kNewMap + "10 move 117 314\n12 down mouse:left\n";
+  int frame = 14;
+  for (int x = 100; x >= 10; x -= 15, frame += 2) drag += std::to_string(frame) + " move " + std::to_string(x) + " 314\n";
+  drag += std::to_string(frame + 2) + " up mouse:left\n";
+  const int released = frame + 4;
+  auto dragged = run(dir, "dragged", "design new", released + 4, drag, size);
+  expectRan(dragged);
+  const auto& sky = designer(dragged)["document"]["sky"];
+  EXPECT_LT(sky["time_of_day_h"].get<double>(), 1.0) << sky.dump();
+  EXPECT_EQ(sky["clouds"].get<double>(), 0.45) << "only the hour was dragged";
+  auto undone = run(dir, "undone", "design new", released + 12, drag + ctrl("Z", released + 2), size);
+  expectRan(undone);
+  EXPECT_EQ(designer(undone)["document"]["sky"]["time_of_day_h"].get<double>(), 16.5);
+  EXPECT_TRUE(designer(undone)["document"]["can_redo"].get<bool>());
 }
 
 TEST(Designer, EscapeOpensItsMenuAndQuitWithUnsavedChangesAsks) {

@@ -74,6 +74,16 @@ void Hud::processEvent(const SDL_Event& event) {
     m_motionX = float(event.motion.x);
     m_motionY = float(event.motion.y);
   }
+  if (event.type == SDL_MOUSEBUTTONDOWN || event.type == SDL_MOUSEBUTTONUP) {
+    const int index = event.button.button == SDL_BUTTON_LEFT    ? 0
+                      : event.button.button == SDL_BUTTON_RIGHT  ? 1
+                      : event.button.button == SDL_BUTTON_MIDDLE ? 2
+                                                                 : -1;
+    if (index >= 0) m_held[index] = event.type == SDL_MOUSEBUTTONDOWN;
+    m_haveMotion = true;
+    m_motionX = float(event.button.x);
+    m_motionY = float(event.button.y);
+  }
 }
 
 bool Hud::wantsKeyboard() const {
@@ -93,7 +103,9 @@ void Hud::newFrame() {
   // state, which the offscreen driver (play --frames) never sets: there the
   // last motion event is where the pointer is.
   ImGuiIO& io = ImGui::GetIO();
-  if (m_haveMotion && io.MousePos.x <= -FLT_MAX) io.MousePos = ImVec2(m_motionX, m_motionY);
+  const bool held = m_held[0] || m_held[1] || m_held[2];
+  for (int i = 0; i < 3; ++i) io.MouseDown[i] = io.MouseDown[i] || m_held[i];
+  if (m_haveMotion && (held || io.MousePos.x <= -FLT_MAX)) io.MousePos = ImVec2(m_motionX, m_motionY);
   ImGui::NewFrame();
 }
 

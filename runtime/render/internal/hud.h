@@ -54,6 +54,13 @@ class Hud {
   // the mouse focus), so scripted moves and clicks reach the HUD's windows.
   bool m_haveMotion = false;
   float m_motionX = 0, m_motionY = 0;
+  // Buttons held between their down and up events (left, right, middle).
+  // The SDL backend (1.86) reads held buttons from SDL's mouse state, which
+  // scripted events never set, and while a button is held under X it reads
+  // the pointer from the global mouse state, which stays where the press was
+  // when the motion comes from XTest (xdotool): either way a dragged slider
+  // did not move. While a button is held the events say where the pointer is.
+  bool m_held[3] = {false, false, false};
   bool m_hadMessages = false;
   std::vector<HudPanel> m_panels;
   bool m_hadTuning = false;
