@@ -93,6 +93,19 @@ TEST(ModelsCli, CarDrivesOverAMeshRamp) {
   EXPECT_GE(mesh["triangles_tested"].get<double>(), mesh["exact_tests"].get<double>()) << mesh;
 }
 
+// The base mod's jump ramp (the designer's palette offers it): a car at
+// full throttle climbs its deck through the mesh, flies off the lip with
+// every wheel in the air and lands upright (the scenario's expectations).
+TEST(ModelsCli, CarJumpsOffTheBaseRamp) {
+  const std::string dir = outDir("models_ramp_jump");
+  auto r = runTumble(testMods() + " run models:ramp_jump --report " + dir + "/r.json");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["expectations"].size(), 6u) << report["expectations"].dump();
+  EXPECT_GT(report["mesh_collision"]["rays"].get<double>(), 0) << "the wheels' rays met the ramp's mesh";
+}
+
 // A car at full throttle (13 m/s at the tree) stops at the tree model's
 // trunk, not at the box around its crown, and stays upright.
 TEST(ModelsCli, CarStopsAtATreeTrunkNotAtItsCrown) {

@@ -457,7 +457,7 @@ const std::vector<Material>& materials() {
       {"bark", {1, 1, 1}, "bark.png"},         {"leaves", {1, 1, 1}, "leaves.png"},
       {"building", {1, 1, 1}, "building.png"}, {"roof", {0.30, 0.28, 0.27}, ""},
       {"stripes", {1, 1, 1}, "stripes.png"},   {"checker", {1, 1, 1}, "checker.png"},
-      {"post", {0.85, 0.85, 0.85}, ""},
+      {"post", {0.85, 0.85, 0.85}, ""},        {"ramp_deck", {0.52, 0.52, 0.55}, ""},
   };
   return list;
 }
@@ -763,6 +763,23 @@ ObjModel barrier() {
   return m;
 }
 
+// Jump ramp for designed courses: 4 m wide, rising over 6 m along +Z from
+// the ground to a 0.9 m lip (8.5 degrees), where it drops straight down. A
+// car driven along +Z climbs it and leaves the lip in the air.
+constexpr double kRampHalfWidth = 2.0, kRampHalfLength = 3.0, kRampLip = 0.9;
+ObjModel ramp() {
+  PrismSolid r;
+  r.stations = {-kRampHalfWidth, kRampHalfWidth};
+  const int back = r.point(-kRampHalfLength, 0), front = r.point(kRampHalfLength, 0);
+  const int lip = r.point(kRampHalfLength, kRampLip);
+  r.cell({back, front, lip}, "ramp_deck", [](double) { return true; });
+  // The deck grey, the sides and the lip's face striped so the edge shows.
+  r.paint = [](const V3&, const V3& n, const std::string& material) -> std::string {
+    return n.y() > 0.5 ? material : "stripes";
+  };
+  return {"ramp", buildPrismSolid(r), true};
+}
+
 // Checkpoint arch: two posts 8 m apart (x = +-4), a chequered banner on top.
 ObjModel arch() {
   ObjModel m{"checkpoint_arch", {}};
@@ -848,7 +865,8 @@ GeneratedFolder folderOf(const std::string& path, const std::vector<ObjModel>& m
 std::vector<GeneratedFolder> generateModelFolders() {
   return {folderOf("assets/models", {wheel()}),
           folderOf("mods/base/assets/models",
-                   {hatchback(false), hatchback(true), truck(), buggy(), cockpit(), rock(), tree(), building(), barrier(), arch()})};
+                   {hatchback(false), hatchback(true), truck(), buggy(), cockpit(), rock(), tree(), building(), barrier(), arch(),
+                    ramp()})};
 }
 
 Result<std::vector<std::string>> writeModelFolders(const std::string& root) {

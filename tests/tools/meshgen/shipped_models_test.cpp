@@ -51,12 +51,12 @@ physics::MassProperties massOf(const render::Model& model, Real density) {
 TEST(ShippedModels, RegeneratingGivesTheCommittedBytes) {
   const std::vector<GeneratedFolder> folders = generateModelFolders();
   ASSERT_EQ(folders.size(), 2u);
-  // The runtime's wheel and its two textures; the base mod's 10 models
+  // The runtime's wheel and its two textures; the base mod's 11 models
   // (the hatchback twice: its inertia solid and its body with wheel arches) and 6 textures.
   EXPECT_EQ(folders[0].path, "assets/models");
   EXPECT_EQ(folders[0].files.size(), 4u);
   EXPECT_EQ(folders[1].path, "mods/base/assets/models");
-  EXPECT_EQ(folders[1].files.size(), 26u);
+  EXPECT_EQ(folders[1].files.size(), 28u);
   for (const GeneratedFolder& folder : folders) {
     const fs::path dir = sourceDir() / folder.path;
     for (const GeneratedFile& file : folder.files) {
@@ -196,6 +196,18 @@ TEST(ShippedModels, HatchbackVolumeIsItsProfileTimesItsWidth) {
   const double width = 1.56, bumpers = 2 * 0.07 * 0.17;  // m, m^2
   EXPECT_NEAR(p.volume_m3, std::abs(area) * width + bumpers * width, 1e-3);
   EXPECT_LT(std::abs(p.centreOfMass_m.x()), 1e-4) << "symmetric across the width";
+}
+
+// The jump ramp: a right-angled wedge 6 m long, 0.9 m high, 4 m wide.
+TEST(ShippedModels, RampIsAWedgeRisingAlongZ) {
+  auto ramp = load("ramp.obj");
+  ASSERT_TRUE(ramp);
+  const physics::MassProperties p = massOf(*ramp, 1);
+  ASSERT_TRUE(p.valid);
+  const double length = 6, lip = 0.9, width = 4;
+  EXPECT_NEAR(p.volume_m3, 0.5 * length * lip * width, 1e-4);
+  // A triangle's centroid: a third of the way up, two thirds of the way along.
+  EXPECT_LT((p.centreOfMass_m - Vec3(0, Real(lip / 3), Real(length / 2 - length / 3))).norm(), 1e-4);
 }
 
 TEST(ShippedModels, WheelMassPropertiesMatchTheCylinder) {
