@@ -6,7 +6,6 @@
 // state, where it was saved. Every test isolates HOME, so saves land in a
 // folder of its own.
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +15,7 @@
 
 #include "app/design_document.h"
 #include "app/fly_camera.h"
+#include "screenshot_stats.h"
 #include "tumble_process.h"
 
 namespace tumble::test {
@@ -163,17 +163,6 @@ TEST(Designer, F5DrivesTheMapAndF5ComesBackWithNothingLost) {
   EXPECT_TRUE(back.report["scenario"].is_null()) << "the drive's scene is gone";
   EXPECT_EQ(d["document"]["revision"], designer(before)["document"]["revision"]) << "driving changes nothing";
   EXPECT_EQ(d["camera"], designer(before)["camera"]) << "the camera is where it was";
-}
-
-/// Mean of the screenshot's pixel values (0..255), -1 if it does not load.
-double meanBrightness(const std::string& path) {
-  int w = 0, h = 0, n = 0;
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
-  if (!data) return -1;
-  double sum = 0;
-  for (int i = 0; i < w * h * 3; ++i) sum += data[i];
-  stbi_image_free(data);
-  return sum / (w * h * 3);
 }
 
 // The designer draws the sky the course will be played in: a design saved

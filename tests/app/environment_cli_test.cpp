@@ -3,23 +3,10 @@
 // script errors that name the field.
 #include <gtest/gtest.h>
 
-#include <stb/stb_image.h>
-
+#include "screenshot_stats.h"
 #include "tumble_process.h"
 
 namespace tumble::test {
-
-namespace {
-double meanBrightness(const std::string& path) {
-  int w = 0, h = 0, n = 0;
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
-  if (!data) return -1;
-  double sum = 0;
-  for (int i = 0; i < w * h * 3; ++i) sum += data[i];
-  stbi_image_free(data);
-  return sum / (w * h * 3);
-}
-}  // namespace
 
 TEST(EnvironmentCli, SettingNightAndStormDarkensTheSky) {
   const std::string dir = outDir("environment");
