@@ -28,6 +28,7 @@
 
 #include "physics/compound_shape.h"
 #include "physics/internal/ccd.h"
+#include "physics/internal/convex_collision.h"
 #include "physics/internal/mesh_collision.h"
 #include "physics/internal/narrow_phase.h"
 #include "physics/internal/step_scratch.h"
@@ -55,7 +56,19 @@ Real rollingRadius(const Shape& s) {
 /// cylinder rolls on its side (normal across its axis), not on a cap.
 Real rollingRadius(const Shape& s, const Quat& q, const Vec3& n) {
   if (s.type != ShapeType::Cylinder) return rollingRadius(s);
-  return std::abs((q * Vec3::UnitY()).dot(n)) < Real(0.035) ? s.radius_m : 0;
+  return std::abs((q * Vec3::UnitY()).dot(n)) < kFeatureSin ? s.radius_m : 0;
+}
+
+/// Whether a body of shape s at orientation q touches with one point of a
+/// cylinder's rim (Manifold::rimA): tilted off both its side and its cap
+/// by more than the contact generator's feature angle (convex_collision.cpp,
+/// featureOf), where the contact is the cylinder's support point. A
+/// compound's cylinder child is not followed (its rim turns about an axis
+/// off the body's centre).
+bool touchesOnRim(const Shape& s, const Quat& q, const Vec3& n, int count) {
+  if (s.type != ShapeType::Cylinder || count != 1) return false;
+  const Real an = std::abs((q * Vec3::UnitY()).dot(n));
+  return an >= kFeatureSin && an < std::sqrt(1 - kFeatureSin * kFeatureSin);
 }
 
 /// Last step's manifold of pair (a, b) between the same children, or null.
@@ -270,6 +283,8 @@ void World::finishPairManifold(Manifold& m, Real dt) {
   const Real rollA = rollingRadius(shapeA, qA, m.normal), rollB = rollingRadius(shapeB, qB, m.normal);
   m.roundA = rollA > 0;
   m.roundB = rollB > 0;
+  m.rimA = touchesOnRim(a.shape, a.orientation, m.normal, m.count);
+  m.rimB = touchesOnRim(b.shape, b.orientation, m.normal, m.count);
   m.rollingArm_m = std::max(a.rollingResistance, b.rollingResistance) * std::max(rollA, rollB);
   // A moving body touching a sleeping one wakes it (and its island), and so
   // does one that will close the gap during this step: the speculative
@@ -344,6 +359,8 @@ void World::collideHeightField(Real dt, int& points) {
       const Real roll = rollingRadius(shape, q, m.normal);
       m.roundA = roll > 0;
       m.roundB = false;
+      m.rimA = touchesOnRim(b.shape, b.orientation, m.normal, m.count);
+      m.rimB = false;
       m.rollingArm_m = b.rollingResistance * roll;
       // Warm start from the old manifold of this body (and child) with the closest normal.
       if (const Manifold* prev = findOldByNormal(st, i, kHeightFieldBody, m, false)) inheritImpulses(*prev, m);

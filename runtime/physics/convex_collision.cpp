@@ -58,7 +58,6 @@ constexpr double kDistanceTolerance_m = 1e-6;  ///< GJK stops when the distance 
 constexpr double kDepthTolerance_m = 1e-5;     ///< EPA stops when the polytope is this close to the boundary
 constexpr int kMaxGjkIterations = 64;
 constexpr int kMaxEpaIterations = 64;
-constexpr Real kFeatureSin = Real(0.035);  ///< a face or line within ~2 degrees of the contact plane touches with all of it
 constexpr Real kClipTolerance_m = Real(1e-3);  ///< as in boxBox: points on a side plane count as inside
 constexpr int kCapPoints = 8;                  ///< rim points that stand for a cap
 

@@ -125,6 +125,19 @@ struct RoundOffsetRows {
   Real radiusA_m = 0, radiusB_m = 0;  ///< the round child's radius, per side (0: that side is not one)
 };
 
+/// What a one-point rim contact of a cylinder (Manifold::rimA/B) needs to
+/// follow the cylinder's support point in each substep ("Rim contacts" in
+/// contact_solver.cpp): the cylinder's axis and size at the step's start,
+/// and both bodies' inverse inertia then, which the substeps turn with them.
+struct RimRows {
+  std::uint32_t constraint = 0;
+  Mat3 invInertiaA = Mat3::Zero(), invInertiaB = Mat3::Zero();  ///< world, at the step's start (1/(kg m^2))
+  Vec3 axisA = Vec3::UnitY(), axisB = Vec3::UnitY();  ///< a rim side's cylinder axis (world) at the step's start
+  Real radiusA_m = 0, radiusB_m = 0;          ///< a rim side's cylinder radius (0: that side is not a rim)
+  Real halfHeightA_m = 0, halfHeightB_m = 0;  ///< and its half height
+  Real reachA0_m = 0, reachB0_m = 0;          ///< its support's height along the normal at the step's start
+};
+
 /// Angular rows of rolling / spinning resistance about t0, t1, n.
 struct RollingRows {
   Vec4r iA[3], iB[3];  ///< IA^-1 axis_k, IB^-1 axis_k
@@ -188,6 +201,8 @@ class ContactSolver {
                         Real& residual);
   std::vector<RoundOffsetRows> m_roundOffset;
   void turnRoundOffsetLevers(const std::vector<SolverPose>& pose);
+  std::vector<RimRows> m_rims;
+  void turnRimRows(const std::vector<SolverPose>& pose);
   std::vector<std::uint32_t> m_external;  ///< constraints with one non-moving side
   struct SweepConstants;
   template <int kFixedSide>

@@ -11,6 +11,11 @@
 
 namespace tumble::physics {
 
+/// Sine of the angle within which a face or a line lies in the contact plane
+/// and touches with all of it (~2 degrees): a cylinder's cap with its
+/// ring, its side with a line; between the two it touches with one rim point.
+constexpr Real kFeatureSin = Real(0.035);
+
 /// A convex shape at a world pose (p, R): what GJK and EPA need of it.
 struct ConvexPiece {
   enum class Kind { Sphere, Capsule, Box, Hull, Cylinder };

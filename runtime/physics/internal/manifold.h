@@ -38,6 +38,13 @@ struct Manifold {
   /// lifted off the ground and lose its normal force, friction and rolling
   /// resistance).
   bool roundA = false, roundB = false;
+  /// A cylinder touching with one point of its rim (tilted between lying
+  /// on its side and standing on its cap): the point is the cylinder's
+  /// support along the normal, which runs round the rim as the cylinder
+  /// turns instead of turning with it. The substeps follow it: the lever,
+  /// the separation (the support's height) and the body's inverse inertia
+  /// are turned with the body (contact_solver.cpp, "Rim contacts").
+  bool rimA = false, rimB = false;
   /// Compound bodies: which child of a and of b this manifold is between (0
   /// for simple shapes). A pair has one manifold per touching child pair.
   std::uint16_t childA = 0, childB = 0;
