@@ -103,9 +103,8 @@ void Hud::newFrame() {
   // state, which the offscreen driver (play --frames) never sets: there the
   // last motion event is where the pointer is.
   ImGuiIO& io = ImGui::GetIO();
-  const bool held = m_held[0] || m_held[1] || m_held[2];
   for (int i = 0; i < 3; ++i) io.MouseDown[i] = io.MouseDown[i] || m_held[i];
-  if (m_haveMotion && (held || io.MousePos.x <= -FLT_MAX)) io.MousePos = ImVec2(m_motionX, m_motionY);
+  if (m_haveMotion) io.MousePos = ImVec2(m_motionX, m_motionY);
   ImGui::NewFrame();
 }
 

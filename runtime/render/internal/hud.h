@@ -49,17 +49,18 @@ class Hud {
   ImGuiContext* m_context = nullptr;
   bool m_sdlBackend = false, m_glBackend = false;
   bool m_primed = false;
-  // The pointer from the last mouse motion event, pixels: used when SDL
-  // reports no window under the mouse (the offscreen driver never gives one
-  // the mouse focus), so scripted moves and clicks reach the HUD's windows.
+  // The pointer from the last mouse event (motion or button), pixels, until
+  // it leaves the window: where ImGui sees the pointer. The SDL backend
+  // (1.86) reads it from SDL's mouse focus and global state instead: the
+  // offscreen driver (play --frames) never sets those, and under X the
+  // global state can stay where the pointer was (XTest motion from xdotool
+  // does not move it): ImGui then still saw the pointer over the panel after
+  // a click there, so the next press on the ground was taken as the panel's.
   bool m_haveMotion = false;
   float m_motionX = 0, m_motionY = 0;
-  // Buttons held between their down and up events (left, right, middle).
-  // The SDL backend (1.86) reads held buttons from SDL's mouse state, which
-  // scripted events never set, and while a button is held under X it reads
-  // the pointer from the global mouse state, which stays where the press was
-  // when the motion comes from XTest (xdotool): either way a dragged slider
-  // did not move. While a button is held the events say where the pointer is.
+  // Buttons held between their down and up events (left, right, middle):
+  // the backend reads held buttons from SDL's mouse state, which scripted
+  // events never set, so a dragged slider did not move.
   bool m_held[3] = {false, false, false};
   bool m_hadMessages = false;
   std::vector<HudPanel> m_panels;
