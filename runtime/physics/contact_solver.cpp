@@ -220,14 +220,16 @@
 // normal and friction levers to the current support point, both bodies'
 // inverse inertia with their turn since the step's start (dq I0^-1 dq^T,
 // in the rows and the rolling rows), and takes the separation from the
-// support's height, hh |a.n| + r sqrt(1 - (a.n)^2) for axis a, not from a
-// material point on the rim, which rises as it turns away from the bottom
-// (this alone changed nothing measurable, but it is the contact's height).
+// support's height (ConvexPiece::support: hh |a.n| + r sqrt(1 - (a.n)^2)
+// for axis a), not from a material point on the rim, which rises as it
+// turns away from the bottom (this alone changed nothing measurable, but it
+// is the contact's height).
 // With all three no case of the test gains measurable energy (0 J in
 // float, tests/physics/cylinder_test.cpp). Only rim contacts do this:
 // every other contact keeps its rows for the step, and turnRimRows runs
 // after the separation loop, so other contacts pay nothing.
 #include "physics/internal/contact_solver.h"
+#include "physics/internal/convex_collision.h"
 
 #include <algorithm>
 #include <limits>
@@ -280,20 +282,16 @@ inline Real rowDot(const Vec4r& n, const Vec4r& dv, const Vec4r& jB, const Vec4r
   return (n.cwiseProduct(dv) + jB.cwiseProduct(wB) - jA.cwiseProduct(wA)).sum();
 }
 
-/// Height (m) of a cylinder's support along unit d above its centre (axis
-/// a, radius r, half height hh): hh |a.d| + r sqrt(1 - (a.d)^2).
-Real cylinderReach(const Vec3& a, Real r, Real hh, const Vec3& d) {
-  const Real ad = std::min<Real>(std::abs(a.dot(d)), 1);
-  return hh * ad + r * std::sqrt(1 - ad * ad);
-}
-
-/// A cylinder's support point along unit d, from its centre (m): the rim
-/// point furthest along d.
-Vec3 cylinderSupport(const Vec3& a, Real r, Real hh, const Vec3& d) {
-  const Real ad = a.dot(d);
-  const Vec3 across = d - a * ad;
-  const Real len = across.norm();
-  return a * (ad >= 0 ? hh : -hh) + (len > 0 ? Vec3(across * (r / len)) : Vec3::Zero());
+/// A rim side's cylinder (radius r, half height hh) centred at the origin
+/// with orientation R: its support point along d is the lever from its
+/// centre to the rim point touching, d . support its reach along d.
+ConvexPiece rimCylinder(const Mat3& R, Real r, Real hh) {
+  ConvexPiece piece;
+  piece.kind = ConvexPiece::Kind::Cylinder;
+  piece.pose = Pose{Vec3::Zero(), R};
+  piece.radius_m = r;
+  piece.halfHeight_m = hh;
+  return piece;
 }
 
 }  // namespace
@@ -420,16 +418,16 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
       r.invInertiaA = IA;
       r.invInertiaB = IB;
       if (rimA) {
-        r.axisA = a.orientation * Vec3::UnitY();
+        r.orientationA = a.orientation.toRotationMatrix();
         r.radiusA_m = a.shape.radius_m;
         r.halfHeightA_m = a.shape.halfHeight_m;
-        r.reachA0_m = cylinderReach(r.axisA, r.radiusA_m, r.halfHeightA_m, n);
+        r.reachA0_m = n.dot(rimCylinder(r.orientationA, r.radiusA_m, r.halfHeightA_m).support(n));
       }
       if (rimB) {
-        r.axisB = b.orientation * Vec3::UnitY();
+        r.orientationB = b.orientation.toRotationMatrix();
         r.radiusB_m = b.shape.radius_m;
         r.halfHeightB_m = b.shape.halfHeight_m;
-        r.reachB0_m = cylinderReach(r.axisB, r.radiusB_m, r.halfHeightB_m, Vec3(-n));
+        r.reachB0_m = -n.dot(rimCylinder(r.orientationB, r.radiusB_m, r.halfHeightB_m).support(-n));
       }
       m_rims.push_back(r);
     }
@@ -591,24 +589,23 @@ void ContactSolver::turnRimRows(const std::vector<SolverPose>& pose) {
     // The separation: as for any point (updateSeparations), except that a
     // rim side's point is its support, whose height follows the axis, not
     // a material point on the rim (which rises as it turns away).
-    const Vec3 rotatedA = pose[c.a].dq * p.rA - p.rA, rotatedB = pose[c.b].dq * p.rB - p.rB;
     Real gap = p.separation0_m + n.dot(pose[c.b].dp - pose[c.a].dp);
     if (r.radiusA_m > 0) {
-      const Vec3 axis = RA * r.axisA;
-      const Vec3 lever = cylinderSupport(axis, r.radiusA_m, r.halfHeightA_m, n);
-      gap -= cylinderReach(axis, r.radiusA_m, r.halfHeightA_m, n) - r.reachA0_m;
+      const Vec3 lever = rimCylinder(RA * r.orientationA, r.radiusA_m, r.halfHeightA_m).support(n);
+      gap -= n.dot(lever) - r.reachA0_m;
       p.rnA = wide(Vec3(lever.cross(n)));
       for (int j = 0; j < 2; ++j) p.rtA[j] = wide(Vec3(lever.cross(t[j])));
+    } else if (!(c.roundA && !c.roundOffsetA)) {
+      gap -= n.dot(pose[c.a].dq * p.rA - p.rA);
     }
     if (r.radiusB_m > 0) {
-      const Vec3 axis = RB * r.axisB;
-      const Vec3 lever = cylinderSupport(axis, r.radiusB_m, r.halfHeightB_m, Vec3(-n));
-      gap -= cylinderReach(axis, r.radiusB_m, r.halfHeightB_m, Vec3(-n)) - r.reachB0_m;
+      const Vec3 lever = rimCylinder(RB * r.orientationB, r.radiusB_m, r.halfHeightB_m).support(-n);
+      gap -= -n.dot(lever) - r.reachB0_m;
       p.rnB = wide(Vec3(lever.cross(n)));
       for (int j = 0; j < 2; ++j) p.rtB[j] = wide(Vec3(lever.cross(t[j])));
+    } else if (!(c.roundB && !c.roundOffsetB)) {
+      gap += n.dot(pose[c.b].dq * p.rB - p.rB);
     }
-    if (r.radiusA_m == 0 && !(c.roundA && !c.roundOffsetA)) gap -= n.dot(rotatedA);
-    if (r.radiusB_m == 0 && !(c.roundB && !c.roundOffsetB)) gap += n.dot(rotatedB);
     p.separation_m = gap;
     p.inA = wide(Vec3(IA * narrow(p.rnA)));
     p.inB = wide(Vec3(IB * narrow(p.rnB)));

@@ -127,12 +127,12 @@ struct RoundOffsetRows {
 
 /// What a one-point rim contact of a cylinder (Manifold::rimA/B) needs to
 /// follow the cylinder's support point in each substep ("Rim contacts" in
-/// contact_solver.cpp): the cylinder's axis and size at the step's start,
+/// contact_solver.cpp): the cylinder's orientation and size at the step's start,
 /// and both bodies' inverse inertia then, which the substeps turn with them.
 struct RimRows {
   std::uint32_t constraint = 0;
   Mat3 invInertiaA = Mat3::Zero(), invInertiaB = Mat3::Zero();  ///< world, at the step's start (1/(kg m^2))
-  Vec3 axisA = Vec3::UnitY(), axisB = Vec3::UnitY();  ///< a rim side's cylinder axis (world) at the step's start
+  Mat3 orientationA = Mat3::Identity(), orientationB = Mat3::Identity();  ///< a rim side's cylinder, body to world, at the step's start
   Real radiusA_m = 0, radiusB_m = 0;          ///< a rim side's cylinder radius (0: that side is not a rim)
   Real halfHeightA_m = 0, halfHeightB_m = 0;  ///< and its half height
   Real reachA0_m = 0, reachB0_m = 0;          ///< its support's height along the normal at the step's start
