@@ -69,12 +69,13 @@ std::vector<std::string> menuItems(int menu) {
 
 }  // namespace
 
-DesignerMode::DesignerMode(GameCatalog& catalog, std::vector<std::string> modDirs)
-    : m_catalog(catalog), m_modDirs(std::move(modDirs)) {
+DesignerMode::DesignerMode(GameCatalog& catalog, std::vector<std::string> modDirs, render::Renderer& renderer)
+    : m_catalog(catalog), m_modDirs(std::move(modDirs)), m_renderer(renderer) {
   buildPalette();
 }
 
 DesignerMode::~DesignerMode() {
+  for (auto& [asset, image] : m_thumbnails) m_renderer.freeUiImage(image);
   if (!m_driveDir.empty()) {
     std::error_code ec;
     fs::remove_all(m_driveDir, ec);
@@ -633,6 +634,7 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
   }
 
   loadModels();
+  if (m_tool == Tool::Objects) makeNextThumbnail();
   fillSurface();
   snap.terrain = &m_surfaceView;
   // The sky the saved scenario will set (environment.set), so the designer
@@ -774,23 +776,47 @@ void DesignerMode::addObjectDrawing(render::FrameSnapshot& snap) const {
 // Models are loaded the first time an object shows them; a model that fails
 // is drawn as a box and its problem shown in the panel.
 void DesignerMode::loadModels() {
-  for (const auto& [id, o] : m_doc->objects()) {
-    if (o.kind != PlacedKind::Model || m_models.count(o.asset)) continue;
-    std::shared_ptr<const render::Model> model;
-    const auto colon = o.asset.find(':');
-    std::string file;
-    if (colon != std::string::npos)
-      for (const script::ModInfo& mod : m_catalog.mods())
-        if (mod.name == o.asset.substr(0, colon)) file = (fs::path(mod.dir) / o.asset.substr(colon + 1)).string();
-    if (file.empty()) {
-      m_modelProblems[o.asset] = "no mod for \"" + o.asset + "\" (expected MOD:path)";
-    } else if (auto loaded = render::loadModel(file)) {
-      model = *loaded;
-    } else {
-      m_modelProblems[o.asset] = loaded.error();
-      log::warn("designer: " + loaded.error());
+  for (const auto& [id, o] : m_doc->objects())
+    if (o.kind == PlacedKind::Model) modelFor(o.asset);
+}
+
+std::shared_ptr<const render::Model> DesignerMode::modelFor(const std::string& asset) {
+  if (auto it = m_models.find(asset); it != m_models.end()) return it->second;
+  std::shared_ptr<const render::Model> model;
+  const auto colon = asset.find(':');
+  std::string file;
+  if (colon != std::string::npos)
+    for (const script::ModInfo& mod : m_catalog.mods())
+      if (mod.name == asset.substr(0, colon)) file = (fs::path(mod.dir) / asset.substr(colon + 1)).string();
+  if (file.empty()) {
+    m_modelProblems[asset] = "no mod for \"" + asset + "\" (expected MOD:path)";
+  } else if (auto loaded = render::loadModel(file)) {
+    model = *loaded;
+  } else {
+    m_modelProblems[asset] = loaded.error();
+    log::warn("designer: " + loaded.error());
+  }
+  m_models[asset] = model;
+  return model;
+}
+
+// One picture a frame, so opening the Objects tool never stalls the view
+// (a model loads and draws in a few ms; a hundred models take a hundred frames).
+void DesignerMode::makeNextThumbnail() {
+  constexpr int kThumbnail_px = 96;
+  for (const PaletteEntry& e : m_palette) {
+    if (e.kind != PlacedKind::Model || e.start || m_thumbnails.count(e.asset)) continue;
+    render::UiImage image;
+    if (auto model = modelFor(e.asset)) {
+      if (auto made = m_renderer.renderModelThumbnail(model, kThumbnail_px)) {
+        image = *made;
+      } else {
+        m_modelProblems[e.asset] = made.error();
+        log::warn("designer: " + made.error());
+      }
     }
-    m_models[o.asset] = model;
+    m_thumbnails[e.asset] = image;
+    return;
   }
 }
 
@@ -847,9 +873,37 @@ void DesignerMode::drawToolPanel() {
       ImGui::SliderFloat("radius m", &m_radius_m, kMinRadius_m, kMaxRadius_m, "%.1f", ImGuiSliderFlags_Logarithmic);
     } else {
       ImGui::TextUnformatted("Click the ground to place:");
-      ImGui::BeginChild("palette", ImVec2(0, 170), true);
-      for (int k = 0; k < int(m_palette.size()); ++k)
-        if (ImGui::Selectable(m_palette[std::size_t(k)].label.c_str(), m_paletteIndex == k)) m_paletteIndex = k;
+      // Models with their picture beside the name; the rest by name.
+      constexpr float kPicture_px = 40;
+      // As tall as the panel allows below it (about 40 % of the window).
+      ImGui::BeginChild("palette", ImVec2(0, std::clamp(0.4f * display.y, 150.0f, 480.0f)), true);
+      m_paletteLayout.clear();
+      for (int k = 0; k < int(m_palette.size()); ++k) {
+        const PaletteEntry& e = m_palette[std::size_t(k)];
+        ImGui::PushID(k);
+        const ImVec2 at = ImGui::GetCursorScreenPos();
+        bool picked = false;
+        if (e.kind == PlacedKind::Model && !e.start) {
+          picked = ImGui::Selectable("##row", m_paletteIndex == k, ImGuiSelectableFlags_AllowItemOverlap,
+                                     ImVec2(0, kPicture_px));
+          ImGui::SetCursorScreenPos(at);
+          auto t = m_thumbnails.find(e.asset);
+          if (t != m_thumbnails.end() && t->second.texture != 0)
+            ImGui::Image(ImTextureID(t->second.texture), ImVec2(kPicture_px, kPicture_px));
+          else
+            ImGui::Dummy(ImVec2(kPicture_px, kPicture_px));  // still being drawn, or it failed
+          ImGui::SameLine();
+          ImGui::SetCursorPosY(ImGui::GetCursorPosY() + 0.5f * (kPicture_px - ImGui::GetTextLineHeight()));
+          ImGui::TextUnformatted(e.label.c_str());
+          ImGui::SetCursorScreenPos(ImVec2(at.x, at.y + kPicture_px + ImGui::GetStyle().ItemSpacing.y));
+        } else {
+          picked = ImGui::Selectable(e.label.c_str(), m_paletteIndex == k);
+        }
+        const float rowHeight_px = e.kind == PlacedKind::Model && !e.start ? kPicture_px : ImGui::GetTextLineHeight();
+        m_paletteLayout.push_back({e.label, at.x, at.y, ImGui::GetWindowContentRegionMax().x, rowHeight_px});
+        if (picked) m_paletteIndex = k;
+        ImGui::PopID();
+      }
       ImGui::EndChild();
       const char* collisions[] = {"mesh", "box", "none"};
       int c = m_collision == "box" ? 1 : m_collision == "none" ? 2 : 0;
@@ -1116,6 +1170,19 @@ nlohmann::json DesignerMode::report() const {
   for (const PaletteEntry& e : m_palette) palette.push_back(e.label);
   j["palette"] = palette;
   j["palette_selected"] = m_palette[std::size_t(m_paletteIndex)].label;
+  // Where each palette row was last drawn (window pixels; rows scrolled out
+  // of the list included) and whether its picture was made.
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ItemRect& r : m_paletteLayout) {
+    nlohmann::json row = {{"label", r.label}, {"x_px", r.x_px}, {"y_px", r.y_px}, {"w_px", r.w_px}, {"h_px", r.h_px}};
+    for (const PaletteEntry& e : m_palette)
+      if (e.label == r.label && e.kind == PlacedKind::Model && !e.start) {
+        auto t = m_thumbnails.find(e.asset);
+        row["picture"] = t == m_thumbnails.end() ? "pending" : t->second.texture != 0 ? "drawn" : "failed";
+      }
+    rows.push_back(row);
+  }
+  j["palette_rows"] = rows;
   j["camera"] = {{"position_m", vec(toVec3(m_camera.position_m))}, {"yaw_rad", m_camera.yaw_rad},
                  {"pitch_rad", m_camera.pitch_rad}};
   j["pointer_px"] = {m_pointer.x_px, m_pointer.y_px};

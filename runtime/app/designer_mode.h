@@ -54,7 +54,8 @@ class DesignerMode {
     bool quit = false;
   };
 
-  DesignerMode(GameCatalog& catalog, std::vector<std::string> modDirs);
+  /// The renderer draws the palette's model pictures and must outlive the designer.
+  DesignerMode(GameCatalog& catalog, std::vector<std::string> modDirs, render::Renderer& renderer);
   ~DesignerMode();
 
   /// The New map dialog (nothing else can be done until a map exists).
@@ -125,6 +126,12 @@ class DesignerMode {
   void markDirty(const SampleRect& r);
   void fillSurface();
   void loadModels();
+  /// The model of a "MOD:path" asset, loaded on first use (null if it failed:
+  /// m_modelProblems says why).
+  std::shared_ptr<const render::Model> modelFor(const std::string& asset);
+  /// Renders the next missing palette picture (one a frame, while the
+  /// Objects tool is shown).
+  void makeNextThumbnail();
   Brush currentBrush() const;
   void drawToolPanel();
   void drawNewMap();
@@ -135,6 +142,7 @@ class DesignerMode {
 
   GameCatalog& m_catalog;
   std::vector<std::string> m_modDirs;
+  render::Renderer& m_renderer;
   std::unique_ptr<DesignDocument> m_doc;
   std::string m_mod, m_scenario;  // where Save writes; empty: Save asks (Save as)
   std::uint64_t m_savedRevision = 0;
@@ -190,6 +198,10 @@ class DesignerMode {
   bool m_returnPressed = false;
   std::map<std::string, std::shared_ptr<const render::Model>> m_models;  // by asset, loaded on first draw
   mutable std::map<std::string, std::string> m_modelProblems;
+  /// The palette's model pictures by asset; an empty image: it failed
+  /// (m_modelProblems says why).
+  std::map<std::string, render::UiImage> m_thumbnails;
+  std::vector<ItemRect> m_paletteLayout;  // where the palette's rows were drawn, for the report
 };
 
 }  // namespace tumble::app

@@ -359,7 +359,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     session = startSession(std::move(first), renderer, pauseMenu);
     pauseMenu.setVehicleChoice(offersVehicle(current.scenarioRef));
   } else if (o.design) {
-    designer = std::make_unique<DesignerMode>(catalog, o.scene.modDirs);
+    designer = std::make_unique<DesignerMode>(catalog, o.scene.modDirs, renderer);
     if (o.designRef.empty() || o.designRef == "new") {
       designer->showNewMap();
     } else if (Status st = designer->open(o.designRef); !st) {
@@ -514,7 +514,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
     MainMenu::Requests menuRequests = mainMenu.takeRequests();
     if (menuRequests.quit) controls.quitRequested = true;
     if (menuRequests.openDesigner) {
-      designer = std::make_unique<DesignerMode>(catalog, o.scene.modDirs);
+      designer = std::make_unique<DesignerMode>(catalog, o.scene.modDirs, renderer);
       designer->showNewMap();
     }
     if (designer && !session) {

@@ -424,6 +424,12 @@ class Renderer {
   /// rectangle per cell. Free it with freeUiImage.
   Result<UiImage> makeUiImage(const std::uint8_t* rgba, int width, int height);
   void freeUiImage(UiImage& image);
+  /// A square picture of one model for a HUD panel (the designer's object
+  /// palette): the model alone in the default daylight, seen from the front
+  /// left and above, filling the picture. Drawn into a target of its own, so
+  /// the window's frame is untouched; size_px is 16..512. Free it with
+  /// freeUiImage.
+  Result<UiImage> renderModelThumbnail(const std::shared_ptr<const Model>& model, int size_px);
 
   struct Impl;  // SDL, GL and ImGui state; kept out of this header
 

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "app/design_document.h"
 #include "app/fly_camera.h"
@@ -109,6 +110,59 @@ TEST(Designer, TheMouseRaisesAHillUnderTheCursorAndUndoRedoRestoreIt) {
   auto redone = run(dir, "redo", "design new", 100, kHill + ctrl("Z", 75) + ctrl("Y", 85));
   expectRan(redone);
   EXPECT_EQ(heightAtCursor(redone), raised) << "Ctrl+Y brings the same hill back";
+}
+
+// The Objects tool's palette shows a picture of every model beside its
+// name, and a click on a picture picks that model.
+TEST(Designer, ObjectPaletteShowsAPictureOfEachModelAndAClickOnOnePicksIt) {
+  const std::string dir = outDir("designer_thumbnails");
+  const std::string shot = dir + "/palette.png";
+  // Pictures are drawn one a frame: 60 frames cover the shipped models.
+  auto p = run(dir, "palette", "design new --screenshot " + shot, 70, kNewMap + tap("3", 6),
+               " --width 1280 --height 720 --quality low --mute");
+  expectRan(p);
+  const auto& rows = designer(p)["palette_rows"];
+  ASSERT_GE(rows.size(), 3u) << designer(p).dump(2);
+  int models = 0;
+  std::vector<RegionStats> pictures;
+  for (const auto& row : rows) {
+    if (!row.contains("picture")) continue;  // props, gates, emitters, the start: by name
+    ++models;
+    EXPECT_EQ(row["picture"], "drawn") << row.dump();
+    const int x = int(row["x_px"].get<double>()), y = int(row["y_px"].get<double>());
+    const int side = int(row["h_px"].get<double>());
+    if (pictures.size() < 3) pictures.push_back(regionStats(shot, x + 2, y + 2, side - 4, side - 4));
+  }
+  EXPECT_GE(models, 10) << "every shipped model is in the palette: " << rows.dump();
+  ASSERT_EQ(pictures.size(), 3u);
+  for (const RegionStats& r : pictures) {
+    ASSERT_TRUE(r.loaded) << shot;
+    // A flat panel background has no spread; a lit model on it has edges and shading.
+    EXPECT_GT(r.brightnessSpread, 12.0) << "a picture, not an empty square";
+  }
+  // Different models, different pictures (the first three are the barrier,
+  // the buggy and the building in the base mod).
+  auto colourDistance = [](const RegionStats& a, const RegionStats& b) {
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d += std::abs(a.meanRgb[std::size_t(c)] - b.meanRgb[std::size_t(c)]);
+    return d;
+  };
+  EXPECT_GT(colourDistance(pictures[0], pictures[1]), 6.0);
+  EXPECT_GT(colourDistance(pictures[1], pictures[2]), 6.0);
+
+  // A click on the second model's picture picks it.
+  const auto& second = [&]() -> const nlohmann::json& {
+    int seen = 0;
+    for (const auto& row : rows)
+      if (row.contains("picture") && ++seen == 2) return row;
+    return rows[0];
+  }();
+  const int cx = int(second["x_px"].get<double>()) + 20, cy = int(second["y_px"].get<double>()) + 20;
+  auto clicked = run(dir, "click", "design new", 30, kNewMap + tap("3", 6) + press(cx, cy, 14, 2),
+                     " --width 1280 --height 720 --quality low --mute");
+  expectRan(clicked);
+  EXPECT_EQ(designer(clicked)["palette_selected"], second["label"]);
+  EXPECT_EQ(designer(clicked)["document"]["objects"].size(), 0u) << "a click on the panel places nothing";
 }
 
 TEST(Designer, PlacesARockSnappedToTheGroundAndSavesTheModUnderHome) {

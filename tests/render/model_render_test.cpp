@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "render/internal/camera_math.h"
+#include "render/internal/gl_util.h"
 #include "render/internal/mesh_draw_list.h"
 #include "render/model.h"
 #include "shared_assets.h"
@@ -223,6 +224,70 @@ TEST_F(ModelRender, DroppedModelsLeaveTheGpu) {
   frame.models.clear();
   render(frame, "sky2.png");
   EXPECT_EQ(m_renderer->meshStats().modelsResident, 0);
+}
+
+// The designer's palette pictures: the model alone fills the square (a 4 m
+// jeep and a 10 cm wheel alike), nothing of it is cut off at the edges, and
+// the window's frame is left as it was.
+TEST_F(ModelRender, ThumbnailShowsTheWholeModelAndLeavesTheFrameAlone) {
+  auto jeep = mustLoad(sharedAsset("models/jeep1.3ds"));
+  auto wheel = mustLoad(sharedAsset("racecar/meshes/left_front_wheel.obj"));
+  ASSERT_TRUE(jeep && wheel);
+  const Image before = render(FrameSnapshot{}, "before_thumbnail.png");
+
+  constexpr int kSide = 96;
+  auto picture = [&](const std::shared_ptr<const Model>& model) {
+    Image image;
+    auto made = m_renderer->renderModelThumbnail(model, kSide);
+    EXPECT_TRUE(made.ok()) << (made.ok() ? "" : made.error());
+    if (!made.ok()) return image;
+    EXPECT_EQ(made->width, kSide);
+    std::vector<std::uint8_t> rgba(std::size_t(kSide) * kSide * 4);
+    glBindTexture(GL_TEXTURE_2D, GLuint(made->texture));
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    m_renderer->freeUiImage(*made);
+    image.width = image.height = kSide;
+    for (std::size_t p = 0; p < rgba.size() / 4; ++p)
+      for (int c = 0; c < 3; ++c) image.rgb.push_back(rgba[4 * p + std::size_t(c)]);
+    return image;
+  };
+  const Image jeepPicture = picture(jeep), wheelPicture = picture(wheel);
+  ASSERT_EQ(jeepPicture.width, kSide);
+  ASSERT_EQ(wheelPicture.width, kSide);
+
+  // The background is the corner's colour; the model covers a good part of
+  // the square and none of its border.
+  auto background = [](const Image& image) {
+    const std::uint8_t* c = image.at(0, 0);
+    return [r = int(c[0]), g = int(c[1]), b = int(c[2])](int pr, int pg, int pb) {
+      return std::abs(pr - r) <= 3 && std::abs(pg - g) <= 3 && std::abs(pb - b) <= 3;
+    };
+  };
+  for (const Image* image : {&jeepPicture, &wheelPicture}) {
+    const auto isBackground = background(*image);
+    const int border = 4 * (kSide - 1);
+    const int borderBackground = countPixels(*image, isBackground, 0, 0, kSide, 1) +
+                                 countPixels(*image, isBackground, 0, kSide - 1, kSide, kSide) +
+                                 countPixels(*image, isBackground, 0, 1, 1, kSide - 1) +
+                                 countPixels(*image, isBackground, kSide - 1, 1, kSide, kSide - 1);
+    EXPECT_EQ(borderBackground, border) << "the model is cut off at the picture's edge";
+    const int covered = kSide * kSide - countPixels(*image, isBackground);
+    EXPECT_GT(covered, kSide * kSide / 6) << "the model should fill the picture, whatever its size";
+  }
+  // The jeep in its textured paint: the same geometry untextured shows none.
+  auto plain = std::make_shared<Model>(*jeep);
+  plain->images.clear();
+  for (ModelMaterial& m : plain->materials) m.image = -1;
+  const int olive = countPixels(jeepPicture, isOlive);
+  EXPECT_GT(olive, 100);
+  EXPECT_LT(countPixels(picture(plain), isOlive), olive / 10);
+
+  // The window's frame is the one drawn before the pictures.
+  const std::string after = m_scratch.file("after_thumbnail.png");
+  ASSERT_TRUE(m_renderer->saveScreenshot(after).ok());
+  EXPECT_EQ(loadPng(after).rgb, before.rgb);
+  EXPECT_FALSE(m_renderer->renderModelThumbnail(jeep, 4).ok()) << "a size outside 16..512 is refused";
 }
 
 }  // namespace
