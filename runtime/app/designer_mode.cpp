@@ -517,6 +517,21 @@ void DesignerMode::placeObject(const Eigen::Vector3f& p) {
 
 void DesignerMode::applyTool(const std::optional<Eigen::Vector3f>& hit, float dt_s) {
   const bool line = m_tool == Tool::Sculpt && (m_sculpt == Sculpt::Ridge || m_sculpt == Sculpt::Ditch);
+  if (m_pointer.leftPressed && m_haveRay && m_gizmoHover != GizmoHandle::None) {
+    // A press on a gizmo handle drags it, whatever is on the ground behind.
+    m_pointer.leftPressed = false;
+    if (auto frame = gizmoFrame())
+      if (auto drag = beginGizmoDrag(m_gizmoHover, *frame, m_doc->objects().at(*m_selected), m_ray)) {
+        m_gizmoDrag = drag;
+        m_doc->beginStroke();
+        m_stroking = true;
+      }
+  }
+  if (m_gizmoDrag && m_pointer.leftHeld && m_selected && m_doc->objects().count(*m_selected) && m_haveRay) {
+    const PlacedObject moved = dragGizmo(*m_gizmoDrag, m_ray);
+    if (!(moved == m_doc->objects().at(*m_selected)) && !m_doc->moveObject(*m_selected, moved))
+      m_status = "cannot move the object there";
+  }
   if (m_pointer.leftPressed) {
     m_pointer.leftPressed = false;
     if (hit && m_tool == Tool::Objects) {
@@ -559,6 +574,8 @@ void DesignerMode::applyTool(const std::optional<Eigen::Vector3f>& hit, float dt
     }
     m_lineStart.reset();
     m_dragging = false;
+    if (m_gizmoDrag) m_status = std::string(gizmoHandleName(m_gizmoDrag->handle)) + " done";
+    m_gizmoDrag.reset();
     endStroke();
   }
 }
@@ -622,8 +639,17 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
   if (w > 0 && h > 0) {
     const float x = 2.0f * m_pointer.x_px / float(w) - 1.0f, y = 1.0f - 2.0f * m_pointer.y_px / float(h);
     const auto [origin, direction] = renderer.viewRay(x, y);
+    m_ray = ViewRay{origin, direction};
+    m_haveRay = true;
     if (auto hit = m_doc->terrain().rayCast(toVec3(origin), toVec3(direction), Real(1e5)))
       m_hit = toFloat(hit->point);
+  }
+  // The handle under the pointer (held while one is dragged). Over the panel
+  // the pointer belongs to the panel.
+  const bool overPanel = ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse;
+  if (!m_gizmoDrag) {
+    const auto frame = gizmoFrame();
+    m_gizmoHover = frame && m_haveRay && !overPanel ? pickGizmoHandle(*frame, m_ray) : GizmoHandle::None;
   }
   if (m_menu == Menu::None && !m_showNewMap) applyTool(m_hit, dt_s);
   // Keep the camera above the ground it flies over.
@@ -646,10 +672,22 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
   environment.cloudCover = sky.cloudCover;
   snap.sky = skySettingsOf(environment);
   addObjectDrawing(snap);
-  if (m_hit && m_menu == Menu::None) addBrushCircle(snap, *m_hit);
+  if (m_gizmoDrag) {
+    addGizmoLines(m_gizmoDrag->frame, m_gizmoDrag->handle, snap.lines);
+  } else if (const auto frame = gizmoFrame()) {
+    addGizmoLines(*frame, m_gizmoHover, snap.lines);
+  }
+  if (m_hit && m_menu == Menu::None && m_gizmoHover == GizmoHandle::None && !m_gizmoDrag) addBrushCircle(snap, *m_hit);
   const render::TerrainStats& stats = renderer.terrainStats();
   m_lastChunksUploaded = stats.chunksUploaded;
   m_lastChunksInvalidated = stats.chunksInvalidated;
+}
+
+std::optional<GizmoFrame> DesignerMode::gizmoFrame() const {
+  if (!m_doc || m_tool != Tool::Objects || m_menu != Menu::None || !m_selected) return std::nullopt;
+  auto it = m_doc->objects().find(*m_selected);
+  if (it == m_doc->objects().end()) return std::nullopt;
+  return gizmoFrameFor(it->second, m_camera.position_m);
 }
 
 void DesignerMode::addBrushCircle(render::FrameSnapshot& snap, const Eigen::Vector3f& c) const {
@@ -1183,6 +1221,22 @@ nlohmann::json DesignerMode::report() const {
     rows.push_back(row);
   }
   j["palette_rows"] = rows;
+  // The selected object's gizmo: the handle under the pointer, the one being
+  // dragged, and where each handle is in the window (pixels), to aim at.
+  nlohmann::json gizmo = {{"hovered", gizmoHandleName(m_gizmoHover)},
+                          {"dragging", m_gizmoDrag ? gizmoHandleName(m_gizmoDrag->handle) : "none"}};
+  if (const auto frame = m_gizmoDrag ? std::optional<GizmoFrame>(m_gizmoDrag->frame) : gizmoFrame()) {
+    const auto [w, h] = m_renderer.windowSize();
+    nlohmann::json handles = nlohmann::json::object();
+    for (GizmoHandle handle : {GizmoHandle::MoveX, GizmoHandle::MoveZ, GizmoHandle::Rotate, GizmoHandle::Scale})
+      if (auto v = m_renderer.viewPoint(gizmoHandlePoint(*frame, handle)))
+        handles[gizmoHandleName(handle)] = {0.5f * (v->x() + 1.0f) * float(w), 0.5f * (1.0f - v->y()) * float(h)};
+    gizmo["handles_px"] = handles;
+    gizmo["arm_m"] = frame->arm_m;
+  } else {
+    gizmo["handles_px"] = nullptr;
+  }
+  j["gizmo"] = gizmo;
   j["camera"] = {{"position_m", vec(toVec3(m_camera.position_m))}, {"yaw_rad", m_camera.yaw_rad},
                  {"pitch_rad", m_camera.pitch_rad}};
   j["pointer_px"] = {m_pointer.x_px, m_pointer.y_px};

@@ -12,7 +12,9 @@
 //
 //   Tools      1 Sculpt (raise, lower, smooth, flatten, noise, ridge, ditch)
 //              2 Paint (the named surfaces)   3 Objects (models, props, start, gates ...)
-//   Mouse      left: apply the tool; right held: look around
+//   Mouse      left: apply the tool; right held: look around; on the selected
+//              object's gizmo: drag the red / blue arrow to move along X / Z,
+//              the yellow ring to turn, the white post's top to scale
 //   Keys       WASD move, Q/E or Ctrl/Space down/up, Shift faster, [ ] radius,
 //              , . previous/next brush or palette entry, Ctrl+Z / Ctrl+Y undo / redo,
 //              Ctrl+S save, Ctrl+D duplicate, Delete remove, R / Shift+R turn
@@ -27,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/design_document.h"
+#include "app/designer_gizmo.h"
 #include "app/fly_camera.h"
 #include "app/game_catalog.h"
 #include "app/scene.h"
@@ -122,6 +125,8 @@ class DesignerMode {
   std::optional<std::uint32_t> objectNear(const Eigen::Vector3f& point) const;
   void placeObject(const Eigen::Vector3f& point);
   void addObjectDrawing(render::FrameSnapshot& snap) const;
+  /// The selected object's gizmo, when the Objects tool is shown.
+  std::optional<GizmoFrame> gizmoFrame() const;
   void addBrushCircle(render::FrameSnapshot& snap, const Eigen::Vector3f& centre) const;
   void markDirty(const SampleRect& r);
   void fillSurface();
@@ -166,6 +171,10 @@ class DesignerMode {
   int m_paletteIndex = 0;
   std::optional<std::uint32_t> m_selected;
   bool m_dragging = false;
+  ViewRay m_ray;          // the pointer's ray this frame
+  bool m_haveRay = false;
+  GizmoHandle m_gizmoHover = GizmoHandle::None;  // the handle under the pointer
+  std::optional<GizmoDrag> m_gizmoDrag;           // a handle being dragged (one undo step)
   int m_nextGateOrder = 1;
   std::string m_collision = "mesh";
   int m_vehicleIndex = 0;

@@ -267,6 +267,16 @@ std::pair<Eigen::Vector3f, Eigen::Vector3f> Renderer::viewRay(float x, float y) 
   return {view.eye, dir.normalized()};
 }
 
+std::optional<Eigen::Vector2f> Renderer::viewPoint(const Eigen::Vector3f& world_m) const {
+  const Impl& r = *m_impl;
+  const float aspect = static_cast<float>(r.targets.width()) / static_cast<float>(std::max(1, r.targets.height()));
+  const FrameView view = makeFrameView(r.camera, aspect);
+  const Eigen::Vector3f d = world_m - view.eye;
+  const float depth = d.dot(view.forward);
+  if (!(depth > 1e-6f)) return std::nullopt;
+  return Eigen::Vector2f(d.dot(view.right) / (depth * view.tanHalfFovX), d.dot(view.up) / (depth * view.tanHalfFovY));
+}
+
 const TerrainStats& Renderer::terrainStats() const { return m_impl->terrainStats; }
 const MeshStats& Renderer::meshStats() const { return m_impl->meshStats; }
 

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,6 +67,7 @@ struct DrawShape {
 struct DebugLine {
   Eigen::Vector3f a, b;                     // m, world
   Eigen::Vector3f color{1, 1, 0};           // linear RGB 0..1
+  bool overlay = false;  // drawn over everything (the designer's gizmo), not hidden by what stands in front
 };
 
 /// One particle, drawn as a camera-facing square with a soft round sprite
@@ -370,6 +372,9 @@ class Renderer {
   /// The ray from the eye through view point (x, y), both -1..1 with y up
   /// (pointer picking): origin (m, world) and unit direction.
   std::pair<Eigen::Vector3f, Eigen::Vector3f> viewRay(float x, float y) const;
+  /// Where a world point (m) appears in the view: x and y in -1..1 with y up
+  /// inside the view (the inverse of viewRay); nothing when it is behind the eye.
+  std::optional<Eigen::Vector2f> viewPoint(const Eigen::Vector3f& world_m) const;
 
   // Handles SDL events: window close quits (Escape does not); P or Space pause; N single step;
   // '-'/'=' slower/faster slow motion; F12 screenshot; F2 tuning panel; F3 collision view; C steps through the

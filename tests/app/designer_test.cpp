@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -163,6 +164,79 @@ TEST(Designer, ObjectPaletteShowsAPictureOfEachModelAndAClickOnOnePicksIt) {
   expectRan(clicked);
   EXPECT_EQ(designer(clicked)["palette_selected"], second["label"]);
   EXPECT_EQ(designer(clicked)["document"]["objects"].size(), 0u) << "a click on the panel places nothing";
+}
+
+// Drags the left button from window pixel `from` to `to` in 10 moves.
+std::string dragMouse(double fromX, double fromY, double toX, double toY, int frame) {
+  std::string e = std::to_string(frame) + " move " + std::to_string(int(fromX)) + " " + std::to_string(int(fromY)) +
+                  "\n" + std::to_string(frame + 1) + " down mouse:left\n";
+  for (int k = 1; k <= 10; ++k)
+    e += std::to_string(frame + 1 + k) + " move " + std::to_string(int(fromX + (toX - fromX) * k / 10)) + " " +
+         std::to_string(int(fromY + (toY - fromY) * k / 10)) + "\n";
+  return e + std::to_string(frame + 13) + " up mouse:left\n";
+}
+
+// The selected object's gizmo, driven with the mouse as a player does:
+// the red arrow moves it along X only, the ring turns it, the post's top
+// scales it, and each drag is one undo step.
+TEST(Designer, DraggingTheGizmosHandlesMovesTurnsAndScalesTheSelectedObject) {
+  const std::string dir = outDir("designer_gizmo");
+  const std::string size = " --width 1280 --height 720 --quality low --mute";
+  auto first = run(dir, "palette", "design new", 6, kNewMap, size);
+  expectRan(first);
+  const auto& palette = designer(first)["palette"];
+  int rock = -1;
+  for (std::size_t i = 0; i < palette.size(); ++i)
+    if (palette[i] == "rock (base)") rock = int(i);
+  ASSERT_GE(rock, 0) << palette.dump();
+  // Place a rock: it is selected and shows its gizmo.
+  std::string placed = kNewMap + tap("3", 6);
+  int frame = 10;
+  for (int i = 0; i < rock; ++i, frame += 2) placed += tap(".", frame);
+  placed += press(700, 420, frame, 2);
+  frame += 8;
+  auto shown = run(dir, "placed", "design new", frame, placed, size);
+  expectRan(shown);
+  const auto& gizmo = designer(shown)["gizmo"];
+  ASSERT_TRUE(gizmo["handles_px"].is_object()) << gizmo.dump();
+  const auto& doc0 = designer(shown)["document"];
+  ASSERT_EQ(doc0["objects"].size(), 1u);
+  const auto& before = doc0["objects"][0];
+  const double x0 = before["position_m"][0], z0 = before["position_m"][2];
+  const double yaw0 = before["yaw_rad"], scale0 = before["scale"][0];
+  const auto& handles = gizmo["handles_px"];
+
+  // The red arrow dragged 120 px along its own screen direction.
+  const double ax = handles["move_x"][0], ay = handles["move_x"][1];
+  const double ux = ax - 700, uy = ay - 420, ulen = std::hypot(ux, uy);
+  ASSERT_GT(ulen, 10.0) << "the X arrow is seen end-on from this eye: " << gizmo.dump();
+  const std::string moveDrag = dragMouse(ax, ay, ax + 120 * ux / ulen, ay + 120 * uy / ulen, frame);
+  auto moved = run(dir, "moved", "design new", frame + 18, placed + moveDrag, size);
+  expectRan(moved);
+  const auto& after = designer(moved)["document"]["objects"][0];
+  EXPECT_GT(after["position_m"][0].get<double>(), x0 + 1.0) << "moved along +X: " << after.dump();
+  EXPECT_EQ(after["position_m"][2].get<double>(), z0) << "and not along Z";
+  EXPECT_EQ(designer(moved)["status"], "move_x done");
+  auto undone = run(dir, "move_undone", "design new", frame + 26, placed + moveDrag + ctrl("Z", frame + 18), size);
+  expectRan(undone);
+  EXPECT_EQ(designer(undone)["document"]["objects"][0]["position_m"], before["position_m"]) << "one Ctrl+Z undoes the drag";
+
+  // The ring: from its handle a quarter turn around the centre on screen.
+  const double rx = handles["rotate"][0], ry = handles["rotate"][1];
+  auto turned = run(dir, "turned", "design new", frame + 18, placed + dragMouse(rx, ry, 700 - (ry - 420) , 420 + (rx - 700), frame), size);
+  expectRan(turned);
+  const double yaw = designer(turned)["document"]["objects"][0]["yaw_rad"];
+  EXPECT_GT(std::abs(std::remainder(yaw - yaw0, 2 * 3.14159265358979)), 0.3) << "turned";
+  EXPECT_EQ(designer(turned)["document"]["objects"][0]["position_m"], before["position_m"]) << "in place";
+
+  // The post's top dragged up 60 px: bigger, in proportion.
+  const double sx = handles["scale"][0], sy = handles["scale"][1];
+  auto scaled = run(dir, "scaled", "design new", frame + 18, placed + dragMouse(sx, sy, sx, sy - 60, frame), size);
+  expectRan(scaled);
+  const auto& big = designer(scaled)["document"]["objects"][0]["scale"];
+  EXPECT_GT(big[0].get<double>(), 1.2 * scale0) << big.dump();
+  EXPECT_DOUBLE_EQ(big[1].get<double>(), big[0].get<double>());
+  EXPECT_EQ(designer(scaled)["document"]["objects"].size(), 1u) << "a drag on a handle places nothing";
 }
 
 TEST(Designer, PlacesARockSnappedToTheGroundAndSavesTheModUnderHome) {

@@ -27,13 +27,20 @@ Status LinePass::init() {
 
 void LinePass::draw(const std::vector<DebugLine>& lines, const FrameView& view) {
   if (lines.empty()) return;
+  // Depth-tested lines first, then the overlay (drawn over everything, with
+  // its depth written so the sky drawn later does not cover it).
   m_vertices.clear();
-  for (const DebugLine& line : lines) {
-    m_vertices.push_back({{line.a.x(), line.a.y(), line.a.z()},
-                          {line.color.x(), line.color.y(), line.color.z()}});
-    m_vertices.push_back({{line.b.x(), line.b.y(), line.b.z()},
-                          {line.color.x(), line.color.y(), line.color.z()}});
-  }
+  for (bool overlay : {false, true})
+    for (const DebugLine& line : lines) {
+      if (line.overlay != overlay) continue;
+      m_vertices.push_back({{line.a.x(), line.a.y(), line.a.z()},
+                            {line.color.x(), line.color.y(), line.color.z()}});
+      m_vertices.push_back({{line.b.x(), line.b.y(), line.b.z()},
+                            {line.color.x(), line.color.y(), line.color.z()}});
+    }
+  GLsizei overlayVertices = 0;
+  for (const DebugLine& line : lines) overlayVertices += line.overlay ? 2 : 0;
+  const GLsizei tested = static_cast<GLsizei>(m_vertices.size()) - overlayVertices;
   glUseProgram(m_program.get());
   glUniformMatrix4fv(m_viewProjection, 1, GL_FALSE, view.viewProjection.data());
   glEnable(GL_DEPTH_TEST);
@@ -42,7 +49,11 @@ void LinePass::draw(const std::vector<DebugLine>& lines, const FrameView& view) 
   glBindBuffer(GL_ARRAY_BUFFER, m_buffer.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(LineVertex)),
                m_vertices.data(), GL_STREAM_DRAW);
-  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(m_vertices.size()));
+  if (tested > 0) glDrawArrays(GL_LINES, 0, tested);
+  if (overlayVertices > 0) {
+    glDepthFunc(GL_ALWAYS);
+    glDrawArrays(GL_LINES, tested, overlayVertices);
+  }
   glBindVertexArray(0);
   glDepthFunc(GL_LESS);
 }
