@@ -133,7 +133,7 @@ std::string objectLine(std::uint32_t id, const PlacedObject& o) {
     case PlacedKind::Trigger: {
       Vec3 centre = p;
       centre.y() += o.scale.y() / 2;
-      s << "    trigger.box{center = " << vec(centre) << ", size = " << vec(o.scale)
+      s << "    trigger.box{center = " << vec(centre) << ", size = " << vec(o.scale) << ", rotation = " << rot
         << ", on_enter = function(body)\n      if car and body == car:body() then game.message(\"trigger " << id
         << "\", 3) end\n    end}";
       break;
@@ -199,6 +199,7 @@ std::string scenarioLua(const DesignMeta& meta, const std::string& modName, cons
     << "              color = i == #GATES and {0.9, 0.9, 0.9} or {0.95, 0.6, 0.1}}\n"
     << "  end\n"
     << "  trigger.box{center = {g.x, ground(g.x, g.z) + 1.5, g.z}, size = {g.width * 0.75, 4, g.width * 0.75},\n"
+    << "    rotation = {0, g.heading, 0},\n"
     << "    on_enter = function(body)\n"
     << "      if finished or not car or body ~= car:body() or i ~= next_gate then return end\n"
     << "      next_gate = next_gate + 1\n"

@@ -1,4 +1,5 @@
-// Lua table `trigger` and type Trigger: axis-aligned boxes that report
+// Lua table `trigger` and type Trigger: boxes (axis-aligned, or turned by a
+// rotation) that report
 // bodies entering and leaving (ScenarioHost::runTriggers does the work after
 // each physics step).
 #include "script/internal/bind_common.h"
@@ -42,12 +43,13 @@ int optFunctionField(lua_State* L, int t, const char* key, const char* fn) {
 
 /// @class TriggerBoxDef
 /// @field center Vec3Arg centre of the box, m
-/// @field size Vec3Arg full size along x, y, z, m (each > 0)
+/// @field size Vec3Arg full size along the box's x, y, z, m (each > 0)
+/// @field rotation? Vec3Arg rotation vector of the box: axis times angle, rad (as world bodies'; default none: axis-aligned)
 /// @field on_enter? fun(body: Body, trigger: Trigger) called when a body's centre enters
 /// @field on_exit? fun(body: Body, trigger: Trigger) called when it leaves (or is removed inside)
 
 /// @function trigger.box
-/// An axis-aligned box trigger.
+/// A box trigger: axis-aligned, or turned by `rotation` (e.g. {0, yaw, 0} for a gate across a road).
 /// @param def TriggerBoxDef centre, size and callbacks
 /// @return Trigger the trigger
 /// @example local goal = trigger.box{center = {0, 1, 20}, size = {4, 2, 1},
@@ -58,18 +60,21 @@ int triggerBox(lua_State* L) {
     throw LuaArgError("trigger.box: expected a table, e.g. trigger.box{center = {0, 1, 0}, size = {2, 2, 2}, "
                       "on_enter = function(body) ... end}");
   lua_settop(L, 1);
-  checkFields(L, 1, fn, {"center", "size", "on_enter", "on_exit"});
-  Vec3 center, size;
+  checkFields(L, 1, fn, {"center", "size", "rotation", "on_enter", "on_exit"});
+  Vec3 center, size, rotation = Vec3::Zero();
   try {
     if (!optVec3Field(L, 1, "center", &center)) throw LuaArgError("field 'center' is required ({x, y, z}, m)");
     if (!optVec3Field(L, 1, "size", &size)) throw LuaArgError("field 'size' is required ({x, y, z}, m)");
+    optVec3Field(L, 1, "rotation", &rotation);
   } catch (const LuaArgError& e) {
     throw LuaArgError(std::string(fn) + ": " + e.what());
   }
   if (size.minCoeff() <= 0) throw LuaArgError("trigger.box: every component of 'size' must be > 0 m");
   int onEnter = optFunctionField(L, 1, "on_enter", fn);
   int onExit = optFunctionField(L, 1, "on_exit", fn);
-  std::uint32_t id = ScenarioHost::from(L)->triggers().add(center, size / 2, onEnter, onExit);
+  const Real angle = rotation.norm();
+  const Quat orientation = angle > 0 ? Quat(Eigen::AngleAxis<Real>(angle, rotation / angle)) : Quat::Identity();
+  std::uint32_t id = ScenarioHost::from(L)->triggers().add(center, size / 2, orientation, onEnter, onExit);
   lua_settop(L, 1);  // the functions are referenced now
   pushTrigger(L, id);
   return 1;

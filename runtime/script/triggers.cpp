@@ -11,13 +11,15 @@ extern "C" {
 
 namespace tumble::script {
 
-std::uint32_t TriggerSet::add(const Vec3& center_m, const Vec3& halfSize_m, int onEnterIdx, int onExitIdx) {
+std::uint32_t TriggerSet::add(const Vec3& center_m, const Vec3& halfSize_m, const Quat& orientation, int onEnterIdx,
+                              int onExitIdx) {
   auto slot = std::find_if(m_triggers.begin(), m_triggers.end(), [](const Trigger& t) { return t.id == 0; });
   Trigger& t = slot != m_triggers.end() ? *slot : m_triggers.emplace_back();
   t.id = m_nextId++;
   t.inside.clear();
   t.center_m = center_m;
   t.half_m = halfSize_m;
+  t.toBox = orientation.conjugate();
   if (onEnterIdx) {
     lua_pushvalue(m_L, onEnterIdx);
     t.onEnterRef = luaL_ref(m_L, LUA_REGISTRYINDEX);
@@ -67,7 +69,7 @@ void TriggerSet::update(const physics::World& world, const Call& call) {
     t.scratch.clear();
     world.forEachBody([&](physics::BodyId id, const physics::Body& b) {
       if (b.type == physics::BodyType::Static) return;
-      if (((b.position_m - t.center_m).cwiseAbs() - t.half_m).maxCoeff() <= 0) t.scratch.push_back(id);
+      if (((t.toBox * (b.position_m - t.center_m)).cwiseAbs() - t.half_m).maxCoeff() <= 0) t.scratch.push_back(id);
     });
     std::size_t i = 0, j = 0;
     while (i < t.inside.size() || j < t.scratch.size()) {

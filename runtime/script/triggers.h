@@ -1,7 +1,7 @@
 #pragma once
-// Trigger boxes of one scenario (trigger.box; bind_trigger.cpp):
-// axis-aligned boxes that report non-static bodies whose centre of mass
-// enters or leaves them. The host updates them among the after-step
+// Trigger boxes of one scenario (trigger.box; bind_trigger.cpp): boxes,
+// axis-aligned or turned by an orientation, that report non-static bodies
+// whose centre of mass enters or leaves them. The host updates them among the after-step
 // callbacks: first every trigger's new set of bodies (in body index order,
 // compared with the last step's: enters and exits), then the callbacks,
 // after every trigger is updated, since callbacks may add or remove
@@ -27,7 +27,9 @@ class TriggerSet {
 
   /// on_enter / on_exit functions at the given stack indices (0 = none).
   /// Returns the trigger's id (> 0).
-  std::uint32_t add(const Vec3& center_m, const Vec3& halfSize_m, int onEnterIdx, int onExitIdx);
+  /// The box's half sizes are along its own axes, turned by `orientation`.
+  std::uint32_t add(const Vec3& center_m, const Vec3& halfSize_m, const Quat& orientation, int onEnterIdx,
+                    int onExitIdx);
   bool remove(std::uint32_t id);
   void clear();
   int liveCount() const { return m_live; }
@@ -44,6 +46,7 @@ class TriggerSet {
   struct Trigger {
     std::uint32_t id = 0;  ///< 0: removed slot
     Vec3 center_m = Vec3::Zero(), half_m = Vec3::Zero();
+    Quat toBox = Quat::Identity();  ///< world -> the box's axes (the inverse of its orientation)
     int onEnterRef = 0, onExitRef = 0;  ///< registry refs, 0 = none
     std::vector<physics::BodyId> inside, scratch;  ///< sorted by index
   };

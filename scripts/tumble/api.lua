@@ -580,7 +580,8 @@ function Timer:active() end
 
 ---@class TriggerBoxDef
 ---@field center Vec3Arg centre of the box, m
----@field size Vec3Arg full size along x, y, z, m (each > 0)
+---@field size Vec3Arg full size along the box's x, y, z, m (each > 0)
+---@field rotation? Vec3Arg rotation vector of the box: axis times angle, rad (as world bodies'; default none: axis-aligned)
 ---@field on_enter? fun(body: Body, trigger: Trigger) called when a body's centre enters
 ---@field on_exit? fun(body: Body, trigger: Trigger) called when it leaves (or is removed inside)
 
@@ -1458,7 +1459,7 @@ function timer.every(seconds, fn) end
 ---inside gets its on_exit (with a handle that is no longer valid).
 trigger = {}
 
----An axis-aligned box trigger.
+---A box trigger: axis-aligned, or turned by `rotation` (e.g. {0, yaw, 0} for a gate across a road).
 ---
 ---```lua
 ---local goal = trigger.box{center = {0, 1, 20}, size = {4, 2, 1},

@@ -322,6 +322,11 @@ TEST(DesignSaveCli, TheSavedModPassesCheckAndRunsTheSameTwice) {
   const std::string text((std::istreambuf_iterator<char>(lua)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("environment.set{time_of_day = 19, weather = \"cloudy\", clouds = 0.7}"), std::string::npos)
       << text.substr(0, 3000);
+  // The trigger box placed at (20, 20) with yaw 5 rad is turned as it was placed.
+  const auto trigger = text.find("trigger.box{center = {20, ");
+  ASSERT_NE(trigger, std::string::npos) << text;
+  EXPECT_NE(text.substr(trigger, text.find('\n', trigger) - trigger).find("rotation = {0, 5, 0}"), std::string::npos)
+      << text.substr(trigger, 200);
   const auto subsystems = a["subsystems"].dump();
   EXPECT_NE(subsystems.find("terrain"), std::string::npos) << subsystems;
   // Without a single step the car has no wheel contact yet: the scenario's

@@ -282,4 +282,39 @@ TEST_F(Api, TriggerExitForARemovedBodyAndRemovedTriggersGoQuiet) {
   EXPECT_NE(bad->errors()[0].message.find("'size' must be > 0"), std::string::npos) << bad->errors()[0].summary();
 }
 
+// A box turned by `rotation` holds what is inside its turned shape: an
+// 8 x 1 x 1 m box turned 45 degrees about +Y runs along (1, 0, -1); a body on
+// that diagonal is inside, one on the world X axis (inside the same box
+// unturned) and one on the other diagonal are not.
+TEST_F(Api, ATurnedTriggerBoxHoldsWhatIsInsideItsTurnedShape) {
+  auto host = load(R"(
+    local zone, plain, along, onX, across
+    return {
+      on_start = function()
+        world.set_gravity{0, 0, 0}
+        along = world.sphere{radius = 0.1, position = {2.5, 0, -2.5}}
+        onX = world.sphere{radius = 0.1, position = {3, 0, 0}}
+        across = world.sphere{radius = 0.1, position = {2.5, 0, 2.5}}
+        zone = trigger.box{center = {0, 0, 0}, size = {8, 1, 1}, rotation = {0, math.pi / 4, 0}}
+        plain = trigger.box{center = {0, 0, 0}, size = {8, 1, 1}}
+      end,
+      on_update = function(ctx)
+        if ctx.step == 2 then
+          expect("on the turned box's axis: inside", zone:contains(along))
+          expect("on world X: outside the turned box", not zone:contains(onX))
+          expect("on the other diagonal: outside", not zone:contains(across))
+          expect("one body inside", zone:count(), {min = 1, max = 1})
+          expect("the unturned box holds the one on X only", plain:contains(onX) and plain:count() == 1)
+        end
+      end,
+    })");
+  run(*host, 3);
+  expectAllHeld(*host);
+  auto bad = load("return {on_start = function() trigger.box{center = {0, 0, 0}, size = {1, 1, 1}, rotation = 'up'} end}");
+  run(*bad, 1);
+  ASSERT_EQ(bad->errors().size(), 1u);
+  EXPECT_NE(bad->errors()[0].message.find("trigger.box: field 'rotation'"), std::string::npos)
+      << bad->errors()[0].summary();
+}
+
 }  // namespace tumble::test
