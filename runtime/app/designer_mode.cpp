@@ -34,7 +34,11 @@ constexpr float kRadiusStep = 1.25f;   // [ and ] change the radius by this fact
 constexpr float kYawStep_rad = kPi / 12;  // R turns the selection 15 degrees
 constexpr float kScaleStep = 1.1f;     // + / -
 constexpr float kPanelWidth_px = 230;
-constexpr float kCtrlSinkDelay_s = 0.3f;  // Ctrl held this long alone moves the eye down
+constexpr float kCtrlSinkDelay_s = 0.3f;
+// Fog distance / the eye's height above the ground, in the designer: ground
+// seen down to about 11 degrees below the horizon (5 heights away) is less
+// than a third hidden by fog (1 - exp(-(5/8)^2) = 0.32).
+constexpr float kDesignerFogPerHeight = 8.0f;  // Ctrl held this long alone moves the eye down
 // The look of the game's menus (pause_menu.cpp, main_menu.cpp).
 const ImVec4 kHighlight(0.95f, 0.62f, 0.12f, 1.0f);
 const ImVec4 kItemColor(0.18f, 0.20f, 0.24f, 0.95f);
@@ -671,6 +675,17 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
   environment.weather = sky.weather;
   environment.cloudCover = sky.cloudCover;
   snap.sky = skySettingsOf(environment);
+  // The designer looks down on the whole map: from high up the course's
+  // fog (250 m on a clear day) would hide most of it. The fog there starts
+  // further out, kDesignerFogPerHeight times the eye's height above the
+  // ground; near the ground, and when driving, it is the course's own.
+  const float weatherFog_m = snap.sky.fogDistance_m.value_or(render::weatherFogDistance_m(snap.sky.weather));
+  if (weatherFog_m > 0) {
+    const float above_m = m_camera.position_m.y() - float(m_doc->groundHeight_m(double(m_camera.position_m.x()),
+                                                                                 double(m_camera.position_m.z())));
+    snap.sky.fogDistance_m = std::max(weatherFog_m, kDesignerFogPerHeight * above_m);
+  }
+  m_fogDistance_m = snap.sky.fogDistance_m.value_or(0.0f);
   addObjectDrawing(snap);
   if (m_gizmoDrag) {
     addGizmoLines(m_gizmoDrag->frame, m_gizmoDrag->handle, snap.lines);
@@ -681,6 +696,7 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
   const render::TerrainStats& stats = renderer.terrainStats();
   m_lastChunksUploaded = stats.chunksUploaded;
   m_lastChunksInvalidated = stats.chunksInvalidated;
+  m_lastTerrainUpdate_ms = stats.updateTime_ms;
 }
 
 std::optional<GizmoFrame> DesignerMode::gizmoFrame() const {
@@ -1243,6 +1259,8 @@ nlohmann::json DesignerMode::report() const {
   j["status"] = m_status;
   j["terrain_chunks_uploaded"] = m_lastChunksUploaded;
   j["terrain_chunks_invalidated"] = m_lastChunksInvalidated;
+  j["terrain_update_ms"] = m_lastTerrainUpdate_ms;
+  j["fog_distance_m"] = m_fogDistance_m;
   if (!m_doc) {
     j["document"] = nullptr;
     return j;

@@ -183,6 +183,8 @@ class DesignerMode {
   std::optional<DesignSky> m_skyDrag;
   int m_placedCount = 0;
   int m_lastChunksUploaded = 0, m_lastChunksInvalidated = 0;  // the renderer's, last frame
+  float m_fogDistance_m = 0;  // the fog of the last frame drawn, m (higher eye: further; 0: none)
+  double m_lastTerrainUpdate_ms = 0;                           // TerrainStats::updateTime_ms, last frame
   struct ItemRect {
     std::string label;
     float x_px = 0, y_px = 0, w_px = 0, h_px = 0;

@@ -188,6 +188,12 @@ struct TerrainStats {
   int chunksUploaded = 0;      // chunk meshes built and uploaded during this frame
   bool materialsUploaded = false;  // the per-block material texture was (re)uploaded this frame
   int chunksInvalidated = 0;       // chunks a dirty rectangle (TerrainSurface::dirtyI0..) made rebuild this frame
+  // Wall time (ms) the renderer spent this frame bringing the terrain up to
+  // date: dropping the chunks a change touched, uploading the changed block
+  // materials, and building and uploading chunk meshes (vertices and
+  // normals). The designer's brush cost on screen; 0 when nothing changed
+  // and every chunk in view was resident.
+  double updateTime_ms = 0;
   std::size_t residentBytes = 0;   // chunk vertex data held on the GPU
   std::vector<TerrainChunkDraw> drawn;  // one entry per drawn chunk
 };

@@ -40,6 +40,10 @@ struct SkySettings {
   Eigen::Vector2f stormCentre_m{0.0f, 0.0f};
 };
 
+/// The fog distance a weather has when a scenario sets none, m (the values
+/// listed at SkySettings::fogDistance_m).
+float weatherFogDistance_m(Weather weather);
+
 /// One lightning strike of a storm: when and where it hits the ground.
 struct LightningStrike {
   double time_s = 0;                  // simulation time of the first flash

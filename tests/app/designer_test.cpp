@@ -239,6 +239,33 @@ TEST(Designer, DraggingTheGizmosHandlesMovesTurnsAndScalesTheSelectedObject) {
   EXPECT_EQ(designer(scaled)["document"]["objects"].size(), 1u) << "a drag on a handle places nothing";
 }
 
+// From high up the designer's fog starts further out, so the far side of
+// the map shows as ground, not haze; near the ground it is the course's own.
+TEST(Designer, FromHighUpTheFogStartsFurtherOutSoTheWholeMapShows) {
+  const std::string dir = outDir("designer_fog");
+  const std::string shot = dir + "/high.png";
+  auto high = run(dir, "high", "design new --screenshot " + shot, 12, kNewMap,
+                  " --width 1280 --height 720 --quality low --mute");
+  expectRan(high);
+  const double eyeHeight = designer(high)["camera"]["position_m"][1];  // the new flat map lies at 0 m
+  ASSERT_GT(eyeHeight, 40.0) << "the designer opens a map from above it";
+  EXPECT_NEAR(designer(high)["fog_distance_m"].get<double>(), 8 * eyeHeight, 0.01 * eyeHeight);
+  // The band just below the far edge of the map (the opening view looks
+  // at the map from over its near edge): green ground, not the bluish grey
+  // of fog (with the course's 250 m fog, G - B there was -9).
+  const RegionStats far = regionStats(shot, 400, 278, 800, 20);
+  ASSERT_TRUE(far.loaded);
+  EXPECT_GT(far.meanRgb[1], far.meanRgb[2] + 10) << "far ground RGB " << far.meanRgb[0] << " " << far.meanRgb[1]
+                                                 << " " << far.meanRgb[2];
+  // Down near the ground (Q held 5 s): the weather's fog, 250 m on a clear day.
+  auto low = run(dir, "low", "design new", 320, kNewMap + "5 down key:Q\n305 up key:Q\n",
+                 " --width 640 --height 360 --quality low --mute");
+  expectRan(low);
+  const double lowHeight = designer(low)["camera"]["position_m"][1];
+  ASSERT_LT(lowHeight, 250.0 / 8) << "Q took the eye down";
+  EXPECT_DOUBLE_EQ(designer(low)["fog_distance_m"].get<double>(), 250.0);
+}
+
 TEST(Designer, PlacesARockSnappedToTheGroundAndSavesTheModUnderHome) {
   const std::string dir = outDir("designer_rock");
   // The palette's order comes from the mods found; the report lists it.

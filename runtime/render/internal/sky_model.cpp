@@ -80,7 +80,9 @@ void applyWeather(Weather weather, Environment& e) {
   }
 }
 
-float defaultFogDistance_m(Weather weather) {
+}  // namespace
+
+float weatherFogDistance_m(Weather weather) {
   switch (weather) {
     case Weather::Clear: return 250.0f;
     case Weather::Cloudy: return 180.0f;
@@ -88,8 +90,6 @@ float defaultFogDistance_m(Weather weather) {
   }
   return 250.0f;
 }
-
-}  // namespace
 
 Eigen::Vector3f sunDirectionAt(float timeOfDay_h) {
   float t = std::fmod(timeOfDay_h, 24.0f);
@@ -123,7 +123,7 @@ Environment environmentFor(const SkySettings& s, double simTime_s) {
   if (s.weather == Weather::Cloudy) cover = std::max(cover, 0.75f);
   if (s.weather == Weather::Storm) cover = 1.0f;
   e.cloudCover = cover;
-  const float fog = s.fogDistance_m ? *s.fogDistance_m : defaultFogDistance_m(s.weather);
+  const float fog = s.fogDistance_m ? *s.fogDistance_m : weatherFogDistance_m(s.weather);
   e.fogDensity_per_m = (std::isfinite(fog) && fog > 0.0f) ? 1.0f / fog : 0.0f;
   // Offsets wrap at 100 km so float precision lasts for days of play.
   const Eigen::Vector2f wind = s.wind_mps.allFinite() ? s.wind_mps : Eigen::Vector2f::Zero();

@@ -14,6 +14,23 @@
 namespace tumble::render {
 
 namespace {
+// Adds the wall time from its construction to its destruction to a stats field, ms.
+class AddElapsed {
+ public:
+  explicit AddElapsed(double& total_ms) : m_total(total_ms), m_start(std::chrono::steady_clock::now()) {}
+  ~AddElapsed() {
+    m_total += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m_start).count();
+  }
+  AddElapsed(const AddElapsed&) = delete;
+  AddElapsed& operator=(const AddElapsed&) = delete;
+
+ private:
+  double& m_total;
+  std::chrono::steady_clock::time_point m_start;
+};
+}  // namespace
+
+namespace {
 
 // Fog reaches 1 - exp(-(d rho)^2); beyond d rho = 2.5 it is within half a
 // step of 8-bit colour of the fog colour, so such chunks are not drawn.
@@ -197,6 +214,7 @@ TerrainPass::ChunkLevel& TerrainPass::ensureLevel(const TerrainSurface& surface,
   level.lastUsedFrame = m_frame;
   if (level.vao.get() != 0) return level;
 
+  const AddElapsed timed(stats.updateTime_ms);
   const int cx = chunk % m_grid.chunksX, cz = chunk / m_grid.chunksX;
   const int nx = verticesAlong(std::min(kTerrainChunkBlocks, m_grid.blocksX - cx * kTerrainChunkBlocks), lod);
   const int nz = verticesAlong(std::min(kTerrainChunkBlocks, m_grid.blocksZ - cz * kTerrainChunkBlocks), lod);
@@ -247,6 +265,7 @@ Status TerrainPass::sync(const TerrainSurface& surface, TerrainStats& stats) {
   const bool onlyDirty = m_hasSurface && sameRevision == m_key && key.revision != m_key.revision &&
                          surface.dirtySinceRevision == m_key.revision && surface.dirtyI0 <= surface.dirtyI1 &&
                          surface.dirtyJ0 <= surface.dirtyJ1;
+  const AddElapsed timed(stats.updateTime_ms);
   if (onlyDirty) {
     updateDirty(surface, stats);
     m_key = key;
@@ -292,6 +311,7 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
   stats.materialsUploaded = stats.materialsUploaded || m_depthUploads.materialsUploaded;
   stats.chunksUploaded += m_depthUploads.chunksUploaded;
   stats.chunksInvalidated += m_depthUploads.chunksInvalidated;
+  stats.updateTime_ms += m_depthUploads.updateTime_ms;
   m_depthUploads = TerrainStats{};
   ++m_frame;
 
