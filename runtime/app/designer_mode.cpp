@@ -938,18 +938,17 @@ void DesignerMode::drawToolPanel() {
         const ImVec2 at = ImGui::GetCursorScreenPos();
         bool picked = false;
         if (e.kind == PlacedKind::Model && !e.start) {
-          picked = ImGui::Selectable("##row", m_paletteIndex == k, ImGuiSelectableFlags_AllowItemOverlap,
-                                     ImVec2(0, kPicture_px));
-          ImGui::SetCursorScreenPos(at);
+          // One item per row (the picture and the name are drawn on it, not
+          // items of their own), so the first click on a row takes even when
+          // the pointer jumped there in the same frame.
+          picked = ImGui::Selectable("##row", m_paletteIndex == k, 0, ImVec2(0, kPicture_px));
+          ImDrawList* draw = ImGui::GetWindowDrawList();
           auto t = m_thumbnails.find(e.asset);
           if (t != m_thumbnails.end() && t->second.texture != 0)
-            ImGui::Image(ImTextureID(t->second.texture), ImVec2(kPicture_px, kPicture_px));
-          else
-            ImGui::Dummy(ImVec2(kPicture_px, kPicture_px));  // still being drawn, or it failed
-          ImGui::SameLine();
-          ImGui::SetCursorPosY(ImGui::GetCursorPosY() + 0.5f * (kPicture_px - ImGui::GetTextLineHeight()));
-          ImGui::TextUnformatted(e.label.c_str());
-          ImGui::SetCursorScreenPos(ImVec2(at.x, at.y + kPicture_px + ImGui::GetStyle().ItemSpacing.y));
+            draw->AddImage(ImTextureID(t->second.texture), at, ImVec2(at.x + kPicture_px, at.y + kPicture_px));
+          draw->AddText(ImVec2(at.x + kPicture_px + ImGui::GetStyle().ItemSpacing.x,
+                               at.y + 0.5f * (kPicture_px - ImGui::GetTextLineHeight())),
+                        ImGui::GetColorU32(ImGuiCol_Text), e.label.c_str());
         } else {
           picked = ImGui::Selectable(e.label.c_str(), m_paletteIndex == k);
         }
