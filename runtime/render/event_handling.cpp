@@ -48,7 +48,11 @@ void Renderer::processEvents(Controls& controls) {
   while (SDL_PollEvent(&event)) {
     if (r.hud) r.hud->processEvent(event);
     const bool hudKeyboard = r.hud && r.hud->wantsKeyboard();
-    const bool hudMouse = r.hud && r.hud->wantsMouse();
+    // A press belongs to the HUD if it lands on one of its windows, wherever
+    // the pointer was at the last frame.
+    const bool hudMouse = r.hud && (event.type == SDL_MOUSEBUTTONDOWN
+                                        ? r.hud->wantsMousePress(float(event.button.x), float(event.button.y))
+                                        : r.hud->wantsMouse());
     if (r.eventHook) {
       const bool keyboard = event.type == SDL_KEYDOWN || event.type == SDL_KEYUP;
       if (r.eventHook(event, keyboard ? hudKeyboard : hudMouse)) continue;

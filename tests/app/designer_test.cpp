@@ -168,6 +168,17 @@ TEST(Designer, ObjectPaletteShowsAPictureOfEachModelAndAClickOnOnePicksIt) {
   expectRan(clicked);
   EXPECT_EQ(designer(clicked)["palette_selected"], second["label"]);
   EXPECT_EQ(designer(clicked)["document"]["objects"].size(), 0u) << "a click on the panel places nothing";
+
+  // Then a press on the ground whose pointer jumps there from the panel in
+  // the same frame places that model: the press is the ground's, though at
+  // the last frame the pointer was over the panel.
+  const std::string place = "20 move 800 450\n20 down mouse:left\n22 up mouse:left\n";
+  auto placed = run(dir, "place", "design new", 30, kNewMap + tap("3", 6) + jump + place,
+                    " --width 1280 --height 720 --quality low --mute");
+  expectRan(placed);
+  const auto& objects = designer(placed)["document"]["objects"];
+  ASSERT_EQ(objects.size(), 1u) << designer(placed)["status"];
+  EXPECT_EQ(objects[0]["asset"], "base:assets/models/buggy.obj") << "the model picked in the palette";
 }
 
 // Drags the left button from window pixel `from` to `to` in 10 moves.

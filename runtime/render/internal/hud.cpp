@@ -3,6 +3,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <backends/imgui_impl_sdl.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // the frame's windows, for wantsMousePress
 
 #include <cfloat>
 #include <cstdio>
@@ -96,6 +97,13 @@ bool Hud::wantsMouse() const {
   return ImGui::GetIO().WantCaptureMouse;
 }
 
+bool Hud::wantsMousePress(float x_px, float y_px) const {
+  if (m_popupOpen) return true;
+  for (const auto& r : m_mouseWindows)
+    if (x_px >= r[0] && y_px >= r[1] && x_px < r[2] && y_px < r[3]) return true;
+  return false;
+}
+
 void Hud::newFrame() {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplSDL2_NewFrame();
@@ -130,7 +138,12 @@ void Hud::draw(const HudStats& stats, Controls& controls, CameraMode cameraMode,
   m_hadTuning = hasTuning;
   newFrame();
   build(stats, controls, cameraMode, tuning);
+  m_popupOpen = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
   ImGui::Render();
+  m_mouseWindows.clear();
+  for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows)
+    if (w->Active && !w->Hidden && !(w->Flags & ImGuiWindowFlags_NoMouseInputs))
+      m_mouseWindows.push_back({w->Pos.x, w->Pos.y, w->Pos.x + w->Size.x, w->Pos.y + w->Size.y});
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 

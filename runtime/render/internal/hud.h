@@ -6,6 +6,7 @@
 #include <SDL.h>
 #include <imgui.h>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -31,6 +32,13 @@ class Hud {
   /// slider, pointer over a HUD window); the game should then ignore them.
   bool wantsKeyboard() const;
   bool wantsMouse() const;
+  /// Whether a button pressed at (x, y) (window pixels) is the HUD's: over a
+  /// window it drew last frame that takes the mouse, or while a popup is
+  /// open (a click outside closes it), as ImGui itself decides a fresh
+  /// press. wantsMouse() says where the pointer was at the last frame, which
+  /// is wrong for a press whose pointer jumped there since (an instant
+  /// click from the panel to the ground).
+  bool wantsMousePress(float x_px, float y_px) const;
 
   /// The app's windows, built after the HUD's own (Renderer::addHudPanel).
   void addPanel(HudPanel panel) { m_panels.push_back(std::move(panel)); }
@@ -62,6 +70,10 @@ class Hud {
   // the backend reads held buttons from SDL's mouse state, which scripted
   // events never set, so a dragged slider did not move.
   bool m_held[3] = {false, false, false};
+  // The windows that take the mouse, as drawn in the last frame (x0, y0,
+  // x1, y1 pixels), and whether a popup was open: for wantsMousePress.
+  std::vector<std::array<float, 4>> m_mouseWindows;
+  bool m_popupOpen = false;
   bool m_hadMessages = false;
   std::vector<HudPanel> m_panels;
   bool m_hadTuning = false;
