@@ -35,6 +35,7 @@ constexpr float kYawStep_rad = kPi / 12;  // R turns the selection 15 degrees
 constexpr float kScaleStep = 1.1f;     // + / -
 constexpr float kPanelWidth_px = 230;
 constexpr float kCtrlSinkDelay_s = 0.3f;
+constexpr float kClickSlop_px = 6.0f;  // a press that moves less is a click, not a drag (ImGui's drag threshold)
 // Fog distance / the eye's height above the ground, in the designer: ground
 // seen down to about 11 degrees below the horizon (5 heights away) is less
 // than a third hidden by fog (1 - exp(-(5/8)^2) = 0.32).
@@ -521,15 +522,24 @@ void DesignerMode::placeObject(const Eigen::Vector3f& p) {
 
 void DesignerMode::applyTool(const std::optional<Eigen::Vector3f>& hit, float dt_s) {
   const bool line = m_tool == Tool::Sculpt && (m_sculpt == Sculpt::Ridge || m_sculpt == Sculpt::Ditch);
+  // A press on a gizmo handle drags it once the pointer has moved
+  // kClickSlop_px; let go before that, it is a click on what lies behind
+  // (placing the next tree beside the last one, whose handles are there).
   if (m_pointer.leftPressed && m_haveRay && m_gizmoHover != GizmoHandle::None) {
-    // A press on a gizmo handle drags it, whatever is on the ground behind.
     m_pointer.leftPressed = false;
     if (auto frame = gizmoFrame())
-      if (auto drag = beginGizmoDrag(m_gizmoHover, *frame, m_doc->objects().at(*m_selected), m_ray)) {
-        m_gizmoDrag = drag;
-        m_doc->beginStroke();
-        m_stroking = true;
-      }
+      m_gizmoPress = GizmoPress{m_gizmoHover, *frame, m_ray, m_pointer.x_px, m_pointer.y_px, hit};
+  }
+  if (m_gizmoPress && !m_gizmoDrag && m_pointer.leftHeld && m_selected && m_doc->objects().count(*m_selected) &&
+      std::hypot(m_pointer.x_px - m_gizmoPress->x_px, m_pointer.y_px - m_gizmoPress->y_px) >= kClickSlop_px) {
+    if (auto drag = beginGizmoDrag(m_gizmoPress->handle, m_gizmoPress->frame, m_doc->objects().at(*m_selected),
+                                   m_gizmoPress->ray)) {
+      m_gizmoDrag = drag;
+      m_doc->beginStroke();
+      m_stroking = true;
+    } else {
+      m_gizmoPress.reset();  // seen edge-on: nothing to drag on
+    }
   }
   if (m_gizmoDrag && m_pointer.leftHeld && m_selected && m_doc->objects().count(*m_selected) && m_haveRay) {
     const PlacedObject moved = dragGizmo(*m_gizmoDrag, m_ray);
@@ -539,14 +549,7 @@ void DesignerMode::applyTool(const std::optional<Eigen::Vector3f>& hit, float dt
   if (m_pointer.leftPressed) {
     m_pointer.leftPressed = false;
     if (hit && m_tool == Tool::Objects) {
-      if (auto near = objectNear(*hit); near && !m_palette[std::size_t(m_paletteIndex)].start) {
-        m_selected = near;  // a click on an object picks it; dragging then moves it
-        m_dragging = true;
-        m_doc->beginStroke();
-        m_stroking = true;
-      } else {
-        placeObject(*hit);
-      }
+      objectsClick(*hit, true);
     } else if (hit && line) {
       m_lineStart = hit;
     } else if (hit) {
@@ -579,8 +582,23 @@ void DesignerMode::applyTool(const std::optional<Eigen::Vector3f>& hit, float dt
     m_lineStart.reset();
     m_dragging = false;
     if (m_gizmoDrag) m_status = std::string(gizmoHandleName(m_gizmoDrag->handle)) + " done";
+    else if (m_gizmoPress && m_gizmoPress->ground) objectsClick(*m_gizmoPress->ground, false);
     m_gizmoDrag.reset();
+    m_gizmoPress.reset();
     endStroke();
+  }
+}
+
+void DesignerMode::objectsClick(const Eigen::Vector3f& ground, bool held) {
+  if (auto near = objectNear(ground); near && !m_palette[std::size_t(m_paletteIndex)].start) {
+    m_selected = near;  // a click on an object picks it; dragging then moves it
+    if (held) {
+      m_dragging = true;
+      m_doc->beginStroke();
+      m_stroking = true;
+    }
+  } else {
+    placeObject(ground);
   }
 }
 

@@ -14,7 +14,8 @@
 //              2 Paint (the named surfaces)   3 Objects (models, props, start, gates ...)
 //   Mouse      left: apply the tool; right held: look around; on the selected
 //              object's gizmo: drag the red / blue arrow to move along X / Z,
-//              the yellow ring to turn, the white post's top to scale
+//              the yellow ring to turn, the white post's top to scale (a
+//              click there without a drag still places or picks)
 //   Keys       WASD move, Q/E or Ctrl/Space down/up, Shift faster, [ ] radius,
 //              , . previous/next brush or palette entry, Ctrl+Z / Ctrl+Y undo / redo,
 //              Ctrl+S save, Ctrl+D duplicate, Delete remove, R / Shift+R turn
@@ -124,6 +125,9 @@ class DesignerMode {
   void endStroke();
   std::optional<std::uint32_t> objectNear(const Eigen::Vector3f& point) const;
   void placeObject(const Eigen::Vector3f& point);
+  /// The Objects tool's click on the ground: picks the object there (held:
+  /// and starts moving it with the pointer) or places the palette's entry.
+  void objectsClick(const Eigen::Vector3f& ground, bool held);
   void addObjectDrawing(render::FrameSnapshot& snap) const;
   /// The selected object's gizmo, when the Objects tool is shown.
   std::optional<GizmoFrame> gizmoFrame() const;
@@ -175,6 +179,16 @@ class DesignerMode {
   bool m_haveRay = false;
   GizmoHandle m_gizmoHover = GizmoHandle::None;  // the handle under the pointer
   std::optional<GizmoDrag> m_gizmoDrag;           // a handle being dragged (one undo step)
+  /// A press on a handle, not yet a drag: where it was, and the ground
+  /// behind it (a release there is a click on the ground).
+  struct GizmoPress {
+    GizmoHandle handle = GizmoHandle::None;
+    GizmoFrame frame;
+    ViewRay ray;
+    float x_px = 0, y_px = 0;
+    std::optional<Eigen::Vector3f> ground;
+  };
+  std::optional<GizmoPress> m_gizmoPress;
   int m_nextGateOrder = 1;
   std::string m_collision = "mesh";
   int m_vehicleIndex = 0;

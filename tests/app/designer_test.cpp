@@ -252,6 +252,14 @@ TEST(Designer, DraggingTheGizmosHandlesMovesTurnsAndScalesTheSelectedObject) {
   EXPECT_GT(big[0].get<double>(), 1.2 * scale0) << big.dump();
   EXPECT_DOUBLE_EQ(big[1].get<double>(), big[0].get<double>());
   EXPECT_EQ(designer(scaled)["document"]["objects"].size(), 1u) << "a drag on a handle places nothing";
+
+  // A click on a handle without a drag is a click on the ground behind it:
+  // the next rock is placed there (a row of trees, each beside the last).
+  auto next = run(dir, "next", "design new", frame + 10, placed + press(int(ax), int(ay), frame, 1), size);
+  expectRan(next);
+  const auto& two = designer(next)["document"]["objects"];
+  ASSERT_EQ(two.size(), 2u) << designer(next)["status"];
+  EXPECT_EQ(two[0]["position_m"], before["position_m"]) << "the first rock stays where it was";
 }
 
 // From high up the designer's fog starts further out, so the far side of
