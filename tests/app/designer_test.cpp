@@ -73,6 +73,27 @@ void expectRan(const Played& p) {
   ASSERT_TRUE(p.report["designer"].is_object()) << p.report.dump(2);
 }
 
+// The palette's place of an entry (its order comes from the mods found; the
+// report lists it), from a short run of the designer; -1 (and a failure) if
+// it is not there.
+int paletteIndex(const std::string& dir, const std::string& label) {
+  auto first = run(dir, "palette", "design new", 6, kNewMap);
+  EXPECT_EQ(first.process.exitCode, 0) << first.process.output;
+  const auto& palette = first.report["designer"]["palette"];
+  for (std::size_t i = 0; i < palette.size(); ++i)
+    if (palette[i] == label) return int(i);
+  ADD_FAILURE() << label << " is not in the palette: " << palette.dump();
+  return -1;
+}
+
+// `.` pressed `steps` times from `frame` on (the next palette entry each);
+// frame ends after the last.
+std::string stepThroughPalette(int steps, int& frame) {
+  std::string events;
+  for (int i = 0; i < steps; ++i, frame += 2) events += tap(".", frame);
+  return events;
+}
+
 TEST(Designer, MainMenuDesignerOpensTheNewMapDialogAndCreatesAFlatMap) {
   const std::string dir = outDir("designer_menu");
   // Root page: Play, Designer, ... -> Down, Return; then Return: Create.
@@ -197,17 +218,12 @@ std::string dragMouse(double fromX, double fromY, double toX, double toY, int fr
 TEST(Designer, DraggingTheGizmosHandlesMovesTurnsAndScalesTheSelectedObject) {
   const std::string dir = outDir("designer_gizmo");
   const std::string size = " --width 1280 --height 720 --quality low --mute";
-  auto first = run(dir, "palette", "design new", 6, kNewMap, size);
-  expectRan(first);
-  const auto& palette = designer(first)["palette"];
-  int rock = -1;
-  for (std::size_t i = 0; i < palette.size(); ++i)
-    if (palette[i] == "rock (base)") rock = int(i);
-  ASSERT_GE(rock, 0) << palette.dump();
+  const int rock = paletteIndex(dir, "rock (base)");
+  ASSERT_GE(rock, 0);
   // Place a rock: it is selected and shows its gizmo.
   std::string placed = kNewMap + tap("3", 6);
   int frame = 10;
-  for (int i = 0; i < rock; ++i, frame += 2) placed += tap(".", frame);
+  placed += stepThroughPalette(rock, frame);
   placed += press(700, 420, frame, 2);
   frame += 8;
   auto shown = run(dir, "placed", "design new", frame, placed, size);
@@ -291,18 +307,12 @@ TEST(Designer, FromHighUpTheFogStartsFurtherOutSoTheWholeMapShows) {
 
 TEST(Designer, PlacesARockSnappedToTheGroundAndSavesTheModUnderHome) {
   const std::string dir = outDir("designer_rock");
-  // The palette's order comes from the mods found; the report lists it.
-  auto first = run(dir, "palette", "design new", 6, kNewMap);
-  expectRan(first);
-  const auto& palette = designer(first)["palette"];
-  int rock = -1;
-  for (std::size_t i = 0; i < palette.size(); ++i)
-    if (palette[i] == "rock (base)") rock = int(i);
-  ASSERT_GE(rock, 0) << palette.dump();
+  const int rock = paletteIndex(dir, "rock (base)");
+  ASSERT_GE(rock, 0);
 
   std::string events = kHill + tap("3", 72);
   int frame = 76;
-  for (int i = 0; i < rock; ++i, frame += 2) events += tap(".", frame);
+  events += stepThroughPalette(rock, frame);
   events += press(400, 200, frame, 2);
   frame += 8;
   events += ctrl("S", frame) + tap("Return", frame + 8);  // Save: the Save as dialog; Return keeps mymap:course

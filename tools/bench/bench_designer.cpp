@@ -20,6 +20,7 @@
 
 #include "app/design_document.h"
 #include "app/player_settings.h"
+#include "bench_renderer.h"
 #include "render/renderer.h"
 #include "terrain/png_io.h"
 
@@ -136,19 +137,9 @@ BENCHMARK(BM_EncodeHeights)->Iterations(3)->Unit(benchmark::kMillisecond);
 void BM_DabOnScreen(benchmark::State& state) {
   const auto level = static_cast<app::QualityLevel>(state.range(0));
   DesignDocument& d = bigMap();
-  ::setenv("SDL_VIDEODRIVER", "offscreen", 1);
-  render::WindowConfig config;
-  config.width = 1280;
-  config.height = 720;
-  config.hud = false;
-  config.forceOffscreen = true;
-  auto renderer = render::Renderer::create(config);
-  if (!renderer) {
-    state.SkipWithError(renderer.error().c_str());
-    return;
-  }
-  (*renderer)->setQuality(app::renderQuality(app::qualityPreset(level)));
-  render::Camera& camera = (*renderer)->camera();
+  auto renderer = bench::offscreenRenderer(state, level);
+  if (!renderer) return;
+  render::Camera& camera = renderer->camera();
   camera.target = {0, float(d.groundHeight_m(0, 300)), 300};
   camera.yaw_rad = 0.6f;
   camera.pitch_rad = 0.5f;
@@ -161,7 +152,7 @@ void BM_DabOnScreen(benchmark::State& state) {
   frame.terrain = &surface;
   render::Controls controls;
   // The first frame builds every chunk in view: not timed.
-  if (const Status s = (*renderer)->drawFrame(frame, render::HudStats{}, controls); !s) {
+  if (const Status s = renderer->drawFrame(frame, render::HudStats{}, controls); !s) {
     state.SkipWithError(s.error().c_str());
     return;
   }
@@ -184,12 +175,12 @@ void BM_DabOnScreen(benchmark::State& state) {
     surface.dirtyI1 = r.i1;
     surface.dirtyJ1 = r.j1;
     const auto start = std::chrono::steady_clock::now();
-    if (const Status s = (*renderer)->drawFrame(frame, render::HudStats{}, controls); !s) {
+    if (const Status s = renderer->drawFrame(frame, render::HudStats{}, controls); !s) {
       state.SkipWithError(s.error().c_str());
       break;
     }
     frames_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const render::TerrainStats& t = (*renderer)->terrainStats();
+    const render::TerrainStats& t = renderer->terrainStats();
     state.SetIterationTime(t.updateTime_ms / 1000.0);
     invalidated += t.chunksInvalidated;
     uploaded += t.chunksUploaded;

@@ -14,6 +14,7 @@
 #include "app/fixed_step.h"
 #include "app/player_settings.h"
 #include "app/scene.h"
+#include "bench_renderer.h"
 #include "render/renderer.h"
 #include "vehicle/vehicle_system.h"
 
@@ -43,20 +44,10 @@ void BM_DriveFrame(benchmark::State& state) {
     frame.sky.cloudCover = 1;
   }
 
-  ::setenv("SDL_VIDEODRIVER", "offscreen", 1);
-  render::WindowConfig config;
-  config.width = 1280;
-  config.height = 720;
-  config.hud = false;
-  config.forceOffscreen = true;
-  auto renderer = render::Renderer::create(config);
-  if (!renderer) {
-    state.SkipWithError(renderer.error().c_str());
-    return;
-  }
-  (*renderer)->setQuality(app::renderQuality(app::qualityPreset(level)));
+  auto renderer = bench::offscreenRenderer(state, level);
+  if (!renderer) return;
   // Behind and above the car, looking along its way.
-  render::Camera& camera = (*renderer)->camera();
+  render::Camera& camera = renderer->camera();
   const vehicle::VehicleSystem* vehicles = (*scene)->vehiclesIfAny();
   if (vehicles)
     vehicles->forEach([&](vehicle::VehicleId id) {
@@ -69,12 +60,12 @@ void BM_DriveFrame(benchmark::State& state) {
   camera.distance_m = 7;
   render::Controls controls;
   // The first frame uploads the sky cube and terrain chunks: not timed.
-  if (const Status s = (*renderer)->drawFrame(frame, render::HudStats{}, controls); !s) {
+  if (const Status s = renderer->drawFrame(frame, render::HudStats{}, controls); !s) {
     state.SkipWithError(s.error().c_str());
     return;
   }
   for (auto _ : state) {
-    const Status s = (*renderer)->drawFrame(frame, render::HudStats{}, controls);
+    const Status s = renderer->drawFrame(frame, render::HudStats{}, controls);
     if (!s) state.SkipWithError(s.error().c_str());
   }
   state.SetLabel(std::string(app::qualityName(level)) + (storm ? ", storm" : ""));
