@@ -67,6 +67,7 @@ QualityPreset qualityPreset(QualityLevel level) {
       p.particleBudget = 20000;
       p.msaaSamples = 4;
       p.shadows = true;
+      p.terrainBlend = true;
       break;
   }
   return p;
@@ -79,6 +80,7 @@ render::RenderQuality renderQuality(const QualityPreset& p) {
   q.fogDistance_m = p.fogStart_m;
   q.terrainLodPixels = p.terrainLodPixels;
   q.terrainDetail = p.terrainDetail;
+  q.terrainBlend = p.terrainBlend;
   q.msaaSamples = p.msaaSamples;
   q.shadows = p.shadows;
   q.shadowMapSize = p.shadowMapSize;

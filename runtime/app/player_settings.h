@@ -40,6 +40,7 @@ struct QualityPreset {
   /// this many pixels wide on screen (render::WindowConfig::terrainLodPixels).
   float terrainLodPixels = 16.0f;
   bool terrainDetail = true;     ///< the ground lit per pixel with bump detail (off on low: lit per vertex; render::WindowConfig::terrainDetail)
+  bool terrainBlend = false;     ///< painted surfaces blend across block edges (high only; render::WindowConfig::terrainBlend)
   int particleBudget = 20000;    ///< particles drawn per frame at most (evenly thinned beyond)
   int msaaSamples = 4;           ///< 1 = off
   bool shadows = true;           ///< cascaded sun shadows (off on low)

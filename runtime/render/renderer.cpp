@@ -18,6 +18,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const WindowConfig& config) {
   impl->quality.msaaSamples = config.msaaSamples;
   impl->quality.terrainLodPixels = config.terrainLodPixels;
   impl->quality.terrainDetail = config.terrainDetail;
+  impl->quality.terrainBlend = config.terrainBlend;
   impl->quality.fogDistance_m = 1.0f / impl->environment.fogDensity_per_m;
   auto context = GlContext::create({config.width, config.height, config.title, config.forceOffscreen});
   if (!context) return makeError("renderer: " + context.error());
@@ -56,7 +57,8 @@ void drawTerrain(Renderer::Impl& r, const FrameSnapshot& frame, const FrameView&
   // Pixels per radian near the screen centre: what the LOD rule needs.
   const float pixelsPerRadian = static_cast<float>(r.targets.sceneHeight()) / (2.0f * view.tanHalfFovY);
   const Status status = r.terrain.draw(*frame.terrain, view, r.environment, pixelsPerRadian,
-                                       r.config.terrainLodPixels, r.config.terrainDetail, r.terrainStats);
+                                       r.config.terrainLodPixels, r.config.terrainDetail, r.config.terrainBlend,
+                                       r.terrainStats);
   if (!status && !r.reportedTerrainError) {
     log::warn("render: terrain not drawn: " + status.error() + " (reported once)");
     r.reportedTerrainError = true;
@@ -239,6 +241,7 @@ void Renderer::setQuality(const RenderQuality& quality) {
   r.config.msaaSamples = std::max(1, quality.msaaSamples);
   r.config.terrainLodPixels = std::max(1.0f, quality.terrainLodPixels);
   r.config.terrainDetail = quality.terrainDetail;
+  r.config.terrainBlend = quality.terrainBlend;
   r.environment.fogDensity_per_m = 1.0f / std::max(1.0f, quality.fogDistance_m);
   r.config.shadows = quality.shadows;
   r.config.shadowMapSize = std::clamp(quality.shadowMapSize, 64, 4096);

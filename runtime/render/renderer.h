@@ -318,6 +318,12 @@ struct WindowConfig {
   // ground is lit per vertex, without bump detail or sun shadows on it (a
   // third of the ground's cost on software OpenGL; the low preset).
   bool terrainDetail = true;
+  // Neighbouring blocks' surfaces blend into each other across a block
+  // (texture splatting: the four nearest blocks' textures and bump,
+  // weighted bilinearly) instead of each block showing its own surface up
+  // to its edge. Only with terrainDetail; where the four are the same
+  // surface the pixel is the unblended one. The high preset.
+  bool terrainBlend = false;
   // The look (sky.h, README "Sky, weather and shadows"). Quality presets set
   // these; Renderer::settings() changes them between frames.
   bool clouds = true;              // the two moving cloud layers (off: the clear sky cube only)
@@ -338,6 +344,7 @@ struct RenderQuality {
   float fogDistance_m = 250.0f;  ///< fog reaches 63 % here (1 - exp(-(d / this)^2)); terrain beyond 2.5x is culled
   float terrainLodPixels = 16.0f;  ///< as WindowConfig::terrainLodPixels
   bool terrainDetail = true;       ///< as WindowConfig::terrainDetail
+  bool terrainBlend = false;       ///< as WindowConfig::terrainBlend
   int msaaSamples = 4;           ///< 1 = off; as WindowConfig::msaaSamples
   bool shadows = true;           ///< cascaded sun shadows (WindowConfig::shadows)
   int shadowMapSize = 1024;      ///< texels per cascade's map edge (WindowConfig::shadowMapSize)

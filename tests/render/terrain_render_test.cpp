@@ -187,6 +187,61 @@ TEST_F(TerrainRender, TextureIndexPaintsItsOwnBlocks) {
   EXPECT_EQ(changed, 0);
 }
 
+// Blending (the high preset's texture splatting): where sand meets grass
+// the colour changes over about a block instead of at one pixel's step,
+// and ground away from any edge is drawn exactly as without blending.
+TEST_F(TerrainRender, BlendedSurfacesMeetSoftlyAndUniformGroundIsUnchanged) {
+  TestTerrain t(129, 129);
+  t.surface.originX_m = -64;
+  t.surface.originZ_m = -64;
+  for (int bj = 0; bj < 128; ++bj)
+    for (int bi = 0; bi < 64; ++bi) t.textureAt(bi, bj) = 2;  // sand for x < 0
+  Camera& camera = m_renderer->camera();
+  camera.target = {0, 0, 0};
+  camera.yaw_rad = 0;
+  camera.pitch_rad = 1.45f;
+  camera.distance_m = 20;  // about 11 pixels a metre across the middle
+  RenderQuality quality;
+  quality.shadows = false;
+  quality.msaaSamples = 1;
+  m_renderer->setQuality(quality);
+  const Image hard = render(&t.surface, "hard.png");
+  quality.terrainBlend = true;
+  m_renderer->setQuality(quality);
+  const Image soft = render(&t.surface, "soft.png");
+
+  // Along each row of the middle band: the largest step between
+  // neighbouring pixels of (R - G), which is positive for sand and well
+  // below zero for grass.
+  auto largestStep = [](const Image& image) {
+    double sum = 0;
+    int rows = 0;
+    for (int y = kHeight / 3; y < 2 * kHeight / 3; ++y, ++rows) {
+      int largest = 0;
+      for (int x = kWidth / 3; x < 2 * kWidth / 3; ++x) {
+        const std::uint8_t* a = image.at(x - 1, y);
+        const std::uint8_t* b = image.at(x, y);
+        largest = std::max(largest, std::abs((int(a[0]) - a[1]) - (int(b[0]) - b[1])));
+      }
+      sum += largest;
+    }
+    return sum / rows;
+  };
+  const double hardStep = largestStep(hard), softStep = largestStep(soft);
+  EXPECT_GT(hardStep, 30.0) << "sand meets grass at one step without blending";
+  EXPECT_LT(softStep, 0.4 * hardStep) << "blended, the change is spread over the blocks beside the edge";
+  // Both sides keep their surface: sand on the left, grass on the right.
+  const int third = kWidth / 3;
+  EXPECT_GT(countPixels(soft, isSandy, 0, 0, third, kHeight), third * kHeight * 95 / 100);
+  EXPECT_GT(countPixels(soft, isGrassy, 2 * third, 0, kWidth, kHeight), (kWidth - 2 * third) * kHeight * 95 / 100);
+  // Away from the edge (the outer sixths) the pixels are the same.
+  int changed = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      if (x < kWidth / 6 || x >= 5 * kWidth / 6) changed += std::memcmp(hard.at(x, y), soft.at(x, y), 3) != 0;
+  EXPECT_EQ(changed, 0);
+}
+
 TEST_F(TerrainRender, FarChunksUseFewerTrianglesAndChunksBehindAreCulled) {
   // A strip one chunk wide and 16 long (1 m spacing), the camera low at
   // chunk 4 looking down the strip towards +Z... and 4 chunks behind it.

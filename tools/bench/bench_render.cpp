@@ -1,7 +1,8 @@
 // Render cost per quality preset: one frame of base:drive (terrain, the
 // trees and rocks, the car with its wheels, the generated sky and clouds,
 // sun shadows) drawn offscreen at 1280x720 with each preset's renderer
-// settings, and the same frame under a storm sky (rain, denser fog).
+// settings, the same frame under a storm sky (rain, denser fog), and on
+// medium and high with the terrain's surface blending off and on.
 // The time is the wall time of Renderer::drawFrame, as the play report's
 // frame_ms.render_p50 measures it; on Mesa llvmpipe that is the
 // rasteriser's work (the resolve of the multisampled scene waits for it).
@@ -46,6 +47,14 @@ void BM_DriveFrame(benchmark::State& state) {
 
   auto renderer = bench::offscreenRenderer(state, level);
   if (!renderer) return;
+  // Third argument: the terrain's surface blending forced off (0) or on
+  // (1); -1 keeps the preset's. Its cost is the ratio of the two in one run.
+  const int blend = int(state.range(2));
+  if (blend >= 0) {
+    render::RenderQuality quality = renderer->quality();
+    quality.terrainBlend = blend != 0;
+    renderer->setQuality(quality);
+  }
   // Behind and above the car, looking along its way.
   render::Camera& camera = renderer->camera();
   const vehicle::VehicleSystem* vehicles = (*scene)->vehiclesIfAny();
@@ -68,11 +77,13 @@ void BM_DriveFrame(benchmark::State& state) {
     const Status s = renderer->drawFrame(frame, render::HudStats{}, controls);
     if (!s) state.SkipWithError(s.error().c_str());
   }
-  state.SetLabel(std::string(app::qualityName(level)) + (storm ? ", storm" : ""));
+  state.SetLabel(std::string(app::qualityName(level)) + (storm ? ", storm" : "") +
+                (blend < 0 ? "" : blend ? ", blend on" : ", blend off"));
 }
 BENCHMARK(BM_DriveFrame)
-    ->ArgsProduct({{0, 1, 2}, {0, 1}})
-    ->ArgNames({"preset", "storm"})
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {-1}})
+    ->ArgsProduct({{1, 2}, {0}, {0, 1}})
+    ->ArgNames({"preset", "storm", "blend"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

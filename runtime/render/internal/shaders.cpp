@@ -284,6 +284,7 @@ uniform float uSpacing;            // m per block
 uniform ivec2 uBlocks;             // blocks along x / z
 uniform float uTexturePerMetre;    // material texture repeats per metre
 uniform float uDetailSlope;        // scale of the detail slope at bump 255
+uniform bool uBlend;               // blend the four nearest blocks' surfaces (else each block's own)
 
 out vec4 fragColor;
 float hash(vec2 p) {
@@ -307,12 +308,38 @@ void main() {
   vec2 xz = vWorldPosition.xz;
 
   vec2 blockCoord = (xz - uOrigin) / uSpacing;
+  vec2 uv = xz * uTexturePerMetre;
+  vec3 albedo;
+  float bump;
+  // Blending: the surfaces of the four blocks whose centres surround the
+  // pixel, weighted bilinearly (eased, so a block's middle keeps its own
+  // look) -- texture splatting of the painted layers. Where all four are
+  // the same surface (most of the ground) it is the one-block path below,
+  // bit for bit, and costs four integer fetches more.
   ivec2 block = clamp(ivec2(floor(blockCoord)), ivec2(0), uBlocks - 1);
   uvec2 material = texelFetch(uMaterial, block, 0).rg;
-  float layer = float(int(material.r) % uLayerCount);
-  float bump = float(material.g) * (1.0 / 255.0);
-
-  vec3 albedo = texture(uTextures, vec3(xz * uTexturePerMetre, layer)).rgb;
+  bool blended = false;
+  if (uBlend) {
+    vec2 c = blockCoord - 0.5;
+    ivec2 b0 = ivec2(floor(c));
+    vec2 f = smoothstep(0.0, 1.0, c - vec2(b0));
+    ivec2 lo = clamp(b0, ivec2(0), uBlocks - 1), hi = clamp(b0 + 1, ivec2(0), uBlocks - 1);
+    uvec2 m00 = texelFetch(uMaterial, lo, 0).rg, m10 = texelFetch(uMaterial, ivec2(hi.x, lo.y), 0).rg;
+    uvec2 m01 = texelFetch(uMaterial, ivec2(lo.x, hi.y), 0).rg, m11 = texelFetch(uMaterial, hi, 0).rg;
+    if (m00 != m10 || m00 != m01 || m00 != m11) {
+      vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+      albedo = w.x * texture(uTextures, vec3(uv, float(int(m00.r) % uLayerCount))).rgb +
+               w.y * texture(uTextures, vec3(uv, float(int(m10.r) % uLayerCount))).rgb +
+               w.z * texture(uTextures, vec3(uv, float(int(m01.r) % uLayerCount))).rgb +
+               w.w * texture(uTextures, vec3(uv, float(int(m11.r) % uLayerCount))).rgb;
+      bump = dot(w, vec4(m00.g, m10.g, m01.g, m11.g)) * (1.0 / 255.0);
+      blended = true;
+    }
+  }
+  if (!blended) {
+    albedo = texture(uTextures, vec3(uv, float(int(material.r) % uLayerCount))).rgb;
+    bump = float(material.g) * (1.0 / 255.0);
+  }
   albedo *= vShade;
 
   // Bump: tilt the normal against the detail field's gradient, keeping only

@@ -59,6 +59,7 @@ Result<TerrainPass::Program> TerrainPass::buildTerrainProgram(const char* name, 
   p.texturePerMetre = uniformLocation(p.program, "uTexturePerMetre");
   p.layerCount = uniformLocation(p.program, "uLayerCount");
   p.detailSlope = uniformLocation(p.program, "uDetailSlope");
+  p.blend = uniformLocation(p.program, "uBlend");
   glUseProgram(p.program.get());
   glUniform1i(uniformLocation(p.program, "uMaterial"), 0);
   glUniform1i(uniformLocation(p.program, "uTextures"), 1);
@@ -301,6 +302,7 @@ Status TerrainPass::drawDepth(const TerrainSurface& surface, const Eigen::Matrix
 
 Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
                          const Environment& environment, float pixelsPerRadian, float lodPixels, bool detail,
+                         bool blend,
                          TerrainStats& stats) {
   std::vector<TerrainChunkDraw> drawn = std::move(stats.drawn);  // keep its capacity
   drawn.clear();
@@ -341,6 +343,7 @@ Status TerrainPass::draw(const TerrainSurface& surface, const FrameView& view,
   glUniform1f(p.texturePerMetre, 1.0f / kTerrainTextureSize_m);
   glUniform1i(p.layerCount, kTerrainTextureCount);
   glUniform1f(p.detailSlope, kDetailSlope);
+  glUniform1i(p.blend, blend ? 1 : 0);  // the detailed shader only (-1 is ignored)
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, m_materials.get());
   glActiveTexture(GL_TEXTURE1);

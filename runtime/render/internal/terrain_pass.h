@@ -35,7 +35,7 @@ class TerrainPass {
   /// Draws `surface`; fills `stats`. Creates the shader and textures on the
   /// first call, re-uploads when the surface's revision (or shape) changed.
   Status draw(const TerrainSurface& surface, const FrameView& view, const Environment& environment,
-              float pixelsPerRadian, float lodPixels, bool detail, TerrainStats& stats);
+              float pixelsPerRadian, float lodPixels, bool detail, bool blend, TerrainStats& stats);
   /// Depth only into the bound shadow map: the chunks inside the light's box,
   /// each at the level draw gives it (the same rule, from the eye), so the
   /// ground's shadow depth matches the drawn ground.
@@ -95,6 +95,7 @@ class TerrainPass {
     LitUniforms lit;
     GLint origin = -1, spacing = -1, blocks = -1, texturePerMetre = -1, layerCount = -1;
     GLint detailSlope = -1;  // -1 in the simple one
+    GLint blend = -1;        // -1 in the simple one
   };
   static Result<Program> buildTerrainProgram(const char* name, const char* vertex, const char* fragment);
 
