@@ -947,8 +947,10 @@ void DesignerMode::drawToolPanel() {
       ImGui::TextUnformatted("Click the ground to place:");
       // Models with their picture beside the name; the rest by name.
       constexpr float kPicture_px = 40;
-      // As tall as the panel allows below it (about 40 % of the window).
-      ImGui::BeginChild("palette", ImVec2(0, std::clamp(0.4f * display.y, 150.0f, 480.0f)), true);
+      // A third of the window: at 720 px the panel then holds the palette,
+      // the selected object's controls, the sky and the buttons without
+      // scrolling.
+      ImGui::BeginChild("palette", ImVec2(0, std::clamp(display.y / 3, 150.0f, 480.0f)), true);
       m_paletteLayout.clear();
       for (int k = 0; k < int(m_palette.size()); ++k) {
         const PaletteEntry& e = m_palette[std::size_t(k)];
