@@ -34,12 +34,12 @@ constexpr float kRadiusStep = 1.25f;   // [ and ] change the radius by this fact
 constexpr float kYawStep_rad = kPi / 12;  // R turns the selection 15 degrees
 constexpr float kScaleStep = 1.1f;     // + / -
 constexpr float kPanelWidth_px = 230;
-constexpr float kCtrlSinkDelay_s = 0.3f;
+constexpr float kCtrlSinkDelay_s = 0.3f;  // Ctrl held this long alone moves the eye down
 constexpr float kClickSlop_px = 6.0f;  // a press that moves less is a click, not a drag (ImGui's drag threshold)
 // Fog distance / the eye's height above the ground, in the designer: ground
 // seen down to about 11 degrees below the horizon (5 heights away) is less
 // than a third hidden by fog (1 - exp(-(5/8)^2) = 0.32).
-constexpr float kDesignerFogPerHeight = 8.0f;  // Ctrl held this long alone moves the eye down
+constexpr float kDesignerFogPerHeight = 8.0f;
 // The look of the game's menus (pause_menu.cpp, main_menu.cpp).
 const ImVec4 kHighlight(0.95f, 0.62f, 0.12f, 1.0f);
 const ImVec4 kItemColor(0.18f, 0.20f, 0.24f, 0.95f);
@@ -257,8 +257,8 @@ Result<SceneOptions> DesignerMode::driveOptions(const SceneOptions& base) {
   return o;
 }
 
-void DesignerMode::resume(render::Renderer& renderer) {
-  m_camera.apply(renderer.camera());
+void DesignerMode::resume() {
+  m_camera.apply(m_renderer.camera());
   m_fullRebuild = true;  // the game's scene drew another terrain meanwhile
   m_held = Held{};
   m_pointer.leftHeld = m_pointer.rightHeld = false;
@@ -525,11 +525,15 @@ void DesignerMode::applyTool(const std::optional<Eigen::Vector3f>& hit, float dt
   // A press on a gizmo handle drags it once the pointer has moved
   // kClickSlop_px; let go before that, it is a click on what lies behind
   // (placing the next tree beside the last one, whose handles are there).
-  if (m_pointer.leftPressed && m_haveRay && m_gizmoHover != GizmoHandle::None) {
-    m_pointer.leftPressed = false;
-    if (auto frame = gizmoFrame())
-      m_gizmoPress = GizmoPress{m_gizmoHover, *frame, m_ray, m_pointer.x_px, m_pointer.y_px, hit};
-  }
+  // The handle is picked at the press itself: a press reaches the designer
+  // only off the panel (the HUD takes those on it), wherever the pointer
+  // was at the last frame.
+  if (m_pointer.leftPressed && m_haveRay)
+    if (const auto frame = gizmoFrame())
+      if (const GizmoHandle handle = pickGizmoHandle(*frame, m_ray); handle != GizmoHandle::None) {
+        m_pointer.leftPressed = false;
+        m_gizmoPress = GizmoPress{handle, *frame, m_ray, m_pointer.x_px, m_pointer.y_px, hit};
+      }
   if (m_gizmoPress && !m_gizmoDrag && m_pointer.leftHeld && m_selected && m_doc->objects().count(*m_selected) &&
       std::hypot(m_pointer.x_px - m_gizmoPress->x_px, m_pointer.y_px - m_gizmoPress->y_px) >= kClickSlop_px) {
     if (auto drag = beginGizmoDrag(m_gizmoPress->handle, m_gizmoPress->frame, m_doc->objects().at(*m_selected),
@@ -629,7 +633,7 @@ void DesignerMode::fillSurface() {
   m_drawnRevision = m_doc->revision();
 }
 
-void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameSnapshot& snap) {
+void DesignerMode::update(float dt_s, render::FrameSnapshot& snap) {
   snap = render::FrameSnapshot{};
   // The camera: keys held, mouse motion with the right button.
   FlyInput in = m_look;
@@ -651,16 +655,16 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
     in.fast = m_held.shift;
   }
   m_camera.update(in, dt_s);
-  m_camera.apply(renderer.camera());
+  m_camera.apply(m_renderer.camera());
   if (!m_doc) return;
 
   // The ground under the pointer.
   int w = 0, h = 0;
-  if (SDL_Window* window = SDL_GetWindowFromID(renderer.windowId())) SDL_GetWindowSize(window, &w, &h);
+  if (SDL_Window* window = SDL_GetWindowFromID(m_renderer.windowId())) SDL_GetWindowSize(window, &w, &h);
   m_hit.reset();
   if (w > 0 && h > 0) {
     const float x = 2.0f * m_pointer.x_px / float(w) - 1.0f, y = 1.0f - 2.0f * m_pointer.y_px / float(h);
-    const auto [origin, direction] = renderer.viewRay(x, y);
+    const auto [origin, direction] = m_renderer.viewRay(x, y);
     m_ray = ViewRay{origin, direction};
     m_haveRay = true;
     if (auto hit = m_doc->terrain().rayCast(toVec3(origin), toVec3(direction), Real(1e5)))
@@ -711,7 +715,7 @@ void DesignerMode::update(render::Renderer& renderer, float dt_s, render::FrameS
     addGizmoLines(*frame, m_gizmoHover, snap.lines);
   }
   if (m_hit && m_menu == Menu::None && m_gizmoHover == GizmoHandle::None && !m_gizmoDrag) addBrushCircle(snap, *m_hit);
-  const render::TerrainStats& stats = renderer.terrainStats();
+  const render::TerrainStats& stats = m_renderer.terrainStats();
   m_lastChunksUploaded = stats.chunksUploaded;
   m_lastChunksInvalidated = stats.chunksInvalidated;
   m_lastTerrainUpdate_ms = stats.updateTime_ms;

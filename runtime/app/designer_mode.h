@@ -72,7 +72,7 @@ class DesignerMode {
   /// Every SDL event while the designer is shown; true: consumed.
   bool handleEvent(const SDL_Event& event, bool hudWants);
   /// One frame: camera, the tool under the mouse, the snapshot to draw.
-  void update(render::Renderer& renderer, float dt_s, render::FrameSnapshot& snap);
+  void update(float dt_s, render::FrameSnapshot& snap);
   /// The panels and dialogs (a HUD panel: inside the ImGui frame).
   void draw();
   Requests takeRequests();
@@ -81,7 +81,7 @@ class DesignerMode {
   /// returns the options that play it with the chosen car from the start.
   Result<SceneOptions> driveOptions(const SceneOptions& base);
   /// Back from driving: the camera as it was.
-  void resume(render::Renderer& renderer);
+  void resume();
 
   /// What the player sees, for the play report ("designer").
   nlohmann::json report() const;

@@ -498,7 +498,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       setUpTuning();
       controls.paused = false;
       renderer.camera() = cameraBeforeDrive;
-      designer->resume(renderer);
+      designer->resume();
     }
     backToDesigner = false;
     if (requests.mainMenu) {  // the scene goes; the menu's root comes back
@@ -646,7 +646,7 @@ int playScenario(const PlayOptions& options, const Stopwatch& processClock) {
       thinParticles(snap, qualityPreset(quality).particleBudget);
       snap.simTime_s = session->time_s;
     } else if (designerShown()) {
-      designer->update(renderer, float(scripted ? o.scene.dt_s : elapsed), snap);  // scripted: the same on any machine
+      designer->update(float(scripted ? o.scene.dt_s : elapsed), snap);  // scripted: the same on any machine
     } else {
       snap = render::FrameSnapshot{};  // the menu over the sky
     }

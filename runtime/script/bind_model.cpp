@@ -20,13 +20,6 @@ namespace tumble::script {
 
 namespace {
 
-Quat readRotation(lua_State* L, int t) {
-  Vec3 rv;
-  if (!optVec3Field(L, t, "rotation", &rv)) return Quat::Identity();
-  const Real angle = rv.norm();
-  return angle > 0 ? Quat(Eigen::AngleAxis<Real>(angle, rv / angle)) : Quat::Identity();
-}
-
 // scale = 2 or scale = {1, 2, 1}; every factor finite and > 0.
 Vec3 readScale(lua_State* L, int t) {
   Vec3 scale = Vec3::Ones();
@@ -81,7 +74,7 @@ int bodySetModel(lua_State* L) {
     checkFields(L, 3, fn, {"offset", "rotation", "scale"});
     try {
       optVec3Field(L, 3, "offset", &a.offset_m);
-      a.rotation = readRotation(L, 3);
+      a.rotation = optRotationField(L, 3);
       a.scale = readScale(L, 3);
     } catch (const LuaArgError& e) {
       throw LuaArgError(std::string(fn) + ": " + e.what());
@@ -150,7 +143,7 @@ int worldAddStaticModel(lua_State* L) {
     checkFields(L, 2, fn, {"position", "rotation", "scale", "collision", "friction", "color"});
     try {
       optVec3Field(L, 2, "position", &s.position_m);
-      s.rotation = readRotation(L, 2);
+      s.rotation = optRotationField(L, 2);
       s.scale = readScale(L, 2);
       collision = optStringField(L, 2, "collision", "mesh");
       friction = Real(optNumberField(L, 2, "friction", friction));

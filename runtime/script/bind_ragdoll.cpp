@@ -20,14 +20,6 @@ extern "C" {
 namespace tumble::script {
 namespace {
 
-/// A rotation vector field (axis times angle, rad) as a quaternion.
-Quat rotationField(lua_State* L, int t) {
-  Vec3 rv = Vec3::Zero();
-  optVec3Field(L, t, "rotation", &rv);
-  const Real angle = rv.norm();
-  return angle > 0 ? Quat(Eigen::AngleAxis<Real>(angle, rv / angle)) : Quat::Identity();
-}
-
 /// Index of the part named by field `key` of the table at t.
 int partField(lua_State* L, int t, const char* key, const physics::RagdollDesc& d) {
   const std::string name = optStringField(L, t, key, "");
@@ -118,7 +110,7 @@ physics::RagdollDesc readDescription(lua_State* L, int t, std::vector<Eigen::Vec
       p.mass_kg = Real(optNumberField(L, pt, "mass", 0));
       if (!(p.mass_kg > 0)) throw LuaArgError("field 'mass' is required and must be > 0 kg");
       if (!optVec3Field(L, pt, "position", &p.position_m)) throw LuaArgError("field 'position' is required ({x, y, z}, m)");
-      p.orientation = rotationField(L, pt);
+      p.orientation = optRotationField(L, pt);
       colors->push_back(colorField(L, pt, "color", kShirt));
     } catch (const LuaArgError& e) {
       throw LuaArgError(where + (p.name.empty() ? "" : " ('" + p.name + "')") + ": " + e.what());
@@ -255,7 +247,7 @@ int spawnRagdoll(lua_State* L) {
   try {
     checkFields(L, 1, fn, {"position", "rotation", "scale", "height", "mass", "parts", "joints", "friction", "colors"});
     optVec3Field(L, 1, "position", &position);
-    q = rotationField(L, 1);
+    q = optRotationField(L, 1);
     const Real scale = Real(optNumberField(L, 1, "scale", 1));
     if (!(scale > Real(0.01) && scale < 100)) throw LuaArgError("field 'scale' must be in (0.01, 100)");
     rawGetField(L, 1, "parts");

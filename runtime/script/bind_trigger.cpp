@@ -61,19 +61,18 @@ int triggerBox(lua_State* L) {
                       "on_enter = function(body) ... end}");
   lua_settop(L, 1);
   checkFields(L, 1, fn, {"center", "size", "rotation", "on_enter", "on_exit"});
-  Vec3 center, size, rotation = Vec3::Zero();
+  Vec3 center, size;
+  Quat orientation = Quat::Identity();
   try {
     if (!optVec3Field(L, 1, "center", &center)) throw LuaArgError("field 'center' is required ({x, y, z}, m)");
     if (!optVec3Field(L, 1, "size", &size)) throw LuaArgError("field 'size' is required ({x, y, z}, m)");
-    optVec3Field(L, 1, "rotation", &rotation);
+    orientation = optRotationField(L, 1);
   } catch (const LuaArgError& e) {
     throw LuaArgError(std::string(fn) + ": " + e.what());
   }
   if (size.minCoeff() <= 0) throw LuaArgError("trigger.box: every component of 'size' must be > 0 m");
   int onEnter = optFunctionField(L, 1, "on_enter", fn);
   int onExit = optFunctionField(L, 1, "on_exit", fn);
-  const Real angle = rotation.norm();
-  const Quat orientation = angle > 0 ? Quat(Eigen::AngleAxis<Real>(angle, rotation / angle)) : Quat::Identity();
   std::uint32_t id = ScenarioHost::from(L)->triggers().add(center, size / 2, orientation, onEnter, onExit);
   lua_settop(L, 1);  // the functions are referenced now
   pushTrigger(L, id);

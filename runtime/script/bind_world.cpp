@@ -48,11 +48,7 @@ physics::BodyDef readCommon(lua_State* L, int t, const char* fn) {
   physics::BodyDef d;
   try {
     optVec3Field(L, t, "position", &d.position_m);
-    Vec3 rv;
-    if (optVec3Field(L, t, "rotation", &rv)) {
-      Real angle = rv.norm();
-      if (angle > 0) d.orientation = Quat(Eigen::AngleAxis<Real>(angle, rv / angle));
-    }
+    d.orientation = optRotationField(L, t);
     if (rawGetField(L, t, "orientation") == LUA_TTABLE) {
       Quat q(Real(optNumberField(L, -1, "w", 1)), Real(optNumberField(L, -1, "x", 0)),
              Real(optNumberField(L, -1, "y", 0)), Real(optNumberField(L, -1, "z", 0)));

@@ -12,13 +12,13 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <memory>
 
 #include <cstdlib>
 
 #include "app/design_document.h"
+#include "core/process_stats.h"
 #include "app/player_settings.h"
 #include "bench_renderer.h"
 #include "render/renderer.h"
@@ -174,12 +174,12 @@ void BM_DabOnScreen(benchmark::State& state) {
     surface.dirtyJ0 = r.j0;
     surface.dirtyI1 = r.i1;
     surface.dirtyJ1 = r.j1;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch frameClock;
     if (const Status s = renderer->drawFrame(frame, render::HudStats{}, controls); !s) {
       state.SkipWithError(s.error().c_str());
       break;
     }
-    frames_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    frames_ms += 1000.0 * frameClock.seconds();
     const render::TerrainStats& t = renderer->terrainStats();
     state.SetIterationTime(t.updateTime_ms / 1000.0);
     invalidated += t.chunksInvalidated;

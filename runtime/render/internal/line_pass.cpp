@@ -30,7 +30,8 @@ void LinePass::draw(const std::vector<DebugLine>& lines, const FrameView& view) 
   // Depth-tested lines first, then the overlay (drawn over everything, with
   // its depth written so the sky drawn later does not cover it).
   m_vertices.clear();
-  for (bool overlay : {false, true})
+  GLsizei tested = 0;
+  for (bool overlay : {false, true}) {
     for (const DebugLine& line : lines) {
       if (line.overlay != overlay) continue;
       m_vertices.push_back({{line.a.x(), line.a.y(), line.a.z()},
@@ -38,9 +39,9 @@ void LinePass::draw(const std::vector<DebugLine>& lines, const FrameView& view) 
       m_vertices.push_back({{line.b.x(), line.b.y(), line.b.z()},
                             {line.color.x(), line.color.y(), line.color.z()}});
     }
-  GLsizei overlayVertices = 0;
-  for (const DebugLine& line : lines) overlayVertices += line.overlay ? 2 : 0;
-  const GLsizei tested = static_cast<GLsizei>(m_vertices.size()) - overlayVertices;
+    if (!overlay) tested = static_cast<GLsizei>(m_vertices.size());
+  }
+  const GLsizei overlayVertices = static_cast<GLsizei>(m_vertices.size()) - tested;
   glUseProgram(m_program.get());
   glUniformMatrix4fv(m_viewProjection, 1, GL_FALSE, view.viewProjection.data());
   glEnable(GL_DEPTH_TEST);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/log.h"
+#include "core/process_stats.h"
 #include "render/internal/shaders.h"
 #include "render/internal/terrain_textures.h"
 
@@ -17,20 +18,15 @@ namespace {
 // Adds the wall time from its construction to its destruction to a stats field, ms.
 class AddElapsed {
  public:
-  explicit AddElapsed(double& total_ms) : m_total(total_ms), m_start(std::chrono::steady_clock::now()) {}
-  ~AddElapsed() {
-    m_total += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m_start).count();
-  }
+  explicit AddElapsed(double& total_ms) : m_total(total_ms) {}
+  ~AddElapsed() { m_total += 1000.0 * m_clock.seconds(); }
   AddElapsed(const AddElapsed&) = delete;
   AddElapsed& operator=(const AddElapsed&) = delete;
 
  private:
   double& m_total;
-  std::chrono::steady_clock::time_point m_start;
+  Stopwatch m_clock;
 };
-}  // namespace
-
-namespace {
 
 // Fog reaches 1 - exp(-(d rho)^2); beyond d rho = 2.5 it is within half a
 // step of 8-bit colour of the fog colour, so such chunks are not drawn.

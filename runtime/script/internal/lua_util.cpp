@@ -154,6 +154,13 @@ bool optVec3Field(lua_State* L, int tableIdx, const char* key, Vec3* out) {
   return true;
 }
 
+Quat optRotationField(lua_State* L, int tableIdx, const char* key) {
+  Vec3 rv = Vec3::Zero();
+  optVec3Field(L, tableIdx, key, &rv);
+  const Real angle = rv.norm();
+  return angle > 0 ? Quat(Eigen::AngleAxis<Real>(angle, rv / angle)) : Quat::Identity();
+}
+
 void pushVec3(lua_State* L, const Vec3& v) {
   lua_createtable(L, 0, 3);
   lua_pushnumber(L, v.x());

@@ -88,6 +88,10 @@ double optNumberField(lua_State* L, int tableIdx, const char* key, double fallba
 bool optBoolField(lua_State* L, int tableIdx, const char* key, bool fallback);
 std::string optStringField(lua_State* L, int tableIdx, const char* key, const std::string& fallback);
 bool optVec3Field(lua_State* L, int tableIdx, const char* key, Vec3* out);
+/// The optional rotation vector field `key` (axis times angle, rad; the
+/// `rotation` of world bodies, models, rag-dolls and trigger boxes) as a
+/// quaternion; absent or zero: the identity. Errors as optVec3Field.
+Quat optRotationField(lua_State* L, int tableIdx, const char* key = "rotation");
 void pushVec3(lua_State* L, const Vec3& v);  ///< as a table {x=, y=, z=}
 /// The one check for a table's field names, with one wording everywhere:
 /// throws "<where>: unknown field 'k' (did you mean: x?) (valid: a, b, c)"
