@@ -44,6 +44,7 @@ Status MeshPass::init() {
   m_model = uniformLocation(m_program, "uModel");
   m_normalMatrix = uniformLocation(m_program, "uNormalMatrix");
   m_diffuse = uniformLocation(m_program, "uDiffuse");
+  m_emissive = uniformLocation(m_program, "uEmissive");
   m_hasTexture = uniformLocation(m_program, "uHasTexture");
   m_texture = uniformLocation(m_program, "uTexture");
   auto depth = buildProgram("mesh shadow shader", shaders::kMeshVertex, shaders::kDepthFragment);
@@ -158,6 +159,7 @@ void MeshPass::draw(const std::vector<ModelInstance>& instances, const FrameView
       const ModelMaterial& material = d.model->materials[d.material];
       const Eigen::Vector3f diffuse = material.diffuse.cwiseProduct(d.tint);
       glUniform3fv(m_diffuse, 1, diffuse.data());
+      glUniform3fv(m_emissive, 1, material.emissive.data());
       const bool textured = material.image >= 0 && material.image < static_cast<int>(gpu.textures.size());
       glUniform1i(m_hasTexture, textured ? 1 : 0);
       glBindTexture(GL_TEXTURE_2D, textured ? gpu.textures[material.image].get() : 0);

@@ -41,6 +41,10 @@ struct ModelMaterial {
   std::string name;
   Eigen::Vector3f diffuse{0.8f, 0.8f, 0.8f};  // linear RGB 0..1 (multiplies the texture)
   int image = -1;  // index into Model::images; -1: untextured (colour only)
+  // Light the surface gives off itself (a lamp), linear RGB 0..1, added to
+  // the lit colour whatever the sun and sky: .mtl `Ke`, glTF
+  // `emissiveFactor`, 3DS self-illumination colour. Zero for most materials.
+  Eigen::Vector3f emissive = Eigen::Vector3f::Zero();
 };
 
 struct BoundingBox {

@@ -42,8 +42,10 @@ Eigen::Matrix4f toEigen(const aiMatrix4x4& m) {
 }
 
 // sRGB 0..1 (what modelling tools store) -> linear, like the shape colours.
+// Out of range is clamped; NaN reads as 0.
 float srgbToLinear(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
+  if (!(c > 0.0f)) return 0.0f;
+  c = std::min(c, 1.0f);
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
@@ -173,6 +175,18 @@ class Converter {
         // A texture replaces the colour; glTF's base colour factor and OBJ's
         // Kd under a map_Kd are usually white, 3DS often stores grey.
         if (material.image >= 0) material.diffuse = Eigen::Vector3f::Ones();
+      }
+      // A lamp's glow. With an emissive texture the colour is only its
+      // factor (glTF writes white there), and the texture is not drawn, so
+      // such a surface does not glow rather than glowing white all over.
+      aiColor3D emissive(0, 0, 0);
+      if (source.GetTextureCount(aiTextureType_EMISSIVE) > 0) {
+        std::string warning = m_path + ": material \"" + material.name +
+                              "\": its emissive texture is not drawn; the surface does not glow";
+        log::warn(warning);
+        m_model.warnings.push_back(std::move(warning));
+      } else if (source.Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS) {
+        material.emissive = {srgbToLinear(emissive.r), srgbToLinear(emissive.g), srgbToLinear(emissive.b)};
       }
       m_model.materials.push_back(std::move(material));
     }

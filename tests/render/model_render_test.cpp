@@ -136,6 +136,65 @@ TEST_F(ModelRender, RcCarChassisAndTexturedWheels) {
   EXPECT_EQ(stats.modelsResident, 2);
 }
 
+// A lamp: a material's emissive colour (.mtl Ke) is added to its lit
+// colour, so at night, with no sun on it, the lamp face still shows its
+// own colour while a plain face of the same paint next to it is dark.
+TEST_F(ModelRender, EmissiveMaterialGlowsAtNightAndAPlainOneDoesNot) {
+  auto model = std::make_shared<Model>();
+  ModelMesh quad;
+  for (const Eigen::Vector3f p : {Eigen::Vector3f(-0.5f, -0.5f, 0), Eigen::Vector3f(0.5f, -0.5f, 0),
+                                  Eigen::Vector3f(0.5f, 0.5f, 0), Eigen::Vector3f(-0.5f, 0.5f, 0)}) {
+    quad.positions.push_back(p);
+    quad.normals.push_back(Eigen::Vector3f::UnitZ());
+  }
+  quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+  ModelMaterial paint{"paint", {0.3f, 0.02f, 0.02f}};
+  ModelMaterial lamp = paint;
+  lamp.name = "lamp";
+  lamp.emissive = {0.9f, 0.03f, 0.01f};
+  model->materials = {paint, lamp};
+  quad.material = 0;
+  model->meshes.push_back(quad);
+  quad.material = 1;
+  model->meshes.push_back(quad);
+  model->nodes.push_back(ModelNode{});  // the root, holding the two quads
+  for (int i = 0; i < 2; ++i) {
+    ModelNode node;
+    node.parent = 0;
+    node.local = Eigen::Affine3f(Eigen::Translation3f(i == 0 ? -0.7f : 0.7f, 0, 0)).matrix();
+    node.meshes = {i};
+    model->nodes.push_back(node);
+    model->nodes[0].children.push_back(i + 1);
+  }
+  computeBounds(*model);
+  FrameSnapshot frame;
+  frame.sky.timeOfDay_h = 1.0f;  // night: the sun is below the horizon
+  ModelInstance instance;
+  instance.model = model;
+  frame.models.push_back(instance);
+  Camera& camera = m_renderer->camera();
+  camera.target = {0, 0, 0};
+  camera.yaw_rad = 0;
+  camera.pitch_rad = 0;
+  camera.distance_m = 3;
+  const Image night = render(frame, "lamp_night.png");
+  // The quads' centres on screen: the model straddles the middle, the plain
+  // quad on one side, the lamp on the other.
+  const auto left = m_renderer->viewPoint({-0.7f, 0, 0}), right = m_renderer->viewPoint({0.7f, 0, 0});
+  ASSERT_TRUE(left && right);
+  // View point (-1..1, y up) to pixel.
+  auto at = [&](const Eigen::Vector2f& v) { return night.at(int((v.x() + 1) / 2 * kWidth), int((1 - v.y()) / 2 * kHeight)); };
+  ASSERT_GT(right->x() - left->x(), 0.2f) << "both quads are in view";
+  const std::uint8_t* plain = at(*left);
+  const std::uint8_t* glowing = at(*right);
+  // Linear 0.9 emitted is 0.95 on screen (gamma 2.2): the lamp reads near
+  // full red whatever the night's ambient adds; the plain paint gets only
+  // the night's ambient.
+  EXPECT_GT(glowing[0], 235) << "lamp " << int(glowing[0]) << " " << int(glowing[1]) << " " << int(glowing[2]);
+  EXPECT_LT(plain[0], 120) << "plain paint at night " << int(plain[0]);
+  EXPECT_GT(glowing[0], glowing[1] + 150) << "the lamp glows red, not white";
+}
+
 // Two models, each with two materials, placed in alternation: unsorted the
 // material would change at every draw; sorted, once per material.
 TEST(MeshDrawList, DrawsAreSortedByMaterial) {

@@ -140,10 +140,9 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-// A text glTF 2.0 file written here: one textured triangle, buffer and a
-// 2 x 2 red/green PNG as data URIs.
-TEST(ModelLoad, TextGltfWithDataUriTextureLoads) {
-  const fs::path dir = scratchDir("gltf");
+// A text glTF 2.0 file written at `path`: one textured triangle whose
+// material is `material` (JSON), buffer and a 2 x 2 red/green PNG as data URIs.
+void writeTriangleGltf(const fs::path& path, const std::string& material) {
   const float data[] = {0, 0, 0, 1, 0, 0, 0, 1, 0,  // positions
                         0, 0, 1, 0, 0, 1};           // uvs
   const std::uint16_t indices[] = {0, 1, 2, 0};     // padded to 4 bytes
@@ -153,10 +152,10 @@ TEST(ModelLoad, TextGltfWithDataUriTextureLoads) {
   std::string png;
   stbi_write_png_to_func([](void* ctx, void* d, int n) { static_cast<std::string*>(ctx)->append(static_cast<char*>(d), n); },
                          &png, 2, 2, 3, pixels, 6);
-  std::ofstream(dir / "tri.gltf")
+  std::ofstream(path)
       << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)"
       << R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],)"
-      << R"("materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)"
+      << R"("materials": [)" << material << "],"
       << R"("textures": [{"source": 0}], "images": [{"uri": "data:image/png;base64,)" << base64(png) << R"("}],)"
       << R"("buffers": [{"byteLength": )" << buffer.size() << R"(, "uri": "data:application/octet-stream;base64,)"
       << base64(buffer) << R"("}],)"
@@ -165,6 +164,11 @@ TEST(ModelLoad, TextGltfWithDataUriTextureLoads) {
       << R"("accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},)"
       << R"({"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"},)"
       << R"({"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+}
+
+TEST(ModelLoad, TextGltfWithDataUriTextureLoads) {
+  const fs::path dir = scratchDir("gltf");
+  writeTriangleGltf(dir / "tri.gltf", R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})");
   auto model = mustLoad((dir / "tri.gltf").string());
   ASSERT_TRUE(model);
   EXPECT_EQ(model->triangleCount(), 1u);
@@ -173,6 +177,46 @@ TEST(ModelLoad, TextGltfWithDataUriTextureLoads) {
   EXPECT_EQ(model->images[0].rgba[0], 255);  // top-left texel red
   EXPECT_EQ(model->images[0].rgba[5], 255);  // top-right texel green
   EXPECT_EQ(model->meshes[0].uvs.size(), 3u);
+  EXPECT_TRUE(model->materials[0].emissive.isZero());
+  fs::remove_all(dir);
+}
+
+// A lamp's glow: .mtl Ke and glTF emissiveFactor are read as linear colour
+// (like Kd), a material without one gives off nothing, and an emissive
+// texture (not drawn) does not make its surface glow in its factor's white.
+TEST(ModelLoad, EmissiveColoursAreReadAndAnEmissiveTextureIsNotTakenForWhite) {
+  const fs::path dir = scratchDir("emissive");
+  std::ofstream(dir / "lamp.mtl") << "newmtl paint\nKd 0.8 0.1 0.1\n"
+                                     "newmtl lamp\nKd 0.9 0.9 0.9\nKe 1.0 0.5 0.0\n";
+  std::ofstream(dir / "lamp.obj") << "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                     "usemtl paint\nf 1 2 3\nusemtl lamp\nf 1 3 4\n";
+  auto obj = mustLoad((dir / "lamp.obj").string());
+  ASSERT_TRUE(obj);
+  int lamps = 0;
+  for (const ModelMaterial& m : obj->materials) {
+    if (m.name == "lamp") {
+      ++lamps;
+      EXPECT_NEAR(m.emissive.x(), 1.0f, 1e-4f);
+      EXPECT_NEAR(m.emissive.y(), 0.214f, 1e-3f);  // 0.5 sRGB is 0.214 linear
+      EXPECT_NEAR(m.emissive.z(), 0.0f, 1e-6f);
+    } else {
+      EXPECT_TRUE(m.emissive.isZero()) << m.name;
+    }
+  }
+  EXPECT_EQ(lamps, 1);
+
+  writeTriangleGltf(dir / "glow.gltf", R"({"emissiveFactor": [0.0, 1.0, 0.5]})");
+  auto glow = mustLoad((dir / "glow.gltf").string());
+  ASSERT_TRUE(glow);
+  EXPECT_NEAR(glow->materials[0].emissive.y(), 1.0f, 1e-4f);
+  EXPECT_TRUE(glow->warnings.empty());
+
+  writeTriangleGltf(dir / "textured.gltf", R"({"emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})");
+  auto textured = mustLoad((dir / "textured.gltf").string());
+  ASSERT_TRUE(textured);
+  EXPECT_TRUE(textured->materials[0].emissive.isZero());
+  ASSERT_EQ(textured->warnings.size(), 1u);
+  EXPECT_NE(textured->warnings[0].find("emissive texture is not drawn"), std::string::npos) << textured->warnings[0];
   fs::remove_all(dir);
 }
 

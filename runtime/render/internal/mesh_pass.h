@@ -60,7 +60,7 @@ class MeshPass {
   LitUniforms m_lit;
   GLint m_depthViewProjection = -1, m_depthModel = -1;
   std::vector<MeshDraw> m_depthDraws;
-  GLint m_model = -1, m_normalMatrix = -1, m_diffuse = -1, m_hasTexture = -1, m_texture = -1;
+  GLint m_model = -1, m_normalMatrix = -1, m_diffuse = -1, m_emissive = -1, m_hasTexture = -1, m_texture = -1;
   std::unordered_map<const Model*, GpuModel> m_models;
   std::vector<MeshDraw> m_draws;  // reused every frame
   std::string m_error;

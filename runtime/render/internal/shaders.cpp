@@ -459,6 +459,7 @@ in vec2 vUv;
 in vec3 vColor;
 
 uniform vec3 uDiffuse;        // linear material colour x instance tint
+uniform vec3 uEmissive;       // linear, the light a lamp gives off itself
 uniform int uHasTexture;
 uniform sampler2D uTexture;   // sRGB, sampled as linear
 
@@ -473,7 +474,8 @@ void main() {
     if (texel.a < 0.5) discard;
     albedo *= texel.rgb;
   }
-  fragColor = fogged(sunAndSky(albedo, n, vWorldPosition, 0.08, 32.0), length(uEye - vWorldPosition));
+  vec3 lit = sunAndSky(albedo, n, vWorldPosition, 0.08, 32.0);
+  fragColor = fogged(lit + uEmissive, length(uEye - vWorldPosition));
 }
 )glsl");
 const char* const kMeshFragment = kMeshFragmentSource.c_str();
