@@ -62,6 +62,7 @@ struct Material {
   std::string name;
   V3 kd;                // sRGB 0..1, as .mtl files store it
   std::string texture;  // file name, empty: colour only
+  V3 ke = V3::Zero();   // sRGB 0..1, the light a lamp gives off itself (.mtl Ke)
 };
 
 struct ObjModel {
@@ -450,7 +451,9 @@ const std::vector<Material>& materials() {
       {"paint_red", {0.75, 0.08, 0.06}, ""},   {"paint_green", {0.22, 0.32, 0.16}, ""},
       {"paint_yellow", {0.95, 0.75, 0.10}, ""}, {"glass", {0.10, 0.13, 0.16}, ""},
       {"plastic_black", {0.06, 0.06, 0.06}, ""}, {"chrome", {0.75, 0.75, 0.78}, ""},
-      {"headlight", {1.0, 0.95, 0.75}, ""},    {"taillight", {0.8, 0.05, 0.05}, ""},
+      {"headlight", {1.0, 0.95, 0.75}, "", {0.9, 0.88, 0.75}},
+      {"taillight", {0.9, 0.08, 0.06}, "", {0.95, 0.10, 0.05}},
+      {"plate", {0.92, 0.92, 0.88}, ""},
       {"tyre", {1, 1, 1}, "tyre.png"},         {"rim", {1, 1, 1}, "rim.png"},
       {"dashboard", {0.12, 0.12, 0.13}, ""},   {"seat", {0.25, 0.22, 0.20}, ""},
       {"trim", {0.35, 0.35, 0.36}, ""},        {"rock", {1, 1, 1}, "rock.png"},
@@ -488,9 +491,9 @@ std::vector<V2> archOutline(double centreZ) {
 // (hatchback.obj) stays the solid the chassis inertia is taken from.
 ObjModel hatchback(bool wheelArches) {
   PrismSolid h;
-  // The lights' edges across the width (0.40 .. 0.70 m from the middle)
-  // and the rear window's (0.6 m).
-  h.stations = {-0.78, -0.70, -0.60, -0.40, 0.40, 0.60, 0.70, 0.78};
+  // The lights' edges across the width (0.40 .. 0.70 m from the middle),
+  // the rear window's (0.6 m) and the number plate's (0.26 m).
+  h.stations = {-0.78, -0.70, -0.60, -0.40, -0.26, 0.26, 0.40, 0.60, 0.70, 0.78};
   auto all = [](double) { return true; };
   auto tucked = [](double x) { return std::abs(x) < 0.60; };
   // Lower body, front to back; the front and rear faces are cut where the
@@ -498,8 +501,9 @@ ObjModel hatchback(bool wheelArches) {
   const int b0 = h.point(-2.0, 0.28), b1 = h.point(2.0, 0.28), f045 = h.point(2.0, 0.45), f062 = h.point(2.0, 0.62);
   const int f074 = h.point(2.0, 0.74), f078 = h.point(2.0, 0.78), belt0 = h.point(1.25, 0.92), belt1 = h.point(-2.0, 0.95);
   const int r088 = h.point(-2.0, 0.88), r074 = h.point(-2.0, 0.74), r045 = h.point(-2.0, 0.45);
+  const int r064 = h.point(-2.0, 0.64), r052 = h.point(-2.0, 0.52);  // the number plate's top and bottom
   if (!wheelArches) {
-    h.cell({b0, b1, f045, f062, f074, f078, belt0, belt1, r088, r074, r045}, "paint_red", all);
+    h.cell({b0, b1, f045, f062, f074, f078, belt0, belt1, r088, r074, r064, r052, r045}, "paint_red", all);
   } else {
     // Below y = 0.74: a strip behind, between and in front of the arches,
     // the arches (solid only inside the wells, |x| < 0.40) and one quad over
@@ -522,7 +526,7 @@ ObjModel hatchback(bool wheelArches) {
       for (const V2& q : outline) arch.push_back(h.point(q.x(), q.y()));
       // Behind the rear arch the body below the sill is tucked in to
       // |x| < 0.60 (as the bumper), so the rear tyres show from behind.
-      if (last == b0) h.cell({b0, arch.front(), sillAt(outline.front().x()), r074, r045}, "paint_red", tucked);
+      if (last == b0) h.cell({b0, arch.front(), sillAt(outline.front().x()), r074, r064, r052, r045}, "paint_red", tucked);
       else h.cell({last, arch.front(), sillAt(outline.front().x()), sillAt(lastZ)}, "paint_red", all);
       h.cell(arch, "plastic_black", [](double x) { return std::abs(x) < 0.40; });
       for (std::size_t i = 1; i < arch.size(); ++i)
@@ -566,6 +570,7 @@ ObjModel hatchback(bool wheelArches) {
     if (n.z() < -0.5 && n.y() > 0.3 && c.y() > lo && c.y() < hi && ax < 0.6) return "glass";  // rear window
     if (ax > 0.4 && ax < 0.7 && n.z() > 0.9 && c.z() > 1.99 && c.y() > 0.62 && c.y() < 0.74) return "headlight";
     if (ax > 0.4 && ax < 0.7 && n.z() < -0.9 && c.z() < -1.99 && c.y() > 0.74 && c.y() < 0.88) return "taillight";
+    if (ax < 0.26 && n.z() < -0.9 && c.z() < -1.99 && c.y() > 0.52 && c.y() < 0.64) return "plate";
     if (wheelArches && n.y() < -0.2 && c.y() > 0.3 && c.y() < 0.75) return "plastic_black";  // the arches' ceilings
     return material;
   };
@@ -573,31 +578,87 @@ ObjModel hatchback(bool wheelArches) {
 }
 
 // Off-road truck: a cab with side windows and a flatbed, 4.9 m long, high
-// ground clearance (wheels at x = +-0.95, z = +-1.6, radius 0.45). One
+// ground clearance (base:truck's wheels at x = +-0.82, z = +-1.55, radius
+// 0.42, so their hubs are 0.42 m up at rest and the tyres' tops 0.84). One
 // closed solid (a PrismSolid): the bed is a pocket between its side walls,
-// the bull bar a cell solid between x = +-0.8 only; glass and lights are
-// painted faces of the body.
-ObjModel truck() {
+// the bull bar a cell solid between x = +-0.8 only; glass, lights and the
+// number plate are painted faces of the body; the upright tail lights sit
+// at the bed's rear corners.
+//
+// wheelArches: the drawn body (truck_shaped.obj, chassis.display_mesh) with
+// the lower body cut away around each wheel up to 0.92 m (the wells lined
+// black, solid only inside |x| < 0.55, where the bed's humps over the rear
+// wheels already stand), so the tyres show from the side; the plain one
+// (truck.obj) stays the solid the chassis inertia is taken from.
+constexpr double kTruckArchHalfLength = 0.58, kTruckArchTop = 0.92, kTruckSill = 0.94;
+ObjModel truck(bool wheelArches) {
   PrismSolid t;
-  t.stations = {-0.9, -0.82, -0.8, -0.75, -0.7, -0.55, -0.45, 0.45, 0.55, 0.7, 0.75, 0.8, 0.82, 0.9};
+  t.stations = {-0.9, -0.82, -0.8, -0.75, -0.7, -0.55, -0.45, -0.26, 0.26, 0.45, 0.55, 0.7, 0.75, 0.8, 0.82, 0.9};
   auto all = [](double) { return true; };
-  // Body below the bed floor, front to back.
+  // Body below the bed floor, front to back; its rear face carries the
+  // number plate (0.80 .. 0.94 m up), and with arches the sill line (0.94).
   const int b0 = t.point(-2.4, 0.62), b1 = t.point(2.4, 0.62), f065 = t.point(2.4, 0.65), f098 = t.point(2.4, 0.98);
   const int m098 = t.point(0.2, 0.98), a098 = t.point(-1.1, 0.98), c098 = t.point(-2.0, 0.98);
   const int g098 = t.point(-2.32, 0.98), r098 = t.point(-2.4, 0.98), r078 = t.point(-2.4, 0.78);
-  t.cell({b0, b1, f065, f098, m098, a098, c098, g098, r098, r078}, "paint_green", all);
-  // Rear bumper and bull bar.
+  const int r094 = t.point(-2.4, kTruckSill), r080 = t.point(-2.4, 0.80);
+  const int f094 = t.point(2.4, kTruckSill);
+  if (!wheelArches) {
+    t.cell({b0, b1, f065, f098, m098, a098, c098, g098, r098, r094, r080, r078}, "paint_green", all);
+  } else {
+    // Below the sill: a strip behind, between and in front of the arches,
+    // the arches (solid only inside the wells) and one quad over each arch
+    // edge up to the sill; above it one band to the bed floor, its lower
+    // edge carrying every point the strips and quads put on the sill.
+    std::vector<std::pair<double, int>> sillPoints{{-2.4, r094}, {2.4, f094}};
+    auto sillAt = [&](double z) {
+      for (const auto& [zz, i] : sillPoints)
+        if (std::abs(zz - z) < 1e-9) return i;
+      const int i = t.point(z, kTruckSill);
+      sillPoints.emplace_back(z, i);
+      return i;
+    };
+    int last = -1;
+    double lastZ = -2.4;
+    for (double centre : {-1.55, 1.55}) {
+      const double l = kTruckArchHalfLength, h = kTruckArchTop - 0.62;
+      const std::vector<V2> outline = {{centre - l, 0.62},           {centre - 0.92 * l, 0.62 + 0.55 * h},
+                                       {centre - 0.6 * l, 0.62 + 0.9 * h}, {centre, kTruckArchTop},
+                                       {centre + 0.6 * l, 0.62 + 0.9 * h}, {centre + 0.92 * l, 0.62 + 0.55 * h},
+                                       {centre + l, 0.62}};
+      std::vector<int> arch;
+      for (const V2& q : outline) arch.push_back(t.point(q.x(), q.y()));
+      if (last < 0) t.cell({b0, arch.front(), sillAt(outline.front().x()), r094, r080, r078}, "paint_green", all);
+      else t.cell({last, arch.front(), sillAt(outline.front().x()), sillAt(lastZ)}, "paint_green", all);
+      t.cell(arch, "plastic_black", [](double x) { return std::abs(x) < 0.55; });
+      for (std::size_t i = 1; i < arch.size(); ++i)
+        t.cell({arch[i - 1], arch[i], sillAt(outline[i].x()), sillAt(outline[i - 1].x())}, "paint_green", all);
+      last = arch.back();
+      lastZ = outline.back().x();
+    }
+    t.cell({last, b1, f065, f094, sillAt(lastZ)}, "paint_green", all);
+    std::sort(sillPoints.begin(), sillPoints.end());
+    std::vector<int> band;
+    for (const auto& [z, i] : sillPoints) band.push_back(i);
+    for (int q : {f098, m098, a098, c098, g098, r098}) band.push_back(q);
+    t.cell(band, "paint_green", all);
+  }
+  // Rear bumper and bull bar (the bar's back edge carries the sill point
+  // when the body below it is cut there).
   const int rb0 = t.point(-2.5, 0.62), rb1 = t.point(-2.5, 0.78);
   t.cell({rb0, b0, r078, rb1}, "plastic_black", all);
   const int bb0 = t.point(2.5, 0.65), bb1 = t.point(2.5, 1.15), f115 = t.point(2.4, 1.15);
-  t.cell({f065, bb0, bb1, f115, f098}, "chrome", [](double x) { return std::abs(x) < 0.8; });
+  std::vector<int> bar{f065, bb0, bb1, f115, f098};
+  if (wheelArches) bar.push_back(f094);
+  t.cell(bar, "chrome", [](double x) { return std::abs(x) < 0.8; });
   // Tailgate, and the bed: solid only in its side walls (|x| > 0.82) but
   // for the humps over the rear wheels (|x| > 0.55, up to y = 1.28, above
-  // the tyres at full bump).
+  // the tyres at full bump). The tailgate's back carries the tail lights
+  // (1.08 .. 1.36 m up).
   const int g128 = t.point(-2.32, 1.28), g146 = t.point(-2.32, 1.46), r146 = t.point(-2.4, 1.46);
+  const int r136 = t.point(-2.4, 1.36), r108 = t.point(-2.4, 1.08);
   const int c128 = t.point(-2.0, 1.28), a128 = t.point(-1.1, 1.28), m128 = t.point(0.2, 1.28), m146 = t.point(0.2, 1.46);
   auto walls = [](double x) { return std::abs(x) > 0.82; };
-  t.cell({r098, g098, g128, g146, r146}, "paint_green", all);
+  t.cell({r098, g098, g128, g146, r146, r136, r108}, "paint_green", all);
   t.cell({g098, c098, c128, g128}, "paint_green", walls);
   t.cell({c098, a098, a128, c128}, "paint_green", [](double x) { return std::abs(x) > 0.55; });
   t.cell({a098, m098, m128, a128}, "paint_green", walls);
@@ -623,9 +684,12 @@ ObjModel truck() {
     if (n.z() > 0.5 && n.y() > 0.3 && c.y() > 1.5 && ax < 0.8) return "glass";                      // windscreen
     if (n.z() < -0.9 && c.z() < 0.21 && c.y() > lo && c.y() < hi && ax < 0.7) return "glass";       // rear window
     if (n.z() > 0.9 && c.z() > 2.39 && c.y() > 1.18 && c.y() < 1.30 && ax > 0.45 && ax < 0.75) return "headlight";
+    if (n.z() < -0.9 && c.z() < -2.39 && c.y() > 1.08 && c.y() < 1.36 && ax > 0.75) return "taillight";
+    if (n.z() < -0.9 && c.z() < -2.39 && c.y() > 0.80 && c.y() < 0.94 && ax < 0.26) return "plate";
+    if (wheelArches && n.y() < -0.2 && c.y() > 0.63 && c.y() < kTruckSill) return "plastic_black";  // the arches' ceilings
     return material;
   };
-  return {"truck", buildPrismSolid(t), true};
+  return {wheelArches ? "truck_shaped" : "truck", buildPrismSolid(t), true};
 }
 
 /// Where the lines p0 + s d0 and p1 + t d1 cross (they must not be parallel).
@@ -641,9 +705,12 @@ V2 crossing(const V2& p0, const V2& d0, const V2& p1, const V2& d1) {
 // rail, front leg on a lower rail) solid only at |x| 0.52..0.59; the tube
 // corners are mitred; cross tubes (top of the main hoop, top of the front
 // legs, the front of the rails) are cells solid across the whole width.
+// Lights are painted faces: a light bar on the front of the upper front
+// cross tube (two lamps, 0.10 .. 0.40 m either side of the middle) and tail
+// lights on the floor pan's back at its corners (0.40 .. 0.52 m).
 ObjModel buggy() {
   PrismSolid b;
-  b.stations = {-0.59, -0.52, -0.25, 0.25, 0.52, 0.59};
+  b.stations = {-0.59, -0.52, -0.40, -0.25, -0.10, 0.10, 0.25, 0.40, 0.52, 0.59};
   auto all = [](double) { return true; };
   auto sides = [](double x) { return std::abs(x) > 0.52; };
   auto seatSlab = [](double x) { return std::abs(x) < 0.25; };
@@ -691,10 +758,13 @@ ObjModel buggy() {
   const int u0 = b.point(-0.47, 1.3), u1 = b.point(-0.57, 1.3);
   b.cell({s3, s2, t0, t1, t2}, "seat", seatSlab);
   b.cell({t3, t2, t1, u0, u1}, "seat", seatSlab);
-  b.paint = [=](const V3& c, const V3&, const std::string& material) -> std::string {
+  b.paint = [=](const V3& c, const V3& n, const std::string& material) -> std::string {
+    const double ax = std::abs(c.x());
+    if (c.z() > 0 && c.y() > 1.2 && n.z() > 0.6 && ax > 0.10 && ax < 0.40) return "headlight";
+    if (c.z() < -1.49 && n.z() < -0.9 && ax > 0.40 && ax < 0.52) return "taillight";
     // The rail cell under the seat is the seat's base between x = +-0.25.
     const bool underSeat = c.z() > -0.56 && c.z() < -0.04 && c.y() > railLo && c.y() < 0.56;
-    return underSeat && std::abs(c.x()) < 0.251 ? "seat" : material;
+    return underSeat && ax < 0.251 ? "seat" : material;
   };
   return {"buggy", buildPrismSolid(b), true};
 }
@@ -837,6 +907,7 @@ GeneratedFile writeMtl(const ObjModel& model) {
     out += "Kd " + fmt(it->kd.x()) + " " + fmt(it->kd.y()) + " " + fmt(it->kd.z()) + "\n";
     out += "Ka 0.00000 0.00000 0.00000\nKs 0.10000 0.10000 0.10000\nNs 20\nd 1\nillum 2\n";
     if (!it->texture.empty()) out += "map_Kd " + it->texture + "\n";
+    if (!it->ke.isZero()) out += "Ke " + fmt(it->ke.x()) + " " + fmt(it->ke.y()) + " " + fmt(it->ke.z()) + "\n";
   }
   return {model.name + ".mtl", out};
 }
@@ -865,7 +936,7 @@ GeneratedFolder folderOf(const std::string& path, const std::vector<ObjModel>& m
 std::vector<GeneratedFolder> generateModelFolders() {
   return {folderOf("assets/models", {wheel()}),
           folderOf("mods/base/assets/models",
-                   {hatchback(false), hatchback(true), truck(), buggy(), cockpit(), rock(), tree(), building(), barrier(), arch(),
+                   {hatchback(false), hatchback(true), truck(false), truck(true), buggy(), cockpit(), rock(), tree(), building(), barrier(), arch(),
                     ramp()})};
 }
 

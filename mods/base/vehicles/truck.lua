@@ -6,7 +6,7 @@ return {
   name = "Off-road truck",
   description = "4x4 diesel on long soft springs: slow, heavy, climbs and crosses mud",
   chassis = {mass = 2200, size = {1.9, 0.9, 4.6}, com = {0, -0.05, 0.1}, drag_area = 1.6, friction = 0.5, mesh = "assets/models/truck.obj",
-             inertia = "mesh"},
+             inertia = "mesh", display_mesh = "assets/models/truck_shaped.obj"},
   axles = {
     {position = {0.82, -0.3, 1.55}, radius = 0.42, width = 0.28, inertia = 2.5,
      steered = true, driven = true, brake = 3000, differential = "limited_slip", lsd_bias = 3,

@@ -51,12 +51,13 @@ physics::MassProperties massOf(const render::Model& model, Real density) {
 TEST(ShippedModels, RegeneratingGivesTheCommittedBytes) {
   const std::vector<GeneratedFolder> folders = generateModelFolders();
   ASSERT_EQ(folders.size(), 2u);
-  // The runtime's wheel and its two textures; the base mod's 11 models
-  // (the hatchback twice: its inertia solid and its body with wheel arches) and 6 textures.
+  // The runtime's wheel and its two textures; the base mod's 12 models
+  // (the hatchback and the truck twice: each one's inertia solid and its
+  // body with wheel arches) and 6 textures.
   EXPECT_EQ(folders[0].path, "assets/models");
   EXPECT_EQ(folders[0].files.size(), 4u);
   EXPECT_EQ(folders[1].path, "mods/base/assets/models");
-  EXPECT_EQ(folders[1].files.size(), 28u);
+  EXPECT_EQ(folders[1].files.size(), 30u);
   for (const GeneratedFolder& folder : folders) {
     const fs::path dir = sourceDir() / folder.path;
     for (const GeneratedFile& file : folder.files) {
@@ -78,7 +79,7 @@ TEST(ShippedModels, RegeneratingGivesTheCommittedBytes) {
 }
 
 TEST(ShippedModels, EveryPartIsAClosedSurface) {
-  for (const char* name : {"hatchback.obj", "hatchback_shaped.obj", "truck.obj", "buggy.obj", "wheel.obj", "cockpit.obj",
+  for (const char* name : {"hatchback.obj", "hatchback_shaped.obj", "truck.obj", "truck_shaped.obj", "buggy.obj", "wheel.obj", "cockpit.obj",
                            "rock.obj", "tree.obj", "building.obj", "barrier.obj", "checkpoint_arch.obj"}) {
     auto model = load(name);
     ASSERT_TRUE(model);
@@ -86,7 +87,8 @@ TEST(ShippedModels, EveryPartIsAClosedSurface) {
     // materials of one closed surface; every other object (node) is closed
     // on its own.
     const std::string n = name;
-    if (n == "wheel.obj" || n == "hatchback.obj" || n == "hatchback_shaped.obj" || n == "truck.obj" || n == "buggy.obj") {
+    if (n == "wheel.obj" || n == "hatchback.obj" || n == "hatchback_shaped.obj" || n == "truck.obj" ||
+        n == "truck_shaped.obj" || n == "buggy.obj") {
       const render::FlatMesh flat = render::flattenModel(*model);
       std::vector<Vec3> v;
       for (const auto& p : flat.positions) v.push_back(p.cast<Real>());
@@ -166,13 +168,59 @@ int checkOneManifoldSurface(const render::FlatMesh& flat, const std::string& nam
 // them), genus 4: 2 - 2 * 4 = -6.
 TEST(ShippedModels, CarBodiesAreEachOneClosedManifoldSolid) {
   for (const auto& [name, euler] :
-       {std::pair{"hatchback.obj", 2}, std::pair{"hatchback_shaped.obj", 2}, std::pair{"truck.obj", 2}, std::pair{"buggy.obj", -6}}) {
+       {std::pair{"hatchback.obj", 2}, std::pair{"hatchback_shaped.obj", 2}, std::pair{"truck.obj", 2},
+        std::pair{"truck_shaped.obj", 2}, std::pair{"buggy.obj", -6}}) {
     auto model = load(name);
     ASSERT_TRUE(model);
     const render::FlatMesh flat = render::flattenModel(*model);
     EXPECT_EQ(checkOneManifoldSurface(flat, name), euler) << name;
     const physics::MassProperties p = massOf(*model, 1);
     EXPECT_TRUE(p.valid && p.volume_m3 > 0) << name << " must be wound outward";
+  }
+}
+
+// Every car has lamps that glow (an emissive colour, .mtl Ke) at both ends:
+// headlights facing forward (+Z) in the front half, tail lights facing back
+// in the rear half, red; nothing else on the car gives off light. Each lamp
+// is a pair, one either side of the middle.
+TEST(ShippedModels, EveryCarHasGlowingHeadlightsInFrontAndTailLightsBehind) {
+  for (const char* name : {"hatchback.obj", "hatchback_shaped.obj", "truck.obj", "truck_shaped.obj", "buggy.obj"}) {
+    auto model = load(name);
+    ASSERT_TRUE(model);
+    double front = 0, back = 0;                     // lamp area, m^2
+    double frontLeft = 0, backLeft = 0;             // of it at x < 0
+    for (const render::ModelMesh& mesh : model->meshes) {
+      const render::ModelMaterial& material = model->materials[std::size_t(mesh.material)];
+      const bool head = material.name == "headlight", tail = material.name == "taillight";
+      if (!head && !tail) {
+        EXPECT_TRUE(material.emissive.isZero()) << name << ": " << material.name << " glows";
+        continue;
+      }
+      EXPECT_GT(material.emissive.x(), 0.5f) << name << ": " << material.name;
+      if (tail) EXPECT_GT(material.emissive.x(), 10 * material.emissive.y()) << name << ": tail lights are red";
+      for (const auto& t : mesh.triangles) {
+        const Eigen::Vector3f a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+        const Eigen::Vector3f cross = (b - a).cross(c - a);
+        const double area = 0.5 * cross.norm();
+        const Eigen::Vector3f centre = (a + b + c) / 3, n = cross.normalized();
+        if (head) {
+          EXPECT_GT(n.z(), 0.3f) << name << ": a headlight face not facing forward";
+          EXPECT_GT(centre.z(), 0.0f) << name << ": a headlight in the rear half";
+          front += area;
+          if (centre.x() < 0) frontLeft += area;
+        } else {
+          EXPECT_LT(n.z(), -0.9f) << name << ": a tail light face not facing back";
+          EXPECT_LT(centre.z(), 0.0f) << name << ": a tail light in the front half";
+          back += area;
+          if (centre.x() < 0) backLeft += area;
+        }
+      }
+    }
+    // At least a 10 x 7 cm lamp each side.
+    EXPECT_GT(front, 2 * 0.007) << name;
+    EXPECT_GT(back, 2 * 0.007) << name;
+    EXPECT_NEAR(frontLeft, front / 2, 1e-6) << name << ": headlights in a left and right pair";
+    EXPECT_NEAR(backLeft, back / 2, 1e-6) << name << ": tail lights in a left and right pair";
   }
 }
 
