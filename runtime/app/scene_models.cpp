@@ -166,31 +166,59 @@ void CameraDirector::decorate(const Scene& scene, double alpha, const render::Ca
     maxRpm = vehicles->def(id).engine.maxRpm;
   });
   if (!t) return;
-  // A dark dial facing the driver and a needle from its centre: 270 degrees
-  // from lower left (zero) through the top to lower right (full scale), as
-  // the driver sees it (+X is the driver's left).
+  // A dark dial facing the driver with a scale and a needle from its centre:
+  // 270 degrees from lower left (zero) through the top to lower right (full
+  // scale), as the driver sees it (+X is the driver's left). Scale marks
+  // every `minor` of full scale, longer every `major`; marks from `redFrom`
+  // (a fraction of full scale) on are red.
   const float r = float(m_gaugeRadius_m);
-  auto dial = [&](const Vec3& centre_m, double fraction) {
-    const double angle = (-135.0 + 270.0 * std::clamp(fraction, 0.0, 1.0)) * kPi / 180.0;
-    const Eigen::Quaternionf spin(Eigen::AngleAxisf(float(angle), Eigen::Vector3f::UnitZ()));
+  auto dialAngle = [](double fraction) { return (-135.0 + 270.0 * std::clamp(fraction, 0.0, 1.0)) * kPi / 180.0; };
+  auto onDial = [&](const Vec3& centre_m, const Eigen::Vector3f& offset_m) {
+    return Eigen::Vector3f(interior.position + pose->orientation * (centre_m.cast<float>() + offset_m));
+  };
+  auto dial = [&](const Vec3& centre_m, double fraction, double minor, int major, double redFrom) {
+    // A round face: a flat cylinder whose axis (local Y) points at the driver.
     render::DrawShape face;
-    face.position = interior.position + pose->orientation * (centre_m.cast<float>() - Eigen::Vector3f(0, 0, 0.004f));
-    face.orientation = pose->orientation;
-    face.halfExtents = {r, r, 0.002f};
+    face.kind = render::ShapeKind::Cylinder;
+    face.position = onDial(centre_m, {0, 0, -0.004f});
+    face.orientation = pose->orientation * Eigen::Quaternionf(Eigen::AngleAxisf(float(kPi) / 2, Eigen::Vector3f::UnitX()));
+    face.radius_m = r;
+    face.halfHeight_m = 0.002f;
     face.color = {0.03f, 0.03f, 0.035f};
     frame.shapes.push_back(face);
+    // The marks, and one at full scale (the rev limiter) when the steps miss it.
+    const int marks = std::min(40, int(std::floor(1.0 / minor + 1e-9)));
+    const bool endMark = marks * minor < 1.0 - 1e-6;
+    for (int k = 0; k <= marks + (endMark ? 1 : 0); ++k) {
+      const double at = k > marks ? 1.0 : k * minor;
+      const bool big = k > marks || k % major == 0;
+      const Eigen::Quaternionf spin(Eigen::AngleAxisf(float(dialAngle(at)), Eigen::Vector3f::UnitZ()));
+      const float length = big ? 0.16f * r : 0.09f * r;
+      render::DrawShape mark;
+      mark.position = onDial(centre_m, spin * Eigen::Vector3f(0, 0.9f * r - length / 2, 0) - Eigen::Vector3f(0, 0, 0.006f));
+      mark.orientation = pose->orientation * spin;
+      mark.halfExtents = {big ? 0.025f * r : 0.015f * r, length / 2, 0.001f};
+      mark.color = at >= redFrom - 1e-9 ? Eigen::Vector3f(0.85f, 0.06f, 0.05f) : Eigen::Vector3f(0.85f, 0.85f, 0.82f);
+      frame.shapes.push_back(mark);
+    }
+    const Eigen::Quaternionf spin(Eigen::AngleAxisf(float(dialAngle(fraction)), Eigen::Vector3f::UnitZ()));
     render::DrawShape needle;
-    const Eigen::Vector3f along = spin * Eigen::Vector3f(0, 0.45f * r, 0);
-    needle.position =
-        interior.position + pose->orientation * (centre_m.cast<float>() + along - Eigen::Vector3f(0, 0, 0.008f));
+    needle.position = onDial(centre_m, spin * Eigen::Vector3f(0, 0.45f * r, 0) - Eigen::Vector3f(0, 0, 0.008f));
     needle.orientation = pose->orientation * spin;
     needle.halfExtents = {0.06f * r, 0.45f * r, 0.002f};
     needle.color = {1.0f, 0.42f, 0.05f};
     frame.shapes.push_back(needle);
   };
-  constexpr double kFullScale_mps = 200.0 / 3.6;  // the speedometer's 200 km/h
-  if (m_speedGauge_m) dial(*m_speedGauge_m, std::abs(double(t->speed_mps)) / kFullScale_mps);
-  if (m_rpmGauge_m && maxRpm > 0) dial(*m_rpmGauge_m, double(t->rpm) / double(maxRpm));
+  // The speedometer reads to 200 km/h, marked every 20 and long every 40;
+  // the rev counter to the rev limiter, marked every 1000 rpm (every 2000
+  // past 12 000, and so on), red over the last mark's step below the limiter.
+  constexpr double kFullScale_mps = 200.0 / 3.6;
+  if (m_speedGauge_m) dial(*m_speedGauge_m, std::abs(double(t->speed_mps)) / kFullScale_mps, 0.1, 2, 2.0);
+  if (m_rpmGauge_m && maxRpm > 0) {
+    const double step_rpm = 1000.0 * std::max(1.0, std::ceil(double(maxRpm) / 12000.0));
+    const double step = step_rpm / double(maxRpm);
+    dial(*m_rpmGauge_m, double(t->rpm) / double(maxRpm), step, 1, 1.0 - step);
+  }
 }
 
 }  // namespace tumble::app

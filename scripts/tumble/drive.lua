@@ -345,9 +345,12 @@ function drive.show(car, opts)
     else
       -- The base mod's generic interior, with its two dials on the face of
       -- the dashboard under the instrument hood (in the interior's frame:
-      -- origin at the eye; the face is at z 0.58 m); without the base mod, none.
+      -- origin at the eye; the face is at z 0.58 m). The hood's front edge
+      -- (0.22 m below the eye, 0.54 m ahead) hides what lies above the line
+      -- from the eye past it: y > -0.2355 m on the face, so the dials' tops
+      -- stay under that. Without the base mod, none.
       opts.interior = "base:assets/models/cockpit.obj"
-      opts.speed_gauge, opts.rpm_gauge, opts.gauge_radius = {0.075, -0.25, 0.578}, {-0.075, -0.25, 0.578}, 0.045
+      opts.speed_gauge, opts.rpm_gauge, opts.gauge_radius = {0.075, -0.285, 0.578}, {-0.075, -0.285, 0.578}, 0.045
       if not pcall(camera.set_mode, mode, opts) then
         opts.interior, opts.speed_gauge, opts.rpm_gauge, opts.gauge_radius = nil, nil, nil, nil
         camera.set_mode(mode, opts)

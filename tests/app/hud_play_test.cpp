@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "tumble_process.h"
@@ -433,6 +434,29 @@ TEST(HudPlay, TheCockpitSpeedometerNeedleFollowsTheSpeed) {
   RecordProperty("needle_turned_deg", std::to_string(turned));
   RecordProperty("speed_kmh", std::to_string(speed_kmh));
   EXPECT_NEAR(turned, expected, 8.0) << "speed " << speed_kmh << " km/h";
+  // The dial has a scale: 11 light marks, 27 degrees apart, around the
+  // pivot from zero (lower left, 45 degrees clockwise from straight down)
+  // over the top to full scale (lower right, 315): light pixels in at least
+  // 8 different 15-degree sectors, the first near zero and the last near
+  // full scale, and none in the gap at the dial's bottom.
+  std::set<int> sectors;
+  int below = 0;
+  for (int y = std::max(0, int(py) - 40); y < std::min(a.h, int(py) + 40); ++y)
+    for (int x = std::max(0, int(px) - 40); x < std::min(a.w, int(px) + 40); ++x) {
+      const unsigned char* c = &a.rgb[(std::size_t(y) * std::size_t(a.w) + std::size_t(x)) * 3];
+      const int lo = std::min({c[0], c[1], c[2]}), hi = std::max({c[0], c[1], c[2]});
+      if (lo < 100 || hi - lo > 30 || std::hypot(x - px, y - py) > 40) continue;
+      // Clockwise from straight down, as the driver sees it (screen y is down).
+      double deg = std::atan2(-(x - px), y - py) * 180 / 3.14159265358979;
+      if (deg < 0) deg += 360;
+      if (deg < 40 || deg > 320) ++below;
+      else sectors.insert(int(deg / 15));
+    }
+  RecordProperty("scale_sectors", std::to_string(sectors.size()));
+  EXPECT_GE(sectors.size(), 8u) << "marks around the speedometer";
+  EXPECT_TRUE(!sectors.empty() && *sectors.begin() <= 4) << "a mark near zero, at the lower left";
+  EXPECT_TRUE(!sectors.empty() && *sectors.rbegin() >= 19) << "a mark near full scale, at the lower right";
+  EXPECT_EQ(below, 0) << "nothing light in the gap at the dial's bottom";
 }
 
 }  // namespace
