@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "app/terrain_scene.h"
 #include "particles/particle_system.h"
 #include "vehicle/vehicle_system.h"
 
@@ -37,7 +38,17 @@ void frameCamera(Scene& scene, render::Camera& cam) {
   });
   if (n == 0) return;
   cam.target = (lo + hi) / 2;
-  cam.target.y() = std::max(cam.target.y() * 0.5f, 0.5f);
+  // Half way down from the bodies' middle to the ground under it (y = 0 on
+  // a plane, the terrain's height over a terrain), and at least 0.5 m up:
+  // the view takes in what is falling and where it lands. Over a terrain
+  // the ground is the terrain, or the view would aim under the hills.
+  float ground_m = 0;
+  if (const TerrainScene* terrain = scene.terrainScene()) {
+    Real h = 0;
+    Vec3 normal;
+    if (terrain->heightField().surfaceAt(Real(cam.target.x()), Real(cam.target.z()), &h, &normal)) ground_m = float(h);
+  }
+  cam.target.y() = ground_m + std::max((cam.target.y() - ground_m) * 0.5f, 0.5f);
   cam.distance_m = std::clamp((hi - lo).norm() * 1.4f + 6.0f, 6.0f, 400.0f);
 }
 
