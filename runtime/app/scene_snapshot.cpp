@@ -191,6 +191,7 @@ void Scene::snapshot(render::FrameSnapshot& out, double alpha) const {
     s.position = p.cast<float>();
     s.orientation = q.cast<float>();
     s.color = presentation.colorOf(id);
+    s.groundTexture = presentation.groundTextureOf(id);
     s.sleeping = !b.awake;
     if (b.shape.type != physics::ShapeType::Compound) return emit(b.shape, s);
     for (const physics::CompoundChild& c : b.shape.compound->children) {

@@ -60,7 +60,11 @@ struct DrawShape {
   // Cylinder: half its height along local Y (flat caps).
   float halfHeight_m = 0.5f;
   std::shared_ptr<const ConvexMeshData> convexMesh;  // ConvexMesh: the mesh (shared; not copied per frame)
-  Eigen::Vector3f color{0.8f, 0.8f, 0.8f};  // linear RGB 0..1; Plane: colour of the light squares
+  Eigen::Vector3f color{0.8f, 0.8f, 0.8f};  // linear RGB 0..1; Plane: colour of the light squares, or the texture's tint
+  // Plane only: -1 draws 1 m checker squares; 0..kTerrainTextureCount-1 the
+  // terrain's ground texture of that index (0 grass, 1 rock, 2 sand, 3 mud,
+  // 4 snow, 5 gravel, 6 dirt, 7 moss), tiling every 4 m, times color.
+  int groundTexture = -1;
   bool sleeping = false;                    // drawn a little darker
 };
 

@@ -198,6 +198,7 @@ void checkTable(lua_State* L, const char* fn, const char* example) {
 /// @class PlaneDef: BodyDef
 /// @field normal? Vec3Arg the plane's normal (default {0, 1, 0})
 /// @field point? Vec3Arg a point on the plane, m (default {0, 0, 0})
+/// @field texture? string what is drawn on it: "checker" (default, 1 m squares in color, for lab scenes) or a ground texture of the terrain's, tinted by color (default white): "grass", "rock", "sand", "mud", "snow", "gravel", "dirt", "moss". Drawn only: physics ignores it
 
 /// @function world.box
 /// Creates a box.
@@ -285,7 +286,24 @@ int worldCylinder(lua_State* L) {
 int worldPlane(lua_State* L) {
   if (lua_isnoneornil(L, 1)) lua_newtable(L), lua_replace(L, 1);
   checkTable(L, "world.plane", "{normal = {0, 1, 0}, point = {0, 0, 0}}");
-  checkBodyFields(L, 1, "world.plane", {"normal", "point"});
+  checkBodyFields(L, 1, "world.plane", {"normal", "point", "texture"});
+  // The ground textures in render::DrawShape::groundTexture's order.
+  static const char* const kTextures[] = {"grass", "rock", "sand", "mud", "snow", "gravel", "dirt", "moss"};
+  int texture = -1;
+  if (rawGetField(L, 1, "texture") != LUA_TNIL) {
+    const bool isString = lua_type(L, -1) == LUA_TSTRING;
+    const std::string name = isString ? lua_tostring(L, -1) : "";
+    for (int i = 0; i < int(std::size(kTextures)); ++i)
+      if (name == kTextures[i]) texture = i;
+    if (texture < 0 && name != "checker") {
+      const std::string got = isString ? "\"" + (name.size() > 40 ? name.substr(0, 40) + "..." : name) + "\""
+                                       : std::string(luaL_typename(L, -1));
+      lua_pop(L, 1);
+      throw LuaArgError("world.plane: field 'texture' must be \"checker\", \"grass\", \"rock\", \"sand\", \"mud\", "
+                        "\"snow\", \"gravel\", \"dirt\" or \"moss\", got " + got);
+    }
+  }
+  lua_pop(L, 1);
   physics::BodyDef d = readCommon(L, 1, "world.plane");
   d.type = physics::BodyType::Static;
   Vec3 n = Vec3::UnitY();
@@ -298,7 +316,10 @@ int worldPlane(lua_State* L) {
   if (n.norm() < Real(1e-6)) throw LuaArgError("world.plane: field 'normal' must not be zero");
   d.orientation = Quat::FromTwoVectors(Vec3::UnitY(), n.normalized());
   d.shape = physics::Shape::plane();
-  return create(L, d, "world.plane", readColor(L, 1, "world.plane", {0.55f, 0.57f, 0.6f}));
+  const Eigen::Vector3f color = readColor(L, 1, "world.plane", texture >= 0 ? Eigen::Vector3f(1, 1, 1) : Eigen::Vector3f(0.55f, 0.57f, 0.6f));
+  create(L, d, "world.plane", color);
+  ScenarioHost::from(L)->presentation().setGroundTexture(checkBody(L, -1), texture);
+  return 1;
 }
 
 /// Points {{x, y, z}, ...} of field `key` of the table at t.

@@ -51,6 +51,15 @@ Eigen::Vector3f Presentation::colorOf(physics::BodyId id) const {
   return Eigen::Vector3f(0.75f, 0.75f, 0.78f);
 }
 
+void Presentation::setGroundTexture(physics::BodyId id, int layer) {
+  if (m_groundTextures.size() <= id.index) m_groundTextures.resize(id.index + 1, -1);
+  m_groundTextures[id.index] = layer;
+}
+
+int Presentation::groundTextureOf(physics::BodyId id) const {
+  return id.index < m_groundTextures.size() ? m_groundTextures[id.index] : -1;
+}
+
 Eigen::Vector3f Presentation::deformableColor(int id) const {
   auto it = m_deformableColors.find(id);
   return it == m_deformableColors.end() ? Eigen::Vector3f(0.9f, 0.6f, 0.2f) : it->second;

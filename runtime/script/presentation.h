@@ -103,6 +103,10 @@ struct Presentation {
   /// Display colour (linear RGB 0..1) of a body the script made or coloured.
   void setColor(physics::BodyId id, const Eigen::Vector3f& rgb);
   Eigen::Vector3f colorOf(physics::BodyId id) const;
+  /// Ground texture drawn on a plane body (render::DrawShape::groundTexture:
+  /// -1 the checkerboard, else the terrain texture index); -1 when unset.
+  void setGroundTexture(physics::BodyId id, int layer);
+  int groundTextureOf(physics::BodyId id) const;
   /// Colour of a rope or cloth by its DeformableSystem id.
   void setDeformableColor(int id, const Eigen::Vector3f& rgb) { m_deformableColors[id] = rgb; }
   Eigen::Vector3f deformableColor(int id) const;
@@ -114,6 +118,7 @@ struct Presentation {
 
  private:
   std::vector<Eigen::Vector3f> m_colors;  ///< by body slot index; x < 0: unset
+  std::vector<int> m_groundTextures;      ///< by body slot index; -1: the checkerboard
   std::map<int, Eigen::Vector3f> m_deformableColors;
   std::vector<ScriptLine> m_scriptLines;
 };

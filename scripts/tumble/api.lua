@@ -747,6 +747,7 @@ function Vehicle:remove() end
 ---@class PlaneDef: BodyDef
 ---@field normal? Vec3Arg the plane's normal (default {0, 1, 0})
 ---@field point? Vec3Arg a point on the plane, m (default {0, 0, 0})
+---@field texture? string what is drawn on it: "checker" (default, 1 m squares in color, for lab scenes) or a ground texture of the terrain's, tinted by color (default white): "grass", "rock", "sand", "mud", "snow", "gravel", "dirt", "moss". Drawn only: physics ignores it
 
 ---The body's centre of mass is the hull's centroid: position and rotation
 ---place the frame the points are given in, and body:position() then reports

@@ -3,11 +3,13 @@
 // and the frame snapshot draws bodies with models as models, not shapes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "app/scene.h"
 #include "app/scene_models.h"
 #include "app/terrain_scene.h"
+#include "render/internal/terrain_textures.h"
 #include "render/model.h"
 
 namespace tumble::app {
@@ -113,6 +115,37 @@ TEST(SceneModels, ASharedMeshShapeStillCollides) {
   scene->host().finish(1.0, 60);
   ASSERT_EQ(scene->host().expectations().size(), 1u);
   EXPECT_TRUE(scene->host().expectations()[0].ok) << scene->host().expectations()[0].value;
+}
+
+// world.plane{texture = NAME} draws the terrain's ground texture of that
+// name on the plane: the frame's plane shapes carry the texture index whose
+// render-side name is the one the script gave ("checker" and no texture:
+// -1, the checkerboard), and bad values are refused with the list of names.
+TEST(SceneModels, PlanesDrawTheGroundTextureTheScriptNames) {
+  auto scene = makeScene("models:ground_planes");
+  ASSERT_TRUE(scene);
+  scene->host().start();
+  scene->host().finish(0.0, 0);
+  for (const script::Expectation& e : scene->host().expectations()) EXPECT_TRUE(e.ok) << e.name;
+  EXPECT_EQ(scene->host().expectations().size(), 8u);
+  render::FrameSnapshot frame;
+  scene->snapshot(frame, 1.0);
+  const char* names[] = {"checker", "grass", "rock", "sand", "mud", "snow", "gravel", "dirt", "moss"};
+  int planes = 0;
+  for (const render::DrawShape& s : frame.shapes) {
+    if (s.kind != render::ShapeKind::Plane) continue;
+    ++planes;
+    const int y = int(std::lround(s.position.y()));
+    if (y == 20 || y == 1) {
+      EXPECT_EQ(s.groundTexture, -1) << "the plane at y = " << y << " is the checkerboard";
+      continue;
+    }
+    ASSERT_GE(y, 2);
+    ASSERT_LE(y, 9);
+    ASSERT_GE(s.groundTexture, 0) << names[y - 1];
+    EXPECT_STREQ(render::terrainTextureName(s.groundTexture), names[y - 1]);
+  }
+  EXPECT_EQ(planes, 10);
 }
 
 }  // namespace

@@ -104,6 +104,55 @@ TEST_F(RenderImage, ColouredShapesAppearWhereTheCameraLooks) {
   EXPECT_TRUE(isGreenish(q[0], q[1], q[2])) << int(q[0]) << " " << int(q[1]) << " " << int(q[2]);
 }
 
+// A plane draws the ground texture it is given instead of the checkerboard:
+// a floor of the checker and a wall of grass facing the camera in one
+// frame (two runs of the plane batch, each with its own instances): the
+// wall's half of the view is grass green, the floor's half the checker's
+// grey; swapped textures swap the halves; sand reads red over blue.
+TEST_F(RenderImage, APlaneDrawsTheGroundTextureItIsGiven) {
+  Camera& camera = m_renderer->camera();
+  camera.target = {0, 1, 0};
+  camera.yaw_rad = 0;
+  camera.pitch_rad = 0;
+  camera.distance_m = 6;
+  auto plane = [](const Eigen::Vector3f& point, const Eigen::Vector3f& normal, int texture) {
+    DrawShape s;
+    s.kind = ShapeKind::Plane;
+    s.position = point;
+    s.orientation = Eigen::Quaternionf::FromTwoVectors(Eigen::Vector3f::UnitY(), normal);
+    s.groundTexture = texture;
+    s.color = texture >= 0 ? Eigen::Vector3f(1, 1, 1) : Eigen::Vector3f(0.55f, 0.57f, 0.6f);
+    return s;
+  };
+  // The eye looks along -Z (yaw 0) from z = 6 at height 1: the wall at
+  // z = -4 fills the view down to where the floor meets it, 10 m away and
+  // 1 m down, atan(0.1) = 0.1 rad below the middle (24 px of the 1 rad
+  // high view); the floor the rest below.
+  auto frame = [&](int floorTexture, int wallTexture) {
+    FrameSnapshot f;
+    f.shapes.push_back(plane({0, 0, 0}, Eigen::Vector3f::UnitY(), floorTexture));
+    f.shapes.push_back(plane({0, 0, -4}, Eigen::Vector3f::UnitZ(), wallTexture));
+    return f;
+  };
+  auto greenish = [](int r, int g, int b) { return g > r + 15 && g > b + 15; };
+  auto grey = [](int r, int g, int b) { return std::abs(r - g) < 12 && std::abs(g - b) < 16 && g > 30; };
+  const int half = kWidth * kHeight / 2;
+  const Image a = render(frame(-1, 0), "checker_floor_grass_wall.png");
+  EXPECT_GT(countPixels(a, greenish, 0, 0, kWidth, kHeight / 2), half * 8 / 10) << "the grass wall";
+  EXPECT_GT(countPixels(a, grey, 0, kHeight / 2 + 40, kWidth, kHeight), half * 5 / 10) << "the checker floor";
+  EXPECT_LT(countPixels(a, greenish, 0, kHeight / 2 + 40, kWidth, kHeight), half / 20);
+  const Image b = render(frame(0, -1), "grass_floor_checker_wall.png");
+  EXPECT_GT(countPixels(b, greenish, 0, kHeight / 2 + 40, kWidth, kHeight), half * 5 / 10) << "the grass floor";
+  EXPECT_LT(countPixels(b, greenish, 0, 0, kWidth, kHeight / 2), half / 20) << "the checker wall";
+  const Image c = render(frame(2, 2), "sand.png");
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) mean += Eigen::Vector3d(c.at(x, y)[0], c.at(x, y)[1], c.at(x, y)[2]);
+  mean /= double(kWidth * kHeight);
+  EXPECT_GT(mean.x(), mean.z() + 25) << "sand is warm: " << mean.transpose();
+  EXPECT_LT(countPixels(c, greenish), half / 20);
+}
+
 TEST_F(RenderImage, ShapesBehindTheCameraOrOutsideTheViewChangeNothing) {
   const Image sky = render(FrameSnapshot{}, "sky.png");
   const FrameView view = makeFrameView(m_renderer->camera(), float(kWidth) / kHeight);

@@ -23,7 +23,7 @@ return {
   on_start = function(ctx)
     -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
     environment.set{time_of_day = param("time_of_day", 15.0), weather = param("weather", "clear"), clouds = 0.3}
-    world.plane{color = {0.42, 0.48, 0.38}}
+    world.plane{texture = "grass"}
     if sliding then
       -- The car: a 1.6 x 1.2 x 4.1 m box whose centre is 0.87 m above the model's origin.
       car = world.box{size = {1.6, 1.2, 4.1}, position = {0, 0.9, -6}, velocity = {0, 0, 12}, mass = 1100,

@@ -112,13 +112,32 @@ void main() {
 }
 )glsl";
 
-const std::string kShapeFragmentSource = litFragment(R"glsl(
+// The large-scale brightness variation the terrain shaders and textured
+// planes apply: two octaves of value noise over the ground, 0.75..1.25.
+const char* const kGroundShade = R"glsl(
+float hash(vec2 p) {
+  uvec2 q = uvec2(ivec2(p)) * uvec2(1597334673u, 3812015801u);
+  return float(((q.x ^ q.y) * 1597334673u) >> 8) * (1.0 / 16777216.0);
+}
+float valueNoise(vec2 p) {
+  vec2 i = floor(p), f = p - i, u = f * f * (3.0 - 2.0 * f);
+  return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), u.x), u.y);
+}
+float groundShade(vec2 xz) {
+  return 0.75 + 0.3 * valueNoise(xz * (1.0 / 41.0)) + 0.2 * valueNoise(xz * (1.0 / 13.0));
+}
+)glsl";
+
+const std::string kShapeFragmentSource = litFragment((std::string(kGroundShade) + R"glsl(
 in vec3 vWorldPosition;
 in vec3 vNormal;
 in vec3 vColor;
 in vec2 vPlaneCoord;
 
 uniform int uChecker;           // 1: 1 m checkerboard in local XZ (planes)
+uniform int uGroundTexture;     // planes: >= 0 the ground texture layer drawn instead of the checkerboard
+uniform sampler2DArray uGround; // the terrain's ground textures (sRGB, sampled as linear)
+uniform float uGroundPerMetre;  // ground texture repeats per metre
 
 out vec4 fragColor;
 
@@ -135,12 +154,16 @@ float checker(vec2 p) {
 void main() {
   vec3 n = normalize(vNormal);
   vec3 albedo = vColor;
-  if (uChecker != 0) albedo *= mix(1.0, 0.55, checker(vPlaneCoord));
+  if (uGroundTexture >= 0) {
+    albedo *= texture(uGround, vec3(vPlaneCoord * uGroundPerMetre, float(uGroundTexture))).rgb * groundShade(vPlaneCoord);
+  } else if (uChecker != 0) {
+    albedo *= mix(1.0, 0.55, checker(vPlaneCoord));
+  }
 
   vec3 color = sunAndSky(albedo, n, vWorldPosition, 0.12, 40.0);
   fragColor = fogged(color, length(uEye - vWorldPosition));
 }
-)glsl");
+)glsl").c_str());
 const char* const kShapeFragment = kShapeFragmentSource.c_str();
 
 // Sky: one triangle covering the screen (no vertex buffer; positions come
@@ -237,21 +260,6 @@ void main() {
 // texture (trilinear fetches are the expensive part of a software
 // rasteriser), and per-vertex work is nearly free next to per-pixel work.
 
-// The large-scale brightness variation both terrain vertex shaders apply:
-// two octaves of value noise over the ground plane, 0.75..1.25.
-const char* const kGroundShade = R"glsl(
-float hash(vec2 p) {
-  uvec2 q = uvec2(ivec2(p)) * uvec2(1597334673u, 3812015801u);
-  return float(((q.x ^ q.y) * 1597334673u) >> 8) * (1.0 / 16777216.0);
-}
-float valueNoise(vec2 p) {
-  vec2 i = floor(p), f = p - i, u = f * f * (3.0 - 2.0 * f);
-  return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), u.x), u.y);
-}
-float groundShade(vec2 xz) {
-  return 0.75 + 0.3 * valueNoise(xz * (1.0 / 41.0)) + 0.2 * valueNoise(xz * (1.0 / 13.0));
-}
-)glsl";
 
 const std::string kTerrainVertexSource = std::string(R"glsl(
 #version 330 core

@@ -6,6 +6,8 @@
 
 #include "render/internal/mesh_builder.h"
 #include "render/internal/shaders.h"
+#include "render/internal/terrain_pass.h"
+#include "render/internal/terrain_textures.h"
 
 namespace tumble::render {
 
@@ -17,6 +19,9 @@ constexpr int kRoundSlices = 32;
 constexpr int kSphereStacks = 16;
 constexpr int kCapsuleStacksPerCap = 8;
 constexpr float kMinSize_m = 1e-4f;
+// Texture unit of the ground textures (0 is left to other passes, the
+// shadow map has LitUniforms::kShadowUnit).
+constexpr int kGroundUnit = 1;
 
 std::size_t kindIndex(ShapeKind kind) { return static_cast<std::size_t>(kind); }
 
@@ -39,6 +44,17 @@ void instanceAttribute(GLuint location, GLint components, std::size_t offset) {
   glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, sizeof(ShapeInstance),
                         reinterpret_cast<const void*>(offset));
   glVertexAttribDivisor(location, 1);
+}
+
+// Points the bound vertex array's instance attributes at the bound instance
+// buffer from instance `first` on (GL 3.3 has no base instance).
+void instanceAttributesFrom(std::size_t first) {
+  const std::size_t base = first * sizeof(ShapeInstance);
+  instanceAttribute(shaders::kAttribInstancePosition, 3, base + offsetof(ShapeInstance, position));
+  instanceAttribute(shaders::kAttribInstanceRotation, 4, base + offsetof(ShapeInstance, rotation));
+  instanceAttribute(shaders::kAttribInstanceScale, 3, base + offsetof(ShapeInstance, scale));
+  instanceAttribute(shaders::kAttribInstanceHalfHeight, 1, base + offsetof(ShapeInstance, halfHeight));
+  instanceAttribute(shaders::kAttribInstanceColor, 3, base + offsetof(ShapeInstance, color));
 }
 
 void meshAttribute(GLuint location, GLint components, std::size_t offset) {
@@ -100,6 +116,9 @@ Status ShapePass::init() {
   m_program = std::move(*program);
   m_lit.locate(m_program);
   m_checker = uniformLocation(m_program, "uChecker");
+  m_groundTexture = uniformLocation(m_program, "uGroundTexture");
+  m_ground = uniformLocation(m_program, "uGround");
+  m_groundPerMetre = uniformLocation(m_program, "uGroundPerMetre");
   auto depth = buildProgram("shape shadow shader", shaders::kShapeVertex, shaders::kDepthFragment);
   if (!depth) return makeError(depth.error());
   m_depthProgram = std::move(*depth);
@@ -127,11 +146,7 @@ Status ShapePass::init() {
                  mesh.indices.data(), GL_STATIC_DRAW);
 
     glBindBuffer(GL_ARRAY_BUFFER, batch.instances.get());
-    instanceAttribute(shaders::kAttribInstancePosition, 3, offsetof(ShapeInstance, position));
-    instanceAttribute(shaders::kAttribInstanceRotation, 4, offsetof(ShapeInstance, rotation));
-    instanceAttribute(shaders::kAttribInstanceScale, 3, offsetof(ShapeInstance, scale));
-    instanceAttribute(shaders::kAttribInstanceHalfHeight, 1, offsetof(ShapeInstance, halfHeight));
-    instanceAttribute(shaders::kAttribInstanceColor, 3, offsetof(ShapeInstance, color));
+    instanceAttributesFrom(0);
   }
   glBindVertexArray(0);
   return Ok{};
@@ -139,9 +154,23 @@ Status ShapePass::init() {
 
 void ShapePass::prepare(const std::vector<DrawShape>& shapes) {
   for (Batch& batch : m_batches) batch.pending.clear();
+  m_planeRuns.clear();
+  std::vector<std::pair<int, ShapeInstance>> planes;
   for (const DrawShape& shape : shapes) {
     if (kindIndex(shape.kind) >= kKindCount) continue;  // ConvexMesh: ConvexMeshPass
+    if (shape.kind == ShapeKind::Plane) {
+      const bool textured = shape.groundTexture >= 0 && shape.groundTexture < kTerrainTextureCount;
+      planes.emplace_back(textured ? shape.groundTexture : -1, makeInstance(shape));
+      continue;
+    }
     m_batches[kindIndex(shape.kind)].pending.push_back(makeInstance(shape));
+  }
+  std::stable_sort(planes.begin(), planes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Batch& planeBatch = m_batches[kindIndex(ShapeKind::Plane)];
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    if (m_planeRuns.empty() || m_planeRuns.back().groundTexture != planes[i].first) m_planeRuns.push_back({planes[i].first, i, 0});
+    ++m_planeRuns.back().count;
+    planeBatch.pending.push_back(planes[i].second);
   }
   for (Batch& batch : m_batches) {
     if (batch.pending.empty()) continue;
@@ -177,13 +206,36 @@ void ShapePass::draw(const FrameView& view, const Environment& environment) {
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
+  glUniform1i(m_groundTexture, -1);
   for (std::size_t k = 0; k < kKindCount; ++k) {
     Batch& batch = m_batches[k];
     if (batch.pending.empty()) continue;
-    glUniform1i(m_checker, k == kindIndex(ShapeKind::Plane) ? 1 : 0);
     glBindVertexArray(batch.vao.get());
-    glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
-                            static_cast<GLsizei>(batch.pending.size()));
+    if (k != kindIndex(ShapeKind::Plane)) {
+      glUniform1i(m_checker, 0);
+      glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(batch.pending.size()));
+      continue;
+    }
+    // Planes, a run per ground texture (the checkerboard first).
+    glUniform1i(m_checker, 1);
+    glBindBuffer(GL_ARRAY_BUFFER, batch.instances.get());
+    for (const PlaneRun& run : m_planeRuns) {
+      if (run.groundTexture >= 0) {
+        if (!m_groundTextures.get()) m_groundTextures = makeGroundTextureArray();
+        glActiveTexture(GL_TEXTURE0 + kGroundUnit);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, m_groundTextures.get());
+        glActiveTexture(GL_TEXTURE0);
+        glUniform1i(m_ground, kGroundUnit);
+        glUniform1f(m_groundPerMetre, 1.0f / kTerrainTextureSize_m);
+      }
+      glUniform1i(m_groundTexture, run.groundTexture);
+      instanceAttributesFrom(run.first);
+      glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(run.count));
+    }
+    instanceAttributesFrom(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
   glBindVertexArray(0);
   glDisable(GL_CULL_FACE);

@@ -53,9 +53,16 @@ class ShapePass {
     std::vector<ShapeInstance> pending;
   };
   std::array<Batch, kKindCount> m_batches;
+  // Planes are sorted by ground texture; each run of one texture is one draw.
+  struct PlaneRun {
+    int groundTexture;  // -1: checkerboard
+    std::size_t first, count;
+  };
+  std::vector<PlaneRun> m_planeRuns;
+  GlTexture m_groundTextures;  // made when a plane first asks for a ground texture
   GlProgram m_program, m_depthProgram;
   LitUniforms m_lit;
-  GLint m_checker = -1, m_depthViewProjection = -1;
+  GLint m_checker = -1, m_groundTexture = -1, m_ground = -1, m_groundPerMetre = -1, m_depthViewProjection = -1;
 };
 
 }  // namespace tumble::render

@@ -62,6 +62,25 @@ Result<TerrainPass::Program> TerrainPass::buildTerrainProgram(const char* name, 
   return p;
 }
 
+GlTexture makeGroundTextureArray() {
+  GlTexture textures = makeTexture();
+  glBindTexture(GL_TEXTURE_2D_ARRAY, textures.get());
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, kTerrainTextureSize, kTerrainTextureSize,
+               kTerrainTextureCount, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  for (int layer = 0; layer < kTerrainTextureCount; ++layer) {
+    const std::vector<std::uint8_t> rgba = generateTerrainTexture(layer);
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, kTerrainTextureSize, kTerrainTextureSize, 1,
+                    GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  }
+  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  return textures;
+}
+
 Status TerrainPass::init() {
   const auto start = std::chrono::steady_clock::now();
   auto detailed = buildTerrainProgram("terrain shader", shaders::kTerrainVertex, shaders::kTerrainFragment);
@@ -78,21 +97,7 @@ Status TerrainPass::init() {
 
   // Material textures, generated here (first terrain frame), not at start-up:
   // a scene without terrain never pays for them.
-  m_textures = makeTexture();
-  glBindTexture(GL_TEXTURE_2D_ARRAY, m_textures.get());
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_SRGB8_ALPHA8, kTerrainTextureSize, kTerrainTextureSize,
-               kTerrainTextureCount, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  for (int layer = 0; layer < kTerrainTextureCount; ++layer) {
-    const std::vector<std::uint8_t> rgba = generateTerrainTexture(layer);
-    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, kTerrainTextureSize, kTerrainTextureSize, 1,
-                    GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  }
-  glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  m_textures = makeGroundTextureArray();
 
   m_materials = makeTexture();
   if (std::string errors = drainGlErrors(); !errors.empty()) {

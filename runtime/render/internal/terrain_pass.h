@@ -30,6 +30,12 @@ namespace tumble::render {
 
 inline constexpr std::size_t kTerrainResidentBudget = 96u << 20;  // bytes of chunk vertices
 
+/// The terrain's ground textures (render/internal/terrain_textures.h) as one
+/// sRGB texture array with mipmaps, repeating; generated on the call (a few
+/// ms), so callers make it on first need. The terrain and textured planes
+/// use it.
+GlTexture makeGroundTextureArray();
+
 class TerrainPass {
  public:
   /// Draws `surface`; fills `stats`. Creates the shader and textures on the
