@@ -128,5 +128,30 @@ TEST_F(RainRender, AStormFrameHasRainStreaksAClearOneHasNone) {
   EXPECT_GT(vertical, horizontal) << "streaks, not dots (" << vertical << " vs " << horizontal << ")";
 }
 
+// Cloth surfaces share the shapes' shader with the planes' ground textures
+// but never set those: they keep their own colour beside a grass plane and
+// a checker plane alike (a default texture setting once drew them black).
+TEST_F(RainRender, ASurfaceKeepsItsColourBesideAGroundTexturedPlane) {
+  Camera& camera = m_renderer->camera();
+  camera.target = {0, 1, 0};
+  camera.yaw_rad = 0;
+  camera.pitch_rad = 0.3f;
+  camera.distance_m = 5;
+  for (int texture : {-1, 0}) {
+    FrameSnapshot frame;
+    DrawShape ground;
+    ground.kind = ShapeKind::Plane;
+    ground.groundTexture = texture;
+    frame.shapes.push_back(ground);
+    DrawSurface flag;  // a 2 x 2 m red sheet standing up in front of the eye
+    flag.positions = {{-1, 0.2f, 0}, {1, 0.2f, 0}, {1, 2.2f, 0}, {-1, 2.2f, 0}};
+    flag.indices = {0, 1, 2, 0, 2, 3};
+    flag.color = {0.9f, 0.08f, 0.06f};
+    frame.surfaces.push_back(flag);
+    const test::Image shot = render(frame, "flag_" + std::to_string(texture + 1) + ".png");
+    EXPECT_GT(test::countPixels(shot, test::isReddish), 3000) << "ground texture " << texture;
+  }
+}
+
 }  // namespace
 }  // namespace tumble::render

@@ -135,7 +135,8 @@ in vec3 vColor;
 in vec2 vPlaneCoord;
 
 uniform int uChecker;           // 1: 1 m checkerboard in local XZ (planes)
-uniform int uGroundTexture;     // planes: >= 0 the ground texture layer drawn instead of the checkerboard
+uniform int uGroundLayer;       // planes: 0 none, n > 0 ground texture layer n - 1 instead of the checkerboard
+                                // (0, the default, keeps programs that never set it untextured)
 uniform sampler2DArray uGround; // the terrain's ground textures (sRGB, sampled as linear)
 uniform float uGroundPerMetre;  // ground texture repeats per metre
 
@@ -154,8 +155,8 @@ float checker(vec2 p) {
 void main() {
   vec3 n = normalize(vNormal);
   vec3 albedo = vColor;
-  if (uGroundTexture >= 0) {
-    albedo *= texture(uGround, vec3(vPlaneCoord * uGroundPerMetre, float(uGroundTexture))).rgb * groundShade(vPlaneCoord);
+  if (uGroundLayer > 0) {
+    albedo *= texture(uGround, vec3(vPlaneCoord * uGroundPerMetre, float(uGroundLayer - 1))).rgb * groundShade(vPlaneCoord);
   } else if (uChecker != 0) {
     albedo *= mix(1.0, 0.55, checker(vPlaneCoord));
   }

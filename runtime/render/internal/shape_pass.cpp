@@ -116,7 +116,7 @@ Status ShapePass::init() {
   m_program = std::move(*program);
   m_lit.locate(m_program);
   m_checker = uniformLocation(m_program, "uChecker");
-  m_groundTexture = uniformLocation(m_program, "uGroundTexture");
+  m_groundLayer = uniformLocation(m_program, "uGroundLayer");
   m_ground = uniformLocation(m_program, "uGround");
   m_groundPerMetre = uniformLocation(m_program, "uGroundPerMetre");
   auto depth = buildProgram("shape shadow shader", shaders::kShapeVertex, shaders::kDepthFragment);
@@ -206,7 +206,7 @@ void ShapePass::draw(const FrameView& view, const Environment& environment) {
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
-  glUniform1i(m_groundTexture, -1);
+  glUniform1i(m_groundLayer, 0);
   for (std::size_t k = 0; k < kKindCount; ++k) {
     Batch& batch = m_batches[k];
     if (batch.pending.empty()) continue;
@@ -229,7 +229,7 @@ void ShapePass::draw(const FrameView& view, const Environment& environment) {
         glUniform1i(m_ground, kGroundUnit);
         glUniform1f(m_groundPerMetre, 1.0f / kTerrainTextureSize_m);
       }
-      glUniform1i(m_groundTexture, run.groundTexture);
+      glUniform1i(m_groundLayer, run.groundTexture + 1);
       instanceAttributesFrom(run.first);
       glDrawElementsInstanced(GL_TRIANGLES, batch.indexCount, GL_UNSIGNED_INT, nullptr,
                               static_cast<GLsizei>(run.count));

@@ -62,7 +62,7 @@ class ShapePass {
   GlTexture m_groundTextures;  // made when a plane first asks for a ground texture
   GlProgram m_program, m_depthProgram;
   LitUniforms m_lit;
-  GLint m_checker = -1, m_groundTexture = -1, m_ground = -1, m_groundPerMetre = -1, m_depthViewProjection = -1;
+  GLint m_checker = -1, m_groundLayer = -1, m_ground = -1, m_groundPerMetre = -1, m_depthViewProjection = -1;
 };
 
 }  // namespace tumble::render
