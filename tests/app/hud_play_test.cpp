@@ -311,8 +311,9 @@ double shareOf(const Picture& p, double x0, double y0, double x1, double y1, F p
 // it: the hood view looks over the car's own bonnet, which fills the bottom
 // of the picture; the cockpit of a closed car draws the interior and hides
 // the body; the open buggy's cockpit shows its own roll cage. Played in the
-// showroom (a grey checker floor, so paint colours stand out) with the HUD
-// hidden by H.
+// showroom on its grey checker floor (--set ground=checker: on the default
+// grass the truck's green paint could not be told from the ground) with the
+// HUD hidden by H.
 TEST(HudPlay, TheCameraKeyGivesEachCarItsHoodAndCockpitViews) {
   const std::string dir = outDir("hud_play_car_views");
   const std::string size = "--width 640 --height 360";
@@ -331,7 +332,7 @@ TEST(HudPlay, TheCameraKeyGivesEachCarItsHoodAndCockpitViews) {
   const std::string cameraKeyAgain = "14 down key:C\n15 up key:C\n";
   for (const Car& car : cars) {
     SCOPED_TRACE(car.name);
-    const std::string ref = std::string("base:showroom --set car=base:") + car.name;
+    const std::string ref = std::string("base:showroom --set ground=checker --set car=base:") + car.name;
     auto hood = play(dir, std::string(car.name) + "_hood", ref, 40, hideHud + cameraKey, size,
                      "--screenshot " + dir + "/" + car.name + "_hood.png");
     ASSERT_EQ(hood.process.exitCode, 0) << hood.process.output;

@@ -8,6 +8,7 @@
 -- against them (what the headless tests check).
 --
 --   tumble play base:showroom            (C cycles orbit, follow, chase, hood, cockpit)
+--   tumble play base:showroom --set ground=checker   (the lab floor instead of grass)
 --   tumble run base:showroom --set autopilot=1 --screenshot shot.png
 
 local drive = require "tumble.drive"
@@ -23,7 +24,8 @@ return {
   on_start = function(ctx)
     -- The sky (drawn only): --set time_of_day=H, --set weather=cloudy|storm.
     environment.set{time_of_day = param("time_of_day", 15.0), weather = param("weather", "clear"), clouds = 0.3}
-    world.plane{texture = "grass"}
+    -- The ground: --set ground=checker (the lab floor) or any world.plane texture.
+    world.plane{texture = param("ground", "grass")}
     if sliding then
       -- The car: a 1.6 x 1.2 x 4.1 m box whose centre is 0.87 m above the model's origin.
       car = world.box{size = {1.6, 1.2, 4.1}, position = {0, 0.9, -6}, velocity = {0, 0, 12}, mass = 1100,
