@@ -264,17 +264,9 @@ void pendulums(std::vector<AccuracyRow>& rows) {
         c.add(i * kDt, double(w.body(b).position_m.x()));
         joints.step(Real(kDt));
       }
-      AccuracyRow row = makeRow("pendulum", std::string(physics::jointSolverName(solver)) + " joint, amplitude " +
-                                      fmt("%.0f", deg) + " deg: period (elliptic integral)",
-                      "s", T, c.period(), 0.005 * T, "0.5 % of the period (asked of the joint solver)");
-      // The Lagrange solver's loss of swing energy at large amplitudes is a
-      // known defect being fixed in the joint solver; until then its rows
-      // show the figures and do not fail the run.
-      if (solver == physics::JointSolverKind::Lagrange && !row.pass()) {
-        row.knownLimit = true;
-        row.note = "known defect: the lagrange joint solver loses swing energy at large amplitude";
-      }
-      rows.push_back(row);
+      rows.push_back(makeRow("pendulum", std::string(physics::jointSolverName(solver)) + " joint, amplitude " +
+                                             fmt("%.0f", deg) + " deg: period (elliptic integral)",
+                             "s", T, c.period(), 0.005 * T, "0.5 % of the period (asked of the joint solver)"));
     }
   }
 }

@@ -169,6 +169,10 @@ struct JointSystem::Impl {
 
   // ---- inside World::step (lagrange_substeps.cpp, "Time stepping") ----
   double h = 0;             ///< substep length, s
+  /// The World moves positions with the substep's end velocity (x += h v:
+  /// symplectic or backward Euler), so the relax keeps the curvature term
+  /// (lagrange_substeps.cpp, "Relax target").
+  bool endVelocityMovesPositions = true;
   bool inStep = false;      ///< prepared for the World step in progress
   std::uint64_t serial = 0; ///< World steps prepared so far
   double time_s = 0;        ///< simulated time of the substeps solved so far (the contacts' memory)
