@@ -38,6 +38,11 @@ struct HashCase {
 // the contact solver began solving each face manifold's normal rows as one
 // block (contact_solver.cpp, "Normal blocks"): every box resting on a face
 // is solved differently; each scenario's expectations still hold.
+// ChainLagrange changed when the Lagrange solver kept the swing's curvature
+// term in its relax sweeps and out of its Baumgarte damping
+// (lagrange_substeps.cpp, "Relax target"): the free chain swings on with
+// less loss; its expectations still hold (joints 0.26 mm open, no energy
+// gain, the bottom link past the vertical).
 constexpr HashCase kCases[] = {
     {"Drop", "base:drop", "35257034ae30cac4"},
     {"Pyramid", "base:pyramid", "ecd087b9bc83a7a4"},
@@ -45,7 +50,7 @@ constexpr HashCase kCases[] = {
     {"RagdollPileImpulse", "base:ragdoll_pile --set physics.joint_solver=impulse", "5d4069627a98ddce"},
     {"Drive", "base:drive --set autopilot=1", "f62feee10a1b01d8"},
     {"Cloth", "base:cloth", "28da0f5e77239499"},
-    {"ChainLagrange", "base:chain --set physics.joint_solver=lagrange", "19e76ba4b747376b"},
+    {"ChainLagrange", "base:chain --set physics.joint_solver=lagrange", "0bdabb98f5127b12"},
     {"ChainImpulse", "base:chain --set physics.joint_solver=impulse", "5345c580ce4c168d"},
     {"TimeTrial", "base:time_trial --set autopilot=1", "24cce8b24d5f281f"},
     {"Hills", "base:hills", "5c46827fd254b1c3"},         // terrain contacts
