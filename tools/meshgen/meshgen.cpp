@@ -476,6 +476,58 @@ std::vector<V2> archOutline(double centreZ) {
           {centreZ + 0.24, 0.66}, {centreZ + 0.38, 0.50}, {centreZ + l, 0.28}};
 }
 
+// A car's lower body with wheel arches cut in, seen from the side: below
+// the sill line (y = sill) a strip behind the first arch, one between each
+// pair and one in front of the last, each arch (an outline from the
+// underside up and back down, solid only where wellSolid holds: the wheel
+// well's inner wall) and one quad over each arch edge up to the sill.
+// rearFace and frontFace are the points on the body's ends from the sill
+// down (rear) and from the underside up (front), both ends of the sill
+// included. Returns the sill line's points, rear to front: the lower edge
+// of the cell above must carry every one (cells meet edge to edge).
+std::vector<int> archedLowerBody(PrismSolid& s, double sill, const std::vector<int>& rearFace,
+                                 const std::vector<int>& frontFace, const std::vector<std::vector<V2>>& arches,
+                                 const std::string& material, const std::function<bool(double)>& rearSolid,
+                                 const std::function<bool(double)>& wellSolid) {
+  const int rearBottom = rearFace.back();
+  std::vector<std::pair<double, int>> sillPoints{{s.points[std::size_t(rearFace.front())].x(), rearFace.front()},
+                                                 {s.points[std::size_t(frontFace.back())].x(), frontFace.back()}};
+  auto sillAt = [&](double z) {
+    for (const auto& [zz, i] : sillPoints)
+      if (std::abs(zz - z) < 1e-9) return i;
+    const int i = s.point(z, sill);
+    sillPoints.emplace_back(z, i);
+    return i;
+  };
+  auto all = [](double) { return true; };
+  int last = rearBottom;  // the underside point the next strip starts from
+  double lastZ = sillPoints.front().first;
+  for (const std::vector<V2>& outline : arches) {
+    std::vector<int> arch;
+    for (const V2& q : outline) arch.push_back(s.point(q.x(), q.y()));
+    if (last == rearBottom) {
+      std::vector<int> strip{rearBottom, arch.front(), sillAt(outline.front().x())};
+      strip.insert(strip.end(), rearFace.begin(), rearFace.end() - 1);
+      s.cell(strip, material, rearSolid);
+    } else {
+      s.cell({last, arch.front(), sillAt(outline.front().x()), sillAt(lastZ)}, material, all);
+    }
+    s.cell(arch, "plastic_black", wellSolid);
+    for (std::size_t i = 1; i < arch.size(); ++i)
+      s.cell({arch[i - 1], arch[i], sillAt(outline[i].x()), sillAt(outline[i - 1].x())}, material, all);
+    last = arch.back();
+    lastZ = outline.back().x();
+  }
+  std::vector<int> front{last};
+  front.insert(front.end(), frontFace.begin(), frontFace.end());
+  front.push_back(sillAt(lastZ));
+  s.cell(front, material, all);
+  std::sort(sillPoints.begin(), sillPoints.end());
+  std::vector<int> line;
+  for (const auto& [z, i] : sillPoints) line.push_back(i);
+  return line;
+}
+
 // Hatchback, 4.14 m long with its bumpers, 1.56 m wide body (wheels outside
 // it at x = +-0.8, z = +-1.3, radius 0.32). One closed solid (a
 // PrismSolid), so chassis.inertia = "mesh" counts no volume twice: the
@@ -505,39 +557,13 @@ ObjModel hatchback(bool wheelArches) {
   if (!wheelArches) {
     h.cell({b0, b1, f045, f062, f074, f078, belt0, belt1, r088, r074, r064, r052, r045}, "paint_red", all);
   } else {
-    // Below y = 0.74: a strip behind, between and in front of the arches,
-    // the arches (solid only inside the wells, |x| < 0.40) and one quad over
-    // each arch edge up to y = 0.74; above it one cell to the belt line,
-    // its lower edge carrying every point the strips and quads put there.
-    const double sill = 0.74;
-    std::vector<std::pair<double, int>> sillPoints{{-2.0, r074}, {2.0, f074}};
-    auto sillAt = [&](double z) {
-      for (const auto& [zz, i] : sillPoints)
-        if (std::abs(zz - z) < 1e-9) return i;
-      const int i = h.point(z, sill);
-      sillPoints.emplace_back(z, i);
-      return i;
-    };
-    int last = b0;  // the underside point the next strip starts from
-    double lastZ = -2.0;
-    for (double centre : {-1.30, 1.25}) {
-      const std::vector<V2> outline = archOutline(centre);
-      std::vector<int> arch;
-      for (const V2& q : outline) arch.push_back(h.point(q.x(), q.y()));
-      // Behind the rear arch the body below the sill is tucked in to
-      // |x| < 0.60 (as the bumper), so the rear tyres show from behind.
-      if (last == b0) h.cell({b0, arch.front(), sillAt(outline.front().x()), r074, r064, r052, r045}, "paint_red", tucked);
-      else h.cell({last, arch.front(), sillAt(outline.front().x()), sillAt(lastZ)}, "paint_red", all);
-      h.cell(arch, "plastic_black", [](double x) { return std::abs(x) < 0.40; });
-      for (std::size_t i = 1; i < arch.size(); ++i)
-        h.cell({arch[i - 1], arch[i], sillAt(outline[i].x()), sillAt(outline[i - 1].x())}, "paint_red", all);
-      last = arch.back();
-      lastZ = outline.back().x();
-    }
-    h.cell({last, b1, f045, f062, f074, sillAt(lastZ)}, "paint_red", all);
-    std::sort(sillPoints.begin(), sillPoints.end());
-    std::vector<int> upper;
-    for (const auto& [z, i] : sillPoints) upper.push_back(i);
+    // Below y = 0.74 the arches (wells lined black, solid only inside
+    // |x| < 0.40); behind the rear arch the body below the sill is tucked
+    // in to |x| < 0.60 (as the bumper), so the rear tyres show from behind.
+    // Above the sill one cell to the belt line.
+    std::vector<int> upper = archedLowerBody(h, 0.74, {r074, r064, r052, r045, b0}, {b1, f045, f062, f074},
+                                             {archOutline(-1.30), archOutline(1.25)}, "paint_red", tucked,
+                                             [](double x) { return std::abs(x) < 0.40; });
     for (int q : {f078, belt0, belt1, r088}) upper.push_back(q);
     h.cell(upper, "paint_red", all);
   }
@@ -605,40 +631,18 @@ ObjModel truck(bool wheelArches) {
   if (!wheelArches) {
     t.cell({b0, b1, f065, f098, m098, a098, c098, g098, r098, r094, r080, r078}, "paint_green", all);
   } else {
-    // Below the sill: a strip behind, between and in front of the arches,
-    // the arches (solid only inside the wells) and one quad over each arch
-    // edge up to the sill; above it one band to the bed floor, its lower
-    // edge carrying every point the strips and quads put on the sill.
-    std::vector<std::pair<double, int>> sillPoints{{-2.4, r094}, {2.4, f094}};
-    auto sillAt = [&](double z) {
-      for (const auto& [zz, i] : sillPoints)
-        if (std::abs(zz - z) < 1e-9) return i;
-      const int i = t.point(z, kTruckSill);
-      sillPoints.emplace_back(z, i);
-      return i;
-    };
-    int last = -1;
-    double lastZ = -2.4;
-    for (double centre : {-1.55, 1.55}) {
+    // Below the sill the arches (wells lined black, solid only inside
+    // |x| < 0.55); above it one band to the bed floor.
+    auto truckArch = [](double centre) {
       const double l = kTruckArchHalfLength, h = kTruckArchTop - 0.62;
-      const std::vector<V2> outline = {{centre - l, 0.62},           {centre - 0.92 * l, 0.62 + 0.55 * h},
-                                       {centre - 0.6 * l, 0.62 + 0.9 * h}, {centre, kTruckArchTop},
-                                       {centre + 0.6 * l, 0.62 + 0.9 * h}, {centre + 0.92 * l, 0.62 + 0.55 * h},
-                                       {centre + l, 0.62}};
-      std::vector<int> arch;
-      for (const V2& q : outline) arch.push_back(t.point(q.x(), q.y()));
-      if (last < 0) t.cell({b0, arch.front(), sillAt(outline.front().x()), r094, r080, r078}, "paint_green", all);
-      else t.cell({last, arch.front(), sillAt(outline.front().x()), sillAt(lastZ)}, "paint_green", all);
-      t.cell(arch, "plastic_black", [](double x) { return std::abs(x) < 0.55; });
-      for (std::size_t i = 1; i < arch.size(); ++i)
-        t.cell({arch[i - 1], arch[i], sillAt(outline[i].x()), sillAt(outline[i - 1].x())}, "paint_green", all);
-      last = arch.back();
-      lastZ = outline.back().x();
-    }
-    t.cell({last, b1, f065, f094, sillAt(lastZ)}, "paint_green", all);
-    std::sort(sillPoints.begin(), sillPoints.end());
-    std::vector<int> band;
-    for (const auto& [z, i] : sillPoints) band.push_back(i);
+      return std::vector<V2>{{centre - l, 0.62},           {centre - 0.92 * l, 0.62 + 0.55 * h},
+                             {centre - 0.6 * l, 0.62 + 0.9 * h}, {centre, kTruckArchTop},
+                             {centre + 0.6 * l, 0.62 + 0.9 * h}, {centre + 0.92 * l, 0.62 + 0.55 * h},
+                             {centre + l, 0.62}};
+    };
+    std::vector<int> band = archedLowerBody(t, kTruckSill, {r094, r080, r078, b0}, {b1, f065, f094},
+                                            {truckArch(-1.55), truckArch(1.55)}, "paint_green", all,
+                                            [](double x) { return std::abs(x) < 0.55; });
     for (int q : {f098, m098, a098, c098, g098, r098}) band.push_back(q);
     t.cell(band, "paint_green", all);
   }
