@@ -104,6 +104,50 @@ TEST_F(RenderImage, ColouredShapesAppearWhereTheCameraLooks) {
   EXPECT_TRUE(isGreenish(q[0], q[1], q[2])) << int(q[0]) << " " << int(q[1]) << " " << int(q[2]);
 }
 
+// A cylinder is drawn as a cylinder: 2 m across and 4 m tall, seen from
+// the side its red silhouette is twice as tall as wide (a sphere's would be
+// 1), and from above its cap fills pi/4 of its bounding square (0.78 for
+// the 32-sided mesh; a box would fill all of it).
+TEST_F(RenderImage, ACylinderLooksLikeOneFromTheSideAndFromAbove) {
+  Camera& camera = m_renderer->camera();
+  camera.target = {0, 0, 0};
+  camera.yaw_rad = 0.3f;
+  camera.distance_m = 12;
+  FrameSnapshot frame;
+  DrawShape c;
+  c.kind = ShapeKind::Cylinder;
+  c.radius_m = 1;
+  c.halfHeight_m = 2;
+  c.color = {0.9f, 0.08f, 0.06f};
+  frame.shapes.push_back(c);
+  struct Box {
+    int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1, n = 0;
+  };
+  auto silhouette = [&](const Image& image) {
+    Box b;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const std::uint8_t* p = image.at(x, y);
+        if (!isReddish(p[0], p[1], p[2])) continue;
+        b.x0 = std::min(b.x0, x), b.x1 = std::max(b.x1, x), b.y0 = std::min(b.y0, y), b.y1 = std::max(b.y1, y);
+        ++b.n;
+      }
+    return b;
+  };
+  camera.pitch_rad = 0;
+  const Box side = silhouette(render(frame, "cylinder_side.png"));
+  ASSERT_GT(side.n, 500);
+  // Perspective makes the near rim's top and bottom 12 / 11 as far apart
+  // as the axis's: 4.36 m against 2.0 m.
+  const double aspect = double(side.y1 - side.y0 + 1) / double(side.x1 - side.x0 + 1);
+  EXPECT_NEAR(aspect, 2.0 * 12 / 11, 0.12) << "height over width from the side";
+  camera.pitch_rad = 1.5f;  // 86 degrees: nearly straight down
+  const Box top = silhouette(render(frame, "cylinder_top.png"));
+  ASSERT_GT(top.n, 500);
+  const double fill = double(top.n) / (double(top.x1 - top.x0 + 1) * double(top.y1 - top.y0 + 1));
+  EXPECT_NEAR(fill, 0.78, 0.04) << "the cap is round";
+}
+
 // A plane draws the ground texture it is given instead of the checkerboard:
 // a floor of the checker and a wall of grass facing the camera in one
 // frame (two runs of the plane batch, each with its own instances): the
