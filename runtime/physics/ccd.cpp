@@ -12,8 +12,10 @@
 // away). So, as collideSpheresSwept does for two spheres, a sphere that can
 // move more than 2 * spec this step against a shape that does not move or
 // turn gets its contact from the time of impact: its centre's path against
-// the shape grown by the radius (rayShape; the grown box has sharp corners,
-// so a path grazing a corner counts as a hit: conservative). The normal is
+// the shape grown by the radius (rayShape; the grown box and cylinder have
+// sharp corners and rims, so a path grazing one counts as a hit:
+// conservative). Boxes, hulls and cylinders (a post: before, 32 of 244
+// shots at 200 m/s that pass a 0.15 m post were turned away by it). The normal is
 // the face normal there, the separation the distance to that face plane
 // along it (so the solver lets it approach exactly until impact), and a path
 // that misses gives no contact. A sphere already within spec of the shape

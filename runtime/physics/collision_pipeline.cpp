@@ -231,12 +231,14 @@ void World::collideBodyPair(std::uint32_t ia, std::uint32_t ib, Real dt, int& po
   const bool swept = a.shape.type == ShapeType::Sphere && b.shape.type == ShapeType::Sphere && margin > 2 * spec;
   std::vector<Manifold>& found = st.pairManifolds;
   found.clear();
-  // A fast sphere against a static box or hull: the contact it will have
-  // at its time of impact, none if its path misses (sweptSphereContact).
+  // A fast sphere against a static box, hull or cylinder: the contact it
+  // will have at its time of impact, none if its path misses
+  // (sweptSphereContact).
   const bool sphereA = a.shape.type == ShapeType::Sphere, sphereB = b.shape.type == ShapeType::Sphere;
   const Body& other = sphereA ? b : a;
   const bool sweptConvex = margin > 2 * spec && sphereA != sphereB &&
-                           (other.shape.type == ShapeType::Box || other.shape.type == ShapeType::Hull) &&
+                           (other.shape.type == ShapeType::Box || other.shape.type == ShapeType::Hull ||
+                            other.shape.type == ShapeType::Cylinder) &&
                            !other.isDynamic() && other.angularVelocity_radps.squaredNorm() == 0;
   const bool meshPair = a.shape.type == ShapeType::Mesh || b.shape.type == ShapeType::Mesh;
   if (swept) {
