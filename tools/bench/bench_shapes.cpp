@@ -3,7 +3,8 @@
 //   build/bin/tumble_bench_shapes
 // BM_Pile/<kind>: 64 bodies dropped in a 4 x 4 x 4 block onto the ground,
 // stepped for 2 s (sleep off); kind 0 boxes, 1 the same boxes as hulls,
-// 2 T-handle compounds (a box and a capsule), 3 16-sided prisms (hulls).
+// 2 T-handle compounds (a box and a capsule), 3 16-sided prisms (hulls),
+// 4 cylinders of the prisms' size (the exact shape against its hull).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -40,6 +41,7 @@ Shape pileShape(int kind) {
       }
       return makeHullShape(p).value();
     }
+    case 4: return Shape::cylinder(Real(0.4), Real(0.3));
     default: return Shape::box(h);
   }
 }
@@ -66,9 +68,10 @@ void BM_Pile(benchmark::State& state) {
     state.ResumeTiming();
     for (int s = 0; s < 120; ++s) w.step(Real(1.0 / 60.0));
   }
-  state.SetLabel(kind == 0 ? "boxes" : kind == 1 ? "box hulls" : kind == 2 ? "T compounds" : "16-gon prisms");
+  const char* const labels[] = {"boxes", "box hulls", "T compounds", "16-gon prisms", "cylinders"};
+  state.SetLabel(labels[kind]);
 }
-BENCHMARK(BM_Pile)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Pile)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 void BM_HullBuild(benchmark::State& state) {
   // Points on a sphere: every point is a hull vertex (the worst case).
