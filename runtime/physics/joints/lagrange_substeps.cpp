@@ -231,6 +231,13 @@ static bool markTouchedRows(JointSystem::Impl& im) {
   return newly;
 }
 
+/// Whether row r keeps the curvature of its swing: its natural C' stays out
+/// of the feedback (substepSolve) and the relax targets -h/2 J'q' instead of
+/// 0 (substepProject, "Relax target", which says where and why).
+static bool keepsCurvature(const JointSystem::Impl& im, const Row& r) {
+  return !r.limit && im.endVelocityMovesPositions && !r.touched;
+}
+
 /// J q' of one row for the velocities v, w (per state; -1 = the world, at rest).
 static double rowVelocity(const Row& r, const std::vector<V3>& v, const std::vector<V3>& w) {
   double c = 0;
@@ -325,7 +332,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   const double feedback = 1 + h * kd + h * h * ks;
   markTouchedRows(im);
   for (Row& r : im.rows) {
-    if (!r.limit && im.endVelocityMovesPositions && !r.touched) {
+    if (keepsCurvature(im, r)) {
       const double natural = 0.5 * h * r.jdq;
       r.target = natural - h * r.jdq + (r.cdot - natural - h * ks * r.c) / feedback;
     } else {
@@ -430,8 +437,10 @@ double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
       //     curvature. With the term there too, 10 piled dolls had a hinge
       //     84 degrees off its axis (12 without) and their joints opened
       //     10.6 cm (4.9 without).
-      const bool curvature = im.endVelocityMovesPositions && !r.touched;
-      const double target = useBias ? r.target : r.limit ? std::max(r.target, 0.0) : curvature ? -0.5 * h * r.jdq : 0.0;
+      const double target = useBias          ? r.target
+                            : r.limit          ? std::max(r.target, 0.0)
+                            : keepsCurvature(im, r) ? -0.5 * h * r.jdq
+                                                    : 0.0;
       im.rhs[r.index] = target - rowVelocity(r, im.vk, im.wk);
     }
   const Eigen::VectorXd& dmu = im.lambda = im.factor.ldlt.solve(im.rhs);

@@ -155,7 +155,8 @@ Status ShapePass::init() {
 void ShapePass::prepare(const std::vector<DrawShape>& shapes) {
   for (Batch& batch : m_batches) batch.pending.clear();
   m_planeRuns.clear();
-  std::vector<std::pair<int, ShapeInstance>> planes;
+  std::vector<std::pair<int, ShapeInstance>>& planes = m_planes;
+  planes.clear();
   for (const DrawShape& shape : shapes) {
     if (kindIndex(shape.kind) >= kKindCount) continue;  // ConvexMesh: ConvexMeshPass
     if (shape.kind == ShapeKind::Plane) {

@@ -4,6 +4,7 @@
 // colour) is rebuilt from the snapshot each frame into vectors that keep
 // their capacity, so a steady scene allocates nothing per frame.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "core/result.h"
@@ -59,6 +60,7 @@ class ShapePass {
     std::size_t first, count;
   };
   std::vector<PlaneRun> m_planeRuns;
+  std::vector<std::pair<int, ShapeInstance>> m_planes;  // this frame's planes by texture (kept for its capacity)
   GlTexture m_groundTextures;  // made when a plane first asks for a ground texture
   GlProgram m_program, m_depthProgram;
   LitUniforms m_lit;

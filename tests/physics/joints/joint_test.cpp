@@ -50,10 +50,17 @@ TEST(JointSystem, PendulumKeepsItsEnergyAtEveryAmplitude) {
       joints.createJoint(makeJointDef(world, JointType::Ball, bob, BodyId{}, pivot)).value();
       const double e0 = world.totalEnergy(), mgL = m * 9.81 * L;
       double worst = 0;
+      int crossings = 0;  // passes under the pivot: a world that does not step keeps its energy too
+      double lastX = d.position_m.x() - pivot.x();
       for (int i = 0; i < 12 * 60; ++i) {
         joints.step(Real(1.0 / 60.0));
         worst = std::max(worst, std::abs(world.totalEnergy() - e0) / mgL);
+        const double x = world.body(bob).position_m.x() - pivot.x();
+        crossings += (x < 0) != (lastX < 0);
+        lastX = x;
       }
+      // The slowest swing (170 degrees) has a 5.1 s period: 4 passes in 12 s.
+      EXPECT_GE(crossings, 4) << jointSolverName(solver) << " at " << deg << " degrees: the bob swings";
       std::printf("[pendulum energy] %-8s %5.0f deg: largest |E - E0| %.4f of m g L, anchor error max %.2e m\n",
                   jointSolverName(solver), deg, worst, joints.maxAnchorError_m());
       EXPECT_LT(worst, 0.01) << jointSolverName(solver) << " at " << deg << " degrees";
