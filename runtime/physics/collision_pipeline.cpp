@@ -209,12 +209,20 @@ void World::findCandidatePairs() {
   auto canCollide = [&](std::uint32_t a, std::uint32_t b) {
     const Body& A = m_bodies[a];
     const Body& B = m_bodies[b];
-    return (A.moves() || B.moves()) && !filtered(a, b);
+    if (!(A.moves() || B.moves()) || filtered(a, b)) return 0;
+    return A.isDynamic() && B.isDynamic() ? 2 : 1;
   };
-  m_broad->findPairs(st.boxes, st.active, canCollide, st.pairs);
+  // The cost cap (WorldSettings::maxContactPairsPerBody).
+  PairBudget budget;
+  if (m_settings.maxContactPairsPerBody > 0)
+    budget.fixedLeft = budget.dynamicLeft = std::size_t(m_settings.maxContactPairsPerBody) * std::size_t(m_bodyCount);
+  m_broad->findPairs(st.boxes, st.active, canCollide, budget, st.pairs);
   for (std::uint32_t p : st.planes)
     for (std::uint32_t i = 0; i < n; ++i)
-      if (st.active[i] && m_bodies[i].moves() && !filtered(p, i)) st.pairs.emplace_back(std::min(p, i), std::max(p, i));
+      if (st.active[i] && m_bodies[i].moves() && !filtered(p, i) && budget.take(1))
+        st.pairs.emplace_back(std::min(p, i), std::max(p, i));
+  m_error.contactPairsSkipped += budget.skipped;
+  m_lastContactPairsSkipped = budget.skipped;
 }
 
 void World::collideBodyPair(std::uint32_t ia, std::uint32_t ib, Real dt, int& points) {

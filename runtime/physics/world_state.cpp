@@ -27,7 +27,9 @@ namespace tumble::physics {
 namespace {
 
 constexpr std::uint32_t kStateMagic = 0x54574c44;  // "TWLD"
-constexpr std::uint32_t kStateVersion = 1;
+// 2: WorldSettings::maxContactPairsPerBody and ErrorStats::contactPairsSkipped
+// (both stored as bytes).
+constexpr std::uint32_t kStateVersion = 2;
 constexpr std::size_t kMaxSlots = std::size_t(1) << 24;
 
 static_assert(kBitwise<Manifold>);

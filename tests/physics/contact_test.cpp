@@ -374,3 +374,62 @@ TEST(Contact, GlancingFastSpheresScatterAtTheImpactAngle) {
 }
 
 }  // namespace tumble::physics::test
+
+namespace tumble::physics::test {
+
+// The collision cost cap (WorldSettings::maxContactPairsPerBody). 200 boxes
+// created at one point are 19 900 overlapping pairs: the step collides at
+// most 32 per body (6432) of them, the floor keeps every one of its pairs,
+// and the boxes the kept pairs push apart spread until no pair is left out
+// (0.25 s). The explosion pushes some boxes into the floor: the lowest
+// centre measured 0.169 m (0.205 m uncapped) for boxes of half size 0.25 m.
+// A block of touching boxes (10.2 pairs per body) is never capped.
+TEST(Contact, BodiesCreatedInsideEachOtherAreCollidedWithinTheCostCapAndSpread) {
+  World world;
+  ASSERT_EQ(world.settings().maxContactPairsPerBody, 32);
+  addGround(world);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 200; ++i)
+    boxes.push_back(addBody(world, Shape::box(Vec3::Constant(Real(0.25))), Vec3(0, 1, 0), 1));
+  world.step(Real(1.0 / 60.0));
+  const long firstSkipped = world.contactPairsSkippedLastStep();
+  EXPECT_EQ(firstSkipped, 19900 - 32 * 201);
+  // Until no pair is left out, then 2 s to settle: no box ever sinks below
+  // the floor by its half size, and all end resting on it or on each other.
+  int steps = 1, capped = 0;
+  Real lowest = 1;
+  auto step = [&] {
+    world.step(Real(1.0 / 60.0));
+    ++steps;
+    for (BodyId b : boxes) lowest = std::min(lowest, world.body(b).position_m.y());
+  };
+  while (world.contactPairsSkippedLastStep() > 0 && steps < 600) step();
+  capped = steps;
+  for (int i = 0; i < 120; ++i) step();
+  Real spread = 0;
+  for (BodyId b : boxes) {
+    const Vec3 p = world.body(b).position_m;
+    ASSERT_TRUE(p.allFinite());
+    EXPECT_GT(p.y(), Real(0.24)) << "every box rests on the floor or on others";
+    spread = std::max(spread, Vec3(p.x(), 0, p.z()).norm());
+  }
+  std::printf("[pair cap] 200 boxes at one point: %ld pairs skipped in the first step, %ld in all, "
+              "none after %.2f s; spread to %.2f m; lowest centre %.3f m\n",
+              firstSkipped, world.errorStats().contactPairsSkipped, capped / 60.0, double(spread), double(lowest));
+  EXPECT_LT(capped, 600) << "the heap spread under the cap within 10 s";
+  EXPECT_EQ(world.contactPairsSkippedLastStep(), 0);
+  EXPECT_GT(lowest, Real(0)) << "no box sank below the floor by its half size";
+  EXPECT_GT(spread, Real(1));
+
+  World block;
+  addGround(block);
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 8; ++k)
+        addBody(block, Shape::box(Vec3::Constant(Real(0.5))), Vec3(Real(i), Real(k) + Real(0.5), Real(j)), 1);
+  for (int s = 0; s < 60; ++s) block.step(Real(1.0 / 60.0));
+  EXPECT_EQ(block.errorStats().contactPairsSkipped, 0);
+  EXPECT_GT(block.errorStats().contactsMax, 4 * 1000) << "the block's boxes do touch";
+}
+
+}  // namespace tumble::physics::test

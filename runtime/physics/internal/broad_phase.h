@@ -25,13 +25,30 @@ struct Aabb {
   }
 };
 
+/// The step's cost cap on pairs (WorldSettings::maxContactPairsPerBody):
+/// pairs with a body that contacts cannot move (static, kinematic, a plane)
+/// and pairs of two dynamic bodies each get their own allowance, so bodies
+/// piled into each other never cost the ground its contacts.
+struct PairBudget {
+  std::size_t fixedLeft = SIZE_MAX, dynamicLeft = SIZE_MAX;
+  long skipped = 0;  ///< overlapping pairs left out this step
+  /// kind: 1 = a pair with a fixed body, 2 = two dynamic bodies.
+  bool take(int kind) {
+    std::size_t& left = kind == 1 ? fixedLeft : dynamicLeft;
+    if (left == 0) return ++skipped, false;
+    --left;
+    return true;
+  }
+};
+
 class BroadPhase {
  public:
   /// boxes[i] for every body slot; active[i] false for dead slots and planes.
-  /// canCollide(i, j) filters (static-static, sleeping pairs).
+  /// canCollide(i, j) filters (static-static, sleeping pairs): 0 = no, else
+  /// the pair's kind for the budget (PairBudget::take).
   template <typename Filter>
   void findPairs(const std::vector<Aabb>& boxes, const std::vector<std::uint8_t>& active, Filter&& canCollide,
-                 std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
+                 PairBudget& budget, std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
 
   /// Insertion-sort swaps in the last update (a measure of coherence).
   std::size_t lastSwaps() const { return m_swaps; }
@@ -55,7 +72,8 @@ class BroadPhase {
 
 template <typename Filter>
 void BroadPhase::findPairs(const std::vector<Aabb>& boxes, const std::vector<std::uint8_t>& active,
-                           Filter&& canCollide, std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+                           Filter&& canCollide, PairBudget& budget,
+                           std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
   pairs.clear();
   // Keep m_order in sync with the set of active slots.
   std::size_t w = 0;
@@ -93,7 +111,8 @@ void BroadPhase::findPairs(const std::vector<Aabb>& boxes, const std::vector<std
       const Aabb& bb = boxes[b];
       if (bb.lo[ax] > ba.hi[ax]) break;
       if (!ba.overlaps(bb)) continue;
-      if (!canCollide(a, b)) continue;
+      const int kind = canCollide(a, b);
+      if (kind == 0 || !budget.take(kind)) continue;
       pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
