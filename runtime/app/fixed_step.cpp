@@ -62,6 +62,7 @@ void stepScene(Scene& scene, const StepTime& at, RunTimings& t) {
   if (simulate) {
     scene.world().step(Real(dt));
     scene.errorAudit().afterPhysics(scene, dt);
+    scene.warnOnceOfCostCaps();
   }
 
   // 6. Ropes and cloth, against the bodies' new positions.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <set>
@@ -238,6 +239,27 @@ physics::JointSystem& Scene::joints() {
     m_joints = std::make_unique<physics::JointSystem>(*m_world, js);
   }
   return *m_joints;
+}
+
+void Scene::warnOnceOfCostCaps() {
+  if (!m_warnedPairCap && m_world->contactPairsSkippedLastStep() > 0) {
+    m_warnedPairCap = true;
+    log::warn(name() + ": " + std::to_string(m_world->contactPairsSkippedLastStep()) +
+              " overlapping body pairs were not collided in one step: more than " +
+              std::to_string(m_world->settings().maxContactPairsPerBody) +
+              " pairs per body, which only bodies created inside each other reach; those pairs pass through "
+              "each other until the heap spreads (report: error.contact_pairs_skipped)");
+  }
+  if (!m_warnedJointCap && m_joints && m_joints->stepsOverCostCap() > 0) {
+    m_warnedJointCap = true;
+    char work[64];
+    std::snprintf(work, sizeof work, "%.3g", m_joints->overCostCapWorkPerRow());
+    log::warn(name() + ": the lagrange joint solver would need " + work +
+              " multiply-adds per row to factorize the joints' matrix, over its cost cap of " +
+              std::to_string(int(m_joints->settings().lagrangeMaxFactorWorkPerRow)) +
+              " (a body carrying many joints, or a lattice of joint loops), so the impulse solver solves "
+              "the joints until they change (report: counts.joint_steps_over_cost_cap)");
+  }
 }
 
 void Scene::setJointSolver(physics::JointSolverKind kind) {

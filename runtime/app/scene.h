@@ -143,6 +143,11 @@ class Scene final : public script::SceneSystems {
   /// report's joint_error_max_m.
   double jointErrorMax_m() const;
   /// The run report's energy and momentum figures, kept by stepScene.
+  /// After each World step: the first time in a run that a physics cost cap
+  /// acted (WorldSettings::maxContactPairsPerBody,
+  /// JointSettings::lagrangeMaxFactorWorkPerRow), a warning says what was
+  /// capped and why; the run report keeps the counts.
+  void warnOnceOfCostCaps();
   ErrorAudit& errorAudit() { return m_errorAudit; }
   const ErrorAudit& errorAudit() const { return m_errorAudit; }
   /// The fixed step now (s): --dt, or what the script asked for (world.set_dt).
@@ -254,6 +259,7 @@ class Scene final : public script::SceneSystems {
   std::optional<physics::BodyId> m_hiddenModelBody;
   bool m_collisionView = false;
   ErrorAudit m_errorAudit;
+  bool m_warnedPairCap = false, m_warnedJointCap = false;
 };
 
 }  // namespace tumble::app

@@ -161,8 +161,15 @@ struct JointSystem::Impl {
   /// limits) only the numeric factorization runs.
   struct Factor {
     Eigen::SparseMatrix<double> A;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+    /// Eigen's LDL^T, with the factor's column pointers readable after the
+    /// symbolic analysis alone (matrixL() asserts a numeric factorization):
+    /// they give the cost of the factorization before it runs.
+    struct Ldlt : Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> {
+      const int* analysedColumnStarts() const { return this->m_matrix.outerIndexPtr(); }
+    };
+    Ldlt ldlt;
     std::vector<int> patternOuter, patternInner;
+    double work = 0;  ///< multiply-adds of one factorization of that pattern, about: sum over L's columns (c_j + 1)^2
   };
   Factor factor;
   std::vector<double> inverseDiagonal, inverseValues;  ///< (A^-1)_ii and A^-1 on L's pattern (compliance)
@@ -174,6 +181,9 @@ struct JointSystem::Impl {
   /// (lagrange_substeps.cpp, "Relax target").
   bool endVelocityMovesPositions = true;
   bool inStep = false;      ///< prepared for the World step in progress
+  /// The last solve found the factorization over JointSettings::
+  /// lagrangeMaxFactorWorkPerRow and solved nothing (JointSystem::step switches).
+  bool overCostCap = false;
   std::uint64_t serial = 0; ///< World steps prepared so far
   double time_s = 0;        ///< simulated time of the substeps solved so far (the contacts' memory)
   std::vector<lagrange::V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
@@ -210,8 +220,17 @@ void addMotorTorques(const Evaluation& ev, std::vector<BodyState>& st, const Joi
 /// their position in the system) and lists them per body. Returns their count.
 int numberSolvedRows(JointSystem::Impl& im);
 /// A = J W J^T over the numbered rows, then its LDL^T factorization
-/// (compliance: see JointSettings::compliance).
-void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance = 0);
+/// (compliance: see JointSettings::compliance). False, and nothing
+/// factorized, when the factorization would cost more than maxWorkPerRow
+/// multiply-adds per row (JointSettings::lagrangeMaxFactorWorkPerRow;
+/// stats.factorWork says how much).
+bool assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance = 0,
+                          double maxWorkPerRow = std::numeric_limits<double>::infinity());
+/// The first half of assembleAndFactorize: A and its symbolic analysis, and
+/// whether the factorization's work fits maxWorkPerRow per row.
+bool assembleWithinCost(JointSystem::Impl& im, int m, JointSolveStats& stats, double maxWorkPerRow);
+/// The second half: the numeric factorization of the assembled A.
+void factorizeAssembled(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance);
 /// The constraint forces (states[i].Fc, Tc) for the given states at the
 /// acceleration level (integrateFree). Returns the joints that broke.
 std::vector<JointBreakEvent> solveConstraints(JointSystem::Impl& im, const JointSettings& js, const V3& gravity,

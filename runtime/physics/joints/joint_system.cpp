@@ -60,6 +60,12 @@ JointSystem::~JointSystem() {
 
 void JointSystem::setSolver(JointSolverKind kind) {
   m_settings.solver = kind;
+  // Asked for Lagrange: the cost cap is checked again before the next step.
+  m_orderDirty = m_orderDirty || kind == JointSolverKind::Lagrange;
+  runSolver(kind);
+}
+
+void JointSystem::runSolver(JointSolverKind kind) {
   if (kind == JointSolverKind::Impulse && !m_impulse) {
     if (m_lagrange && m_world.constraintSolver() == m_lagrange.get()) m_world.setConstraintSolver(nullptr);
     m_lagrange.reset();
@@ -301,8 +307,22 @@ void JointSystem::beforeWorldStep() {
   if (m_impulse) collectImpulseResults();
   else collectLagrangeResults();
   if (dropJointsOfDeadBodies()) wakeJointedSleepers();
-  const bool fresh = m_orderDirty || !allJointedBodiesKnown();
+  const bool changed = m_orderDirty;
+  const bool fresh = changed || !allJointedBodiesKnown();
   refreshLinks();
+  if (m_settings.solver == JointSolverKind::Lagrange) {
+    // The cost cap (JointSettings::lagrangeMaxFactorWorkPerRow): checked whenever
+    // the joint set changes, and found in a step when active limit rows
+    // grew the system past it; the impulse solver stands in meanwhile.
+    if (m_lagrange && m_impl->overCostCap) {
+      m_overCostCapWorkPerRow = m_stats.factorWork / std::max(1, m_stats.rows);
+      runSolver(JointSolverKind::Impulse);
+    } else if (changed) {
+      runSolver(lagrangeFitsCostCap() ? JointSolverKind::Lagrange : JointSolverKind::Impulse);
+    }
+    m_impl->overCostCap = false;
+    if (m_impulse) ++m_stepsOverCostCap;
+  }
   if (!m_impulse && m_settings.postStabilize && fresh) postStabilize();
   measureError();
 }

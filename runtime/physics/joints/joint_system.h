@@ -95,6 +95,17 @@ struct JointSettings {
   /// the scenario host uses velocities only, so a new joint between bodies
   /// lying on the ground does not push them into it).
   bool projectPositions = true;
+  /// Cost cap of the Lagrange solver, per solved row: one sparse
+  /// factorization of J W J^T may take at most this many multiply-adds
+  /// (JointSolveStats::factorWork) per row, so the solve's cost grows
+  /// linearly with the joints. Measured (per row): chains 26, the base
+  /// rag-doll scenes 46-72; but a body carrying k ball joints couples all 3k
+  /// rows (about 2.8 k^2 per row: 10 joints 257, 20 joints 1112, 50 joints
+  /// 7277, 117 ms a step here), and a lattice of loops fills the factor in
+  /// (5 x 5 bodies 1248, 10 x 10 23 000: 1.5 s a step). Past the cap the
+  /// impulse solver (linear in the rows) solves the joints until the joint
+  /// set changes, and JointSystem::stepsOverCostCap() counts those steps.
+  double lagrangeMaxFactorWorkPerRow = 500;
 };
 
 /// Reported once, in the step in which a breakable joint broke.
@@ -114,6 +125,10 @@ struct JointSolveStats {
   long fillIn = 0;         ///< entries of L where A's lower triangle had none (0 for trees)
   int factorizations = 0;  ///< sparse factorizations in the last World step (or integrateFree call)
   int patternAnalyses = 0; ///< symbolic analyses among them (only when the sparsity pattern changed)
+  /// Multiply-adds of one factorization, about (sum over L's columns of
+  /// (entries + 1)^2); when over the cost cap before the symbolic analysis,
+  /// the lower bound that tripped it (A's entries).
+  double factorWork = 0;
   double solveMs = 0;      ///< wall time of the Lagrange solver in the last step: gather, assemble, factorize, solve, project (ms)
 };
 
@@ -147,7 +162,17 @@ class JointSystem {
   /// registers itself with World::setConstraintSolver, so one JointSystem
   /// per World). Warm-start impulses start from zero after a switch.
   void setSolver(JointSolverKind kind);
+  /// The solver asked for (setSolver). The one running differs only past
+  /// the Lagrange cost cap: see runningSolver.
   JointSolverKind solver() const { return m_settings.solver; }
+  /// The solver that solves the joints now: the impulse solver stands in for
+  /// the Lagrange solver while its factorization is over
+  /// JointSettings::lagrangeMaxFactorWorkPerRow.
+  JointSolverKind runningSolver() const { return m_impulse ? JointSolverKind::Impulse : JointSolverKind::Lagrange; }
+  /// Steps the impulse solver stood in for the Lagrange solver (cost cap),
+  /// and the factorization work per row that sent it there last.
+  long stepsOverCostCap() const { return m_stepsOverCostCap; }
+  double overCostCapWorkPerRow() const { return m_overCostCapWorkPerRow; }
 
   /// Creates a joint; refuses bad definitions with a message naming the field.
   Result<JointId> createJoint(const JointDef& def);
@@ -253,6 +278,8 @@ class JointSystem {
   void recordForces();
   void finishBreaks(std::vector<JointBreakEvent>& events);
   bool dropJointsOfDeadBodies();  ///< false when no joint is left
+  void runSolver(JointSolverKind kind);  ///< makes kind the running solver (setSolver without the request)
+  bool lagrangeFitsCostCap();  ///< the joints as they are now: the factorization within the cap? (lagrange_solver.cpp)
 
   World& m_world;
   JointSettings m_settings;
@@ -263,6 +290,8 @@ class JointSystem {
   std::vector<JointBreakEvent> m_broken;
   JointSolveStats m_stats;
   double m_maxAnchorError_m = 0;
+  long m_stepsOverCostCap = 0;
+  double m_overCostCapWorkPerRow = 0;
   std::unique_ptr<Impl> m_impl;
   std::unique_ptr<ImpulseJoints> m_impulse;  ///< the impulse solver, registered with the World while set
   std::unique_ptr<ConstraintSolver> m_lagrange;  ///< the Lagrange solver's hook, registered with the World while set

@@ -190,10 +190,29 @@ void inverseDiagonal(const JointSystem::Impl::Factor& f, int m, std::vector<doub
 
 }  // namespace
 
-void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance) {
+bool assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance,
+                          double maxWorkPerRow) {
+  if (!assembleWithinCost(im, m, stats, maxWorkPerRow)) return false;
+  factorizeAssembled(im, m, stats, compliance);
+  return true;
+}
+
+bool assembleWithinCost(JointSystem::Impl& im, int m, JointSolveStats& stats, double maxWorkPerRow) {
+  const double maxWork = maxWorkPerRow * m;
   JointSystem::Impl::Factor& f = im.factor;
   const std::vector<BodyState>& st = im.states;
   const std::vector<Row>& rows = im.rows;
+  // The cost cap (JointSettings::lagrangeMaxFactorWorkPerRow). The rows on
+  // one body are all coupled, so A's lower triangle has up to
+  // sum r_b (r_b + 1) / 2 entries, and the factor's work is at least that:
+  // checked before the triplets are even made (a body with 10 000 ball
+  // joints would need 4.5e8).
+  double entries = 0;
+  for (const std::vector<int>& list : im.bodyRows) entries += 0.5 * double(list.size()) * double(list.size() + 1);
+  if (entries > maxWork) {
+    stats.factorWork = entries;
+    return false;
+  }
   im.triplets.clear();
   for (std::size_t b = 0; b < st.size(); ++b) {
     const BodyState& s = st[b];
@@ -225,7 +244,20 @@ void assembleAndFactorize(JointSystem::Impl& im, int m, JointSolveStats& stats, 
     f.patternOuter.assign(outer, outer + m + 1);
     f.patternInner.assign(inner, inner + outer[m]);
     ++stats.patternAnalyses;
+    // The symbolic analysis sized L: column j holds c_j entries below the
+    // diagonal, and the factorization (and the inverse diagonal of the
+    // compliance) costs about sum (c_j + 1)^2 multiply-adds.
+    const int* Lp = f.ldlt.analysedColumnStarts();
+    double work = 0;
+    for (int j = 0; j < m; ++j) work += double(Lp[j + 1] - Lp[j] + 1) * double(Lp[j + 1] - Lp[j] + 1);
+    f.work = work;
   }
+  stats.factorWork = f.work;
+  return f.work <= maxWork;
+}
+
+void factorizeAssembled(JointSystem::Impl& im, int m, JointSolveStats& stats, double compliance) {
+  JointSystem::Impl::Factor& f = im.factor;
   f.ldlt.factorize(f.A);
   ++stats.factorizations;
   if (f.ldlt.info() != Eigen::Success) {
@@ -418,6 +450,22 @@ void JointSystem::prepare() {
   }
 }
 
+// The cost cap (JointSettings::lagrangeMaxFactorWorkPerRow) for the joints as they
+// are now, before a step: every equality row and the limit rows violated now.
+bool JointSystem::lagrangeFitsCostCap() {
+  if (m_jointCount == 0 || !dropJointsOfDeadBodies()) return true;
+  prepare();
+  Impl& im = *m_impl;
+  deriveStates(im.states, m_settings, V3::Zero(), false);
+  buildRows(im.ev, im.states, im.rows);
+  const int m = numberSolvedRows(im);
+  if (m == 0) return true;
+  JointSolveStats stats;
+  const bool fits = assembleWithinCost(im, m, stats, m_settings.lagrangeMaxFactorWorkPerRow);
+  if (!fits) m_overCostCapWorkPerRow = stats.factorWork / m;
+  return fits;
+}
+
 // Post-stabilization (JointSettings::postStabilize; Cline and Pai 2003):
 // velocities and positions projected back onto the joints with the same
 // sparse matrix.
@@ -436,7 +484,7 @@ void JointSystem::postStabilize() {
   for (int pass = 0; pass < 3; ++pass) {
     const int m = numberSolvedRows(im);
     if (m == 0) return;
-    assembleAndFactorize(im, m, stats);
+    if (!assembleAndFactorize(im, m, stats, 0, m_settings.lagrangeMaxFactorWorkPerRow)) return;  // step() falls back
     Eigen::VectorXd cdot(m), c(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) cdot[r.index] = r.limit ? -std::min(r.cdot, 0.0) : -r.cdot, c[r.index] = -r.c;

@@ -266,6 +266,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   const auto t0 = std::chrono::steady_clock::now();
   const double h = im.h;
   im.time_s += h;
+  if (im.overCostCap) return;  // found over the cost cap in an earlier substep of this step
   const V3 g = wide3(m_world.settings().gravity_mps2);
   std::vector<BodyState>& st = im.states;
   // The state of the substep: poses as integrated so far; q' = the velocity
@@ -346,7 +347,15 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
     const int m = numberSolvedRows(im);
     m_stats.rows = m;
     if (m == 0) break;
-    assembleAndFactorize(im, m, m_stats, std::max(0.0, m_settings.compliance));
+    if (!assembleAndFactorize(im, m, m_stats, std::max(0.0, m_settings.compliance),
+                              m_settings.lagrangeMaxFactorWorkPerRow)) {
+      // Over the cost cap (a body carrying hundreds of joints, a lattice
+      // of loops): nothing is solved in this step, and beforeWorldStep
+      // hands the joints to the impulse solver from the next step on.
+      im.overCostCap = true;
+      for (Row& r : im.rows) r.index = -1;
+      break;
+    }
     im.rhs.resize(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) im.rhs[r.index] = r.target - rowVelocity(r, im.vk, im.wk);
@@ -370,7 +379,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
 
 double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
   Impl& im = *m_impl;
-  if (!im.inStep || m_stats.rows == 0) return 0;
+  if (!im.inStep || m_stats.rows == 0 || im.overCostCap) return 0;
   const auto t0 = std::chrono::steady_clock::now();
   const double h = im.h;
   std::vector<BodyState>& st = im.states;
@@ -400,7 +409,7 @@ double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
   // its compliance at once, not in the next substep: the impact is where
   // joints and contacts fight hardest.
   if (touchedNow && m_settings.compliance > 0 && markTouchedRows(im))
-    assembleAndFactorize(im, m, m_stats, m_settings.compliance);
+    assembleAndFactorize(im, m, m_stats, m_settings.compliance);  // the pattern substepSolve found within the cap
   im.rhs.resize(m);
   for (const Row& r : im.rows)
     if (r.index >= 0) {

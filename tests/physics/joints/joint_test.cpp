@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "joint_fixture.h"
@@ -335,6 +336,79 @@ TEST(JointSystem, SolveTimeGrowsLinearlyWithLinks) {
   // on a shared, loaded machine the best-of-50 per-link time ratio read 13
   // while the mean ratio read 1.7 in the same run.
   EXPECT_NEAR(factorPerLink1000, factorPerLink10, 0.2 * factorPerLink10);
+}
+
+// The wheel: a 5 kg hub hanging from a pivot at its corner, 40 spokes of
+// 0.2 kg round it, each on a ball joint (a chandelier's arms).
+struct Wheel {
+  BodyId hub;
+  std::vector<JointId> spokes;
+};
+Wheel makeWheel(World& world, JointSystem& joints) {
+  Wheel w;
+  w.hub = addBox(world, Vec3(0, 10, 0), Vec3(Real(0.2), Real(0.2), Real(0.2)), 5);
+  EXPECT_TRUE(joints.createJoint(makeJointDef(world, JointType::Ball, w.hub, BodyId{}, Vec3(Real(0.2), Real(10.2), 0))).ok());
+  for (int i = 0; i < 40; ++i) {
+    const Real a = Real(2 * M_PI * i / 40);
+    const Vec3 dir(std::cos(a), 0, std::sin(a));
+    const BodyId s = addBox(world, Vec3(0, 10, 0) + dir * Real(0.6), Vec3::Constant(Real(0.02)), Real(0.2));
+    world.disableCollision(s, w.hub);
+    w.spokes.push_back(joints.createJoint(makeJointDef(world, JointType::Ball, s, w.hub, Vec3(0, 10, 0) + dir * Real(0.3))).value());
+  }
+  return w;
+}
+
+// The Lagrange solver's cost cap (JointSettings::lagrangeMaxFactorWorkPerRow).
+// The hub's 40 joints couple all 123 rows: the factorization costs about
+// 2.8 k^2 per row for k joints (6.3e5 here, 5100 per row; 50 joints took
+// 117 ms a step). Past the cap the impulse solver holds the joints about as
+// well as the Lagrange solver does, the count says so, and once the hub
+// carries few joints the Lagrange solver takes over again. A chain of 300
+// links (26 per row) stays under the cap.
+TEST(JointSystem, ABodyCarryingManyJointsIsSolvedByTheImpulseSolverUntilItCarriesFewer) {
+  World world(quietSettings());
+  JointSystem joints(world);
+  ASSERT_EQ(joints.solver(), JointSolverKind::Lagrange);
+  Wheel wheel = makeWheel(world, joints);
+  for (int i = 0; i < 60; ++i) joints.step(Real(1.0 / 60.0));
+  // The same wheel, the Lagrange solver with no cap.
+  World uncappedWorld(quietSettings());
+  JointSettings uncapped;
+  uncapped.lagrangeMaxFactorWorkPerRow = std::numeric_limits<double>::infinity();
+  JointSystem uncappedJoints(uncappedWorld, uncapped);
+  makeWheel(uncappedWorld, uncappedJoints);
+  for (int i = 0; i < 60; ++i) uncappedJoints.step(Real(1.0 / 60.0));
+  std::printf("[cost cap] hub with 40 spokes, 1 s: %ld steps over the cap, work %.3g per row; anchor error max %.2e m "
+              "(Lagrange uncapped: %.2e m, %ld steps over)\n",
+              joints.stepsOverCostCap(), joints.overCostCapWorkPerRow(), joints.maxAnchorError_m(),
+              uncappedJoints.maxAnchorError_m(), uncappedJoints.stepsOverCostCap());
+  EXPECT_EQ(joints.solver(), JointSolverKind::Lagrange) << "the request stays";
+  EXPECT_EQ(joints.runningSolver(), JointSolverKind::Impulse);
+  EXPECT_EQ(joints.stepsOverCostCap(), 60) << "every step, the first included";
+  EXPECT_GT(joints.overCostCapWorkPerRow(), 500.0);
+  EXPECT_EQ(uncappedJoints.stepsOverCostCap(), 0);
+  EXPECT_EQ(uncappedJoints.runningSolver(), JointSolverKind::Lagrange);
+  // The stand-in holds the joints as the Lagrange solver does, and the
+  // wheel swung down on its pivot (from 10 m towards 9.92 m).
+  EXPECT_LT(joints.maxAnchorError_m(), 1.5 * uncappedJoints.maxAnchorError_m());
+  EXPECT_LT(world.body(wheel.hub).position_m.y(), Real(9.98));
+  EXPECT_NEAR(world.body(wheel.hub).position_m.y(), uncappedWorld.body(wheel.hub).position_m.y(), 0.01);
+  // Down to 5 spokes: the Lagrange solver again.
+  for (std::size_t i = 5; i < wheel.spokes.size(); ++i) ASSERT_TRUE(joints.destroyJoint(wheel.spokes[i]));
+  for (int i = 0; i < 10; ++i) joints.step(Real(1.0 / 60.0));
+  EXPECT_EQ(joints.runningSolver(), JointSolverKind::Lagrange);
+  EXPECT_EQ(joints.stepsOverCostCap(), 60);
+  EXPECT_LT(joints.lastSolve().factorWork, 500.0 * joints.lastSolve().rows);
+
+  World chainWorld(quietSettings());
+  JointSystem chainJoints(chainWorld);
+  makeChain(chainWorld, chainJoints, 300, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  for (int i = 0; i < 10; ++i) chainJoints.step(Real(1.0 / 60.0));
+  EXPECT_EQ(chainJoints.runningSolver(), JointSolverKind::Lagrange);
+  EXPECT_EQ(chainJoints.stepsOverCostCap(), 0);
+  std::printf("[cost cap] chain of 300 links: %.1f multiply-adds per row\n",
+              chainJoints.lastSolve().factorWork / chainJoints.lastSolve().rows);
+  EXPECT_LT(chainJoints.lastSolve().factorWork, 50.0 * chainJoints.lastSolve().rows);
 }
 
 /// Largest stable dt of integrateFree for a 5-link chain released at 45
