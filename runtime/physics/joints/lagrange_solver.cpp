@@ -484,7 +484,7 @@ void JointSystem::postStabilize() {
   for (int pass = 0; pass < 3; ++pass) {
     const int m = numberSolvedRows(im);
     if (m == 0) return;
-    if (!assembleAndFactorize(im, m, stats, 0, m_settings.lagrangeMaxFactorWorkPerRow)) return;  // step() falls back
+    if (!assembleAndFactorize(im, m, stats, 0, m_settings.lagrangeMaxFactorWorkPerRow)) return;  // over the cost cap: beforeWorldStep runs the impulse solver
     Eigen::VectorXd cdot(m), c(m);
     for (const Row& r : im.rows)
       if (r.index >= 0) cdot[r.index] = r.limit ? -std::min(r.cdot, 0.0) : -r.cdot, c[r.index] = -r.c;
