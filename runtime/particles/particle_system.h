@@ -30,7 +30,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/byte_stream.h"
 #include "core/handle.h"
+#include "core/result.h"
 #include "core/random.h"
 #include "particles/emitter_def.h"
 #include <Eigen/Geometry>
@@ -162,6 +164,15 @@ class ParticleSystem {
       if (m_slots[i].live && m_slots[i].emitter.anchor != kNoAnchor)
         f(EmitterId{i, m_slots[i].generation}, m_slots[i].emitter.anchor);
   }
+
+  /// Every emitter (definition, pose, spawn state, random stream, live
+  /// particles) and the system's own counters, as exact bits, for
+  /// snapshots of a running scene (particle_state.cpp). Emitters are plain
+  /// data, so the saved ones replace whatever this system has, including
+  /// those a script spawned after on_start; restoreState refuses damaged
+  /// bytes and definitions that do not pass validate().
+  std::string saveState() const;
+  Status restoreState(const std::string& bytes);
 
   /// Normalised direction sample: uniform over the spherical cap of half
   /// angle `spread_rad` around `axis` (unit). Exposed for tests.

@@ -523,6 +523,10 @@ void Deformable::debugDraw(DebugDraw& draw, const Vec3& color) const {
   forEachStructuralSegment([&](const Vec3& a, const Vec3& b) { draw.line(a, b, color); });
 }
 
+const Eigen::VectorXd& Deformable::lastSolve() const { return m_solver->dv; }
+void Deformable::setLastSolve(Eigen::VectorXd dv) { m_solver->dv = std::move(dv); }
+void Deformable::useOwnSolver() { m_solver = std::make_shared<Solver>(); }
+
 int DeformableSystem::add(std::unique_ptr<Deformable> d) {
   const int id = m_nextId++;
   m_items.emplace_back(id, std::move(d));

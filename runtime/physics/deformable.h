@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "core/byte_stream.h"
 #include "core/math.h"
 #include "core/result.h"
 #include "physics/body.h"
@@ -126,6 +127,14 @@ class Deformable {
   double lowestPoint() const;
   const DeformableStats& stats() const { return m_stats; }
 
+  /// The state a later step reads, as exact bits (deformable_state.cpp):
+  /// particles, velocities, pins, wind, material, counters and the last
+  /// solve's result (the next one starts from it). restoreState refuses a
+  /// deformable of another kind or size, and pins on body slots at or past
+  /// bodySlots (the World's).
+  void saveState(ByteWriter& w) const;
+  Status restoreState(ByteReader& r, std::size_t bodySlots);
+
   /// Structural springs as lines (cloth: the grid; rope: the chain).
   void debugDraw(DebugDraw& draw, const Vec3& color) const;
   template <typename F>
@@ -144,6 +153,7 @@ class Deformable {
     Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< world point, or body-local offset
   };
 
+  friend class DeformableSystem;  ///< restoreState works on a copy
   Deformable() = default;
   void addSpring(int i, int j, double k, double c);
   void substep(double h, const DeformableEnvironment& env);
@@ -162,7 +172,12 @@ class Deformable {
   Eigen::Vector3d m_wind = Eigen::Vector3d::Zero();
   DeformableStats m_stats;
   struct Solver;
-  std::shared_ptr<Solver> m_solver;  ///< sparse matrix, CG and scratch (deformable.cpp)
+  std::shared_ptr<Solver> m_solver;
+  // The last solve's velocity change (the next solve's first guess), for
+  // deformable_state.cpp, which does not see Solver; a fresh solver.
+  const Eigen::VectorXd& lastSolve() const;
+  void setLastSolve(Eigen::VectorXd dv);
+  void useOwnSolver();  ///< sparse matrix, CG and scratch (deformable.cpp)
 };
 
 /// Every deformable of a scene; the app steps it after World::step.
@@ -179,6 +194,12 @@ class DeformableSystem {
     for (const auto& [id, d] : m_items)
       if (d) f(id, *d);
   }
+  /// Every deformable's state (Deformable::saveState) for snapshots of a
+  /// running scene. Shapes are not stored: restoreState goes back into a
+  /// system with the same ropes and cloth (made by the same scenario) and
+  /// refuses, naming the first that differs, when it does not.
+  std::string saveState() const;
+  Status restoreState(const std::string& bytes, std::size_t bodySlots);
 
  private:
   std::vector<std::pair<int, std::unique_ptr<Deformable>>> m_items;

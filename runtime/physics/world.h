@@ -164,6 +164,8 @@ class World {
   /// Read access; asserts on a stale handle (check isValid first).
   const Body& body(BodyId id) const;
   int bodyCount() const { return m_bodyCount; }
+  /// Body slots, live or free (every BodyId's index is below it).
+  std::size_t bodySlotCount() const { return m_bodies.size(); }
   BodyId idOf(std::uint32_t index) const;
 
   /// Setters wake the body's island and restart its sleep timer; wake =

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/byte_stream.h"
+#include "core/result.h"
 #include "physics/constraint_solver.h"
 #include "physics/internal/contact_solver.h"
 #include "physics/joints/joint.h"
@@ -38,6 +40,11 @@ class ImpulseJoints final : public ConstraintSolver {
   const std::vector<Output>& outputs() const { return m_out; }
   /// Clears the broken flags (after the JointSystem removed those joints).
   void clearBroken();
+  /// Between steps: the warm-start impulses and the last step's outputs as
+  /// exact bits (joint snapshots, joints/joint_state.cpp); restore refuses
+  /// damaged bytes and entries for more than slotCount joint slots.
+  void saveState(ByteWriter& w) const;
+  Status restoreState(ByteReader& r, std::size_t slotCount);
 
   /// Accumulated impulses, kept between steps for warm starting (per joint
   /// slot). 4-wide like the solver's velocities (w = 0).

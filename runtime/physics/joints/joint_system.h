@@ -245,6 +245,18 @@ class JointSystem {
       if (m_slots[i].alive) f(JointId{i, m_slots[i].generation}, m_slots[i].def);
   }
 
+  /// The joints' whole state between steps, as exact bits, for snapshots of
+  /// a running scene (app/scene_state.h): every joint slot (definition with
+  /// its motor and anchor as changed since, generation, last forces), the
+  /// joint order, the solver asked for and the one running, both solvers'
+  /// memory (Lagrange: each body's last joint velocities and contact time,
+  /// the pending results and breaks; impulse: warm-start impulses), the
+  /// error and cost-cap figures. Joints hold no shapes, so the saved joints
+  /// replace whatever joints this system has; restore refuses damaged bytes
+  /// and joints on bodies the World does not have (restore the World first).
+  std::string saveState() const;
+  Status restoreState(const std::string& bytes);
+
   /// Live joint slots in the Lagrange solver's elimination order (post-order of
   /// the body tree: leaves first), or in slot order when the joint set
   /// changed since the last step. The impulse solver sweeps in this order,
