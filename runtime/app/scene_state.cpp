@@ -64,15 +64,6 @@ bool doubleOf(const nlohmann::json& j, double& out) {
   return std::isfinite(out);
 }
 
-/// The first system the snapshot cannot hold, or null.
-const char* unsupportedSystem(Scene& scene) {
-  if (const physics::JointSystem* j = scene.jointsIfAny(); j && j->jointCount() > 0) return "joints";
-  if (scene.vehiclesIfAny()) return "vehicles";
-  if (scene.particlesIfAny()) return "particle emitters";
-  if (scene.deformablesIfAny()) return "ropes or cloth";
-  return nullptr;
-}
-
 std::string fieldError(const std::string& path, const std::string& field, const std::string& expected) {
   return path + ": field \"" + field + "\": expected " + expected;
 }
@@ -80,13 +71,14 @@ std::string fieldError(const std::string& path, const std::string& field, const 
 }  // namespace
 
 Status saveSceneState(Scene& scene, const RunClock& clock, const std::string& path) {
-  if (const char* what = unsupportedSystem(scene))
+  if (const char* what = script::unsavableSystem(scene))
     return makeError("--save-state: " + scene.name() + " has " + what +
-                     ", whose state a snapshot does not hold yet (it holds rigid bodies, contacts, springs and the "
-                     "scenario's Lua state; docs/snapshots.md)");
+                     ", whose state a snapshot does not hold yet (it holds rigid bodies, contacts, springs, joints, "
+                     "ropes, cloth, particles and the scenario's Lua state; docs/snapshots.md)");
   auto script = scene.host().saveState();
   if (!script) return makeError("--save-state: " + script.error());
   const SceneOptions& o = scene.options();
+  const script::SystemsState systems = script::saveSystems(scene);
   nlohmann::json mods = nlohmann::json::object();
   for (const script::ModInfo& m : scene.host().options().mods) mods[m.name] = m.version;
   nlohmann::json doc = {
@@ -107,7 +99,11 @@ Status saveSceneState(Scene& scene, const RunClock& clock, const std::string& pa
       {"step_dt_s", bitsOf(clock.stepDt_s)},
       {"requested_dt_s", bitsOf(scene.dt_s() == o.dt_s ? 0.0 : scene.dt_s())},
       {"state_hash", stateHashText(scene)},
-      {"world", toHex(scene.world().saveState())},
+      {"joint_solver", systems.jointSolver},
+      {"world", toHex(systems.world)},
+      {"joints", toHex(systems.joints)},
+      {"ropes_and_cloth", toHex(systems.ropesAndCloth)},
+      {"particles", toHex(systems.particles)},
       {"script", toHex(*script)},
   };
   doc["checksum"] = checksumOf(doc);
@@ -133,7 +129,8 @@ Result<SceneStateFile> loadSceneState(const std::string& path) {
                      "): the file was changed or damaged after it was written");
   SceneStateFile s;
   for (auto [f, out] : {std::pair<const char*, std::string*>{"scenario", &s.scenario}, {"integrator", &s.integrator},
-                        {"engine_build", &s.engineBuild}, {"state_hash", &s.stateHash}}) {
+                        {"engine_build", &s.engineBuild}, {"state_hash", &s.stateHash},
+                        {"joint_solver", &s.systems.jointSolver}}) {
     if (!doc[f].is_string()) return makeError(fieldError(path, f, "a string"));
     *out = doc[f].get<std::string>();
   }
@@ -159,7 +156,11 @@ Result<SceneStateFile> loadSceneState(const std::string& path) {
       (std::strcmp(f, "sets") == 0 ? s.sets : s.modVersions)[k] = v.get<std::string>();
     }
   }
-  for (auto [f, out] : {std::pair<const char*, std::string*>{"world", &s.world}, {"script", &s.script}})
+  if (physics::JointSolverKind kind; !physics::parseJointSolver(s.systems.jointSolver, &kind))
+    return makeError(fieldError(path, "joint_solver", "\"lagrange\" or \"impulse\""));
+  for (auto [f, out] : {std::pair<const char*, std::string*>{"world", &s.systems.world}, {"script", &s.script},
+                        {"joints", &s.systems.joints}, {"ropes_and_cloth", &s.systems.ropesAndCloth},
+                        {"particles", &s.systems.particles}})
     if (!doc[f].is_string() || !fromHex(doc[f].get<std::string>(), *out))
       return makeError(fieldError(path, f, "hex digits (the saved state's bytes)"));
   return s;
@@ -189,7 +190,9 @@ Status restoreSceneState(Scene& scene, const SceneStateFile& s, const std::strin
   for (const auto& [name, version] : here)
     if (!s.modVersions.count(name))
       return makeError(path + ": field \"mods\": mod " + name + " " + version + " was not there when saved");
-  if (Status st = scene.world().restoreState(s.world); !st) return makeError(path + ": field \"world\": " + st.error());
+  std::string part;
+  if (Status st = script::restoreSystems(scene, s.systems, &part); !st)
+    return makeError(path + ": field \"" + part + "\": " + st.error());
   if (s.requestedDt_s > 0) scene.requestDt(s.requestedDt_s);
   if (Status st = scene.host().restoreState(s.script, s.clock.time_s, s.clock.step); !st)
     return makeError(path + ": field \"script\": " + st.error());

@@ -14,8 +14,11 @@
 // on_start again (it re-makes shapes, locals and timers), then puts the saved
 // state back and checks that the world's state hash is the saved one.
 //
-// Refused at save time, with a message saying what and why: joints,
-// vehicles, particle emitters, ropes and cloth (their systems keep state the
+// Also the joints (physics::JointSystem::saveState: every joint, both
+// solvers' memory), ropes and cloth (physics::DeformableSystem::saveState)
+// and particle emitters with their particles (particles::ParticleSystem::
+// saveState), through script/systems_state.h. Refused at save time, with a
+// message saying what and why: vehicles (their system keeps state the
 // snapshot does not hold yet), and Lua state a snapshot cannot keep
 // (script/scenario_state.cpp). The file is JSON (docs/snapshots.md), written
 // atomically, with the engine build, the mods' versions and a checksum:
@@ -27,6 +30,7 @@
 
 #include "app/scene.h"
 #include "core/result.h"
+#include "script/systems_state.h"
 
 namespace tumble::app {
 
@@ -40,7 +44,8 @@ struct RunClock {
 };
 
 struct SceneStateFile {
-  static constexpr int kFormatVersion = 1;
+  /// 2: the joints (joint solver and state) and the other systems' states.
+  static constexpr int kFormatVersion = 2;
   std::string scenario;  ///< MOD:SCENARIO
   std::uint64_t seed = 1;
   double dt_s = 1.0 / 60.0;
@@ -52,7 +57,8 @@ struct SceneStateFile {
   RunClock clock;
   double requestedDt_s = 0;  ///< world.set_dt, 0 none
   std::string stateHash;     ///< the scene's state hash when saved
-  std::string world, script;  ///< the saved states (bytes)
+  script::SystemsState systems;  ///< world, joints, ropes and cloth, particles (bytes each)
+  std::string script;            ///< the scenario's Lua state (bytes)
 };
 
 /// Checks that the scene can be saved (the message names what cannot) and

@@ -1,53 +1,65 @@
 // world.snapshot() and world.restore(snapshot): a scenario tries something
-// and undoes it. The snapshot is the rigid-body world's whole state as exact
-// bits (physics::World::saveState: bodies, contact cache with warm starts,
-// broad phase order, sleep, springs, settings), held in Lua memory (it counts
-// against the scenario's memory budget and goes with the garbage collector).
+// and undoes it. The snapshot is the simulated state of the scene's systems
+// as exact bits (script/systems_state.h: the rigid-body world with its
+// contacts, warm starts and springs; the joints; ropes and cloth; particle
+// emitters), held in Lua memory (it counts against the scenario's memory
+// budget and goes with the garbage collector).
 //
 //   local before = world.snapshot()
 //   ball:apply_impulse{0, 50, 0}   -- try it ...
 //   world.restore(before)          -- ... and undo it
 #include <cstring>
 
-#include "physics/deformable.h"
-#include "physics/joints/joint_system.h"
+#include "core/byte_stream.h"
 #include "script/internal/bind_common.h"
+#include "script/systems_state.h"
 
 namespace tumble::script {
 namespace {
 
 constexpr const char* kSnapshotMeta = "tumble.WorldSnapshot";
+constexpr std::uint32_t kSnapshotMagic = 0x54534e50;  // "TSNP"
 
-/// Joints, vehicles, particles, ropes and cloth keep state of their own that
-/// a world snapshot does not hold: restoring only the bodies under them would
-/// not put the scene back, so both calls refuse while one exists.
+/// Vehicles keep state of their own that a snapshot does not hold yet:
+/// restoring everything else under them would not put the scene back, so
+/// both calls refuse while one exists.
 void refuseOtherSystems(lua_State* L, const char* fn) {
-  SceneSystems& s = ScenarioHost::from(L)->scene();
-  const char* what = s.jointsIfAny() && s.jointsIfAny()->jointCount() > 0 ? "joints"
-                     : s.vehiclesIfAny()                                   ? "vehicles"
-                     : s.particlesIfAny()                                  ? "particle emitters"
-                     : s.deformablesIfAny()                                ? "ropes or cloth"
-                                                                           : nullptr;
-  if (what)
+  if (const char* what = unsavableSystem(ScenarioHost::from(L)->scene()))
     throw LuaArgError(std::string(fn) + ": the scene has " + what +
-                      "; a world snapshot holds the rigid bodies, their contacts and springs only");
+                      ", whose state a snapshot does not hold yet (it holds bodies, contacts, springs, joints, "
+                      "ropes, cloth and particles)");
+}
+
+std::string pack(const SystemsState& s) {
+  ByteWriter w;
+  w.pod(kSnapshotMagic);
+  for (const std::string* part : {&s.jointSolver, &s.world, &s.joints, &s.ropesAndCloth, &s.particles}) w.text(*part);
+  return w.take();
+}
+
+bool unpack(const std::string& bytes, SystemsState& s) {
+  ByteReader r(bytes);
+  if (r.pod<std::uint32_t>() != kSnapshotMagic) return false;
+  for (std::string* part : {&s.jointSolver, &s.world, &s.joints, &s.ropesAndCloth, &s.particles})
+    *part = r.text(bytes.size());
+  return r.ok() && r.atEnd();
 }
 
 /// @class WorldSnapshot
-/// The rigid-body world at one moment (world.snapshot), for world.restore.
+/// The scene's simulated state at one moment (world.snapshot), for world.restore.
 
 /// @function world.snapshot
-/// The rigid-body world's whole state now, exactly: every body's pose,
+/// The scene's whole simulated state now, exactly: every body's pose,
 /// velocities, mass, material and sleep state, the contacts with their
-/// warm-start impulses, springs and world settings (gravity). Refused while
-/// the scene has joints, vehicles, particle emitters, ropes or cloth, whose
-/// own state it does not hold. Lua state (locals, ctx.state, timers) is not
-/// part of it.
+/// warm-start impulses, springs and world settings (gravity); every joint
+/// and both joint solvers' memory; ropes and cloth; particle emitters and
+/// their particles. Refused while the scene has vehicles, whose own state it
+/// does not hold yet. Lua state (locals, ctx.state, timers) is not part of it.
 /// @return WorldSnapshot in memory, for world.restore in the same run
 /// @example local before = world.snapshot()
 int worldSnapshot(lua_State* L) {
   refuseOtherSystems(L, "world.snapshot");
-  const std::string bytes = ScenarioHost::from(L)->world().saveState();
+  const std::string bytes = pack(saveSystems(ScenarioHost::from(L)->scene()));
   void* p = lua_newuserdatauv(L, bytes.size(), 0);
   std::memcpy(p, bytes.data(), bytes.size());
   luaL_setmetatable(L, kSnapshotMeta);
@@ -55,11 +67,13 @@ int worldSnapshot(lua_State* L) {
 }
 
 /// @function world.restore
-/// Puts the world back to a snapshot exactly: stepping on from it gives the
+/// Puts the scene back to a snapshot exactly: stepping on from it gives the
 /// same bits as stepping on from the moment it was taken. The world must
-/// still have the same bodies: a body made or removed since is an error
-/// naming the first body slot that differs (the world is then unchanged).
-/// Body handles stay valid. Lua state is not touched.
+/// still have the same bodies, ropes and cloth: a body made or removed
+/// since is an error naming the first body slot that differs, and the
+/// scene is then unchanged. Joints and emitters come back as they were
+/// (made or removed since: undone). Body, joint and emitter handles stay
+/// valid. Lua state is not touched.
 /// @param snapshot WorldSnapshot from world.snapshot
 /// @example world.restore(before)
 int worldRestore(lua_State* L) {
@@ -68,9 +82,17 @@ int worldRestore(lua_State* L) {
   if (!p)
     throw LuaArgError(std::string("world.restore: expected a WorldSnapshot (from world.snapshot), got ") +
                       luaL_typename(L, 1));
-  const std::string bytes(p, lua_rawlen(L, 1));
-  if (Status st = ScenarioHost::from(L)->world().restoreState(bytes); !st)
+  SystemsState saved;
+  if (!unpack(std::string(p, lua_rawlen(L, 1)), saved)) throw LuaArgError("world.restore: a damaged WorldSnapshot");
+  SceneSystems& scene = ScenarioHost::from(L)->scene();
+  // All or nothing: a part refused after others were restored puts back
+  // the state from before the call.
+  const SystemsState now = saveSystems(scene);
+  if (Status st = restoreSystems(scene, saved); !st) {
+    const Status back = restoreSystems(scene, now);
+    TUMBLE_ASSERT(back, "world.restore could not put back the state it started from");
     throw LuaArgError("world.restore: " + st.error());
+  }
   return 0;
 }
 

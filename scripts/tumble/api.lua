@@ -793,7 +793,7 @@ function Vehicle:remove() end
 ---@field point Vec3Arg where the ray hit, m
 ---@field normal Vec3Arg surface normal at the hit (unit)
 
----The rigid-body world at one moment (world.snapshot), for world.restore.
+---The scene's simulated state at one moment (world.snapshot), for world.restore.
 ---@class WorldSnapshot
 
 ---A vector as the API returns it: {x=, y=, z=}. Arguments also accept the
@@ -1815,12 +1815,12 @@ function world.raycast_all(origin, dir, max_distance) end
 ---@return boolean # true if the body was removed now, false if it was already gone
 function world.remove(body) end
 
----The rigid-body world's whole state now, exactly: every body's pose,
+---The scene's whole simulated state now, exactly: every body's pose,
 ---velocities, mass, material and sleep state, the contacts with their
----warm-start impulses, springs and world settings (gravity). Refused while
----the scene has joints, vehicles, particle emitters, ropes or cloth, whose
----own state it does not hold. Lua state (locals, ctx.state, timers) is not
----part of it.
+---warm-start impulses, springs and world settings (gravity); every joint
+---and both joint solvers' memory; ropes and cloth; particle emitters and
+---their particles. Refused while the scene has vehicles, whose own state it
+---does not hold yet. Lua state (locals, ctx.state, timers) is not part of it.
 ---
 ---```lua
 ---local before = world.snapshot()
@@ -1828,11 +1828,13 @@ function world.remove(body) end
 ---@return WorldSnapshot # in memory, for world.restore in the same run
 function world.snapshot() end
 
----Puts the world back to a snapshot exactly: stepping on from it gives the
+---Puts the scene back to a snapshot exactly: stepping on from it gives the
 ---same bits as stepping on from the moment it was taken. The world must
----still have the same bodies: a body made or removed since is an error
----naming the first body slot that differs (the world is then unchanged).
----Body handles stay valid. Lua state is not touched.
+---still have the same bodies, ropes and cloth: a body made or removed
+---since is an error naming the first body slot that differs, and the
+---scene is then unchanged. Joints and emitters come back as they were
+---(made or removed since: undone). Body, joint and emitter handles stay
+---valid. Lua state is not touched.
 ---
 ---```lua
 ---world.restore(before)
