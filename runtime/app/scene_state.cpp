@@ -71,10 +71,6 @@ std::string fieldError(const std::string& path, const std::string& field, const 
 }  // namespace
 
 Status saveSceneState(Scene& scene, const RunClock& clock, const std::string& path) {
-  if (const char* what = script::unsavableSystem(scene))
-    return makeError("--save-state: " + scene.name() + " has " + what +
-                     ", whose state a snapshot does not hold yet (it holds rigid bodies, contacts, springs, joints, "
-                     "ropes, cloth, particles and the scenario's Lua state; docs/snapshots.md)");
   auto script = scene.host().saveState();
   if (!script) return makeError("--save-state: " + script.error());
   const SceneOptions& o = scene.options();
@@ -102,6 +98,7 @@ Status saveSceneState(Scene& scene, const RunClock& clock, const std::string& pa
       {"joint_solver", systems.jointSolver},
       {"world", toHex(systems.world)},
       {"joints", toHex(systems.joints)},
+      {"vehicles", toHex(systems.vehicles)},
       {"ropes_and_cloth", toHex(systems.ropesAndCloth)},
       {"particles", toHex(systems.particles)},
       {"script", toHex(*script)},
@@ -159,7 +156,7 @@ Result<SceneStateFile> loadSceneState(const std::string& path) {
   if (physics::JointSolverKind kind; !physics::parseJointSolver(s.systems.jointSolver, &kind))
     return makeError(fieldError(path, "joint_solver", "\"lagrange\" or \"impulse\""));
   for (auto [f, out] : {std::pair<const char*, std::string*>{"world", &s.systems.world}, {"script", &s.script},
-                        {"joints", &s.systems.joints}, {"ropes_and_cloth", &s.systems.ropesAndCloth},
+                        {"joints", &s.systems.joints}, {"vehicles", &s.systems.vehicles}, {"ropes_and_cloth", &s.systems.ropesAndCloth},
                         {"particles", &s.systems.particles}})
     if (!doc[f].is_string() || !fromHex(doc[f].get<std::string>(), *out))
       return makeError(fieldError(path, f, "hex digits (the saved state's bytes)"));

@@ -15,11 +15,11 @@
 // state back and checks that the world's state hash is the saved one.
 //
 // Also the joints (physics::JointSystem::saveState: every joint, both
-// solvers' memory), ropes and cloth (physics::DeformableSystem::saveState)
-// and particle emitters with their particles (particles::ParticleSystem::
-// saveState), through script/systems_state.h. Refused at save time, with a
-// message saying what and why: vehicles (their system keeps state the
-// snapshot does not hold yet), and Lua state a snapshot cannot keep
+// solvers' memory), vehicles (vehicle::VehicleSystem::saveState), ropes and
+// cloth (physics::DeformableSystem::saveState) and particle emitters with
+// their particles (particles::ParticleSystem::saveState), through
+// script/systems_state.h. Refused at save time, with a message saying what
+// and why: Lua state a snapshot cannot keep
 // (script/scenario_state.cpp). The file is JSON (docs/snapshots.md), written
 // atomically, with the engine build, the mods' versions and a checksum:
 // another build, other mod versions, another scenario, or a damaged or
@@ -57,7 +57,7 @@ struct SceneStateFile {
   RunClock clock;
   double requestedDt_s = 0;  ///< world.set_dt, 0 none
   std::string stateHash;     ///< the scene's state hash when saved
-  script::SystemsState systems;  ///< world, joints, ropes and cloth, particles (bytes each)
+  script::SystemsState systems;  ///< world, joints, vehicles, ropes and cloth, particles (bytes each)
   std::string script;            ///< the scenario's Lua state (bytes)
 };
 

@@ -1,8 +1,8 @@
 // world.snapshot() and world.restore(snapshot): a scenario tries something
 // and undoes it. The snapshot is the simulated state of the scene's systems
 // as exact bits (script/systems_state.h: the rigid-body world with its
-// contacts, warm starts and springs; the joints; ropes and cloth; particle
-// emitters), held in Lua memory (it counts against the scenario's memory
+// contacts, warm starts and springs; the joints; vehicles; ropes and
+// cloth; particle emitters), held in Lua memory (it counts against the scenario's memory
 // budget and goes with the garbage collector).
 //
 //   local before = world.snapshot()
@@ -20,27 +20,17 @@ namespace {
 constexpr const char* kSnapshotMeta = "tumble.WorldSnapshot";
 constexpr std::uint32_t kSnapshotMagic = 0x54534e50;  // "TSNP"
 
-/// Vehicles keep state of their own that a snapshot does not hold yet:
-/// restoring everything else under them would not put the scene back, so
-/// both calls refuse while one exists.
-void refuseOtherSystems(lua_State* L, const char* fn) {
-  if (const char* what = unsavableSystem(ScenarioHost::from(L)->scene()))
-    throw LuaArgError(std::string(fn) + ": the scene has " + what +
-                      ", whose state a snapshot does not hold yet (it holds bodies, contacts, springs, joints, "
-                      "ropes, cloth and particles)");
-}
-
 std::string pack(const SystemsState& s) {
   ByteWriter w;
   w.pod(kSnapshotMagic);
-  for (const std::string* part : {&s.jointSolver, &s.world, &s.joints, &s.ropesAndCloth, &s.particles}) w.text(*part);
+  for (const std::string* part : {&s.jointSolver, &s.world, &s.joints, &s.vehicles, &s.ropesAndCloth, &s.particles}) w.text(*part);
   return w.take();
 }
 
 bool unpack(const std::string& bytes, SystemsState& s) {
   ByteReader r(bytes);
   if (r.pod<std::uint32_t>() != kSnapshotMagic) return false;
-  for (std::string* part : {&s.jointSolver, &s.world, &s.joints, &s.ropesAndCloth, &s.particles})
+  for (std::string* part : {&s.jointSolver, &s.world, &s.joints, &s.vehicles, &s.ropesAndCloth, &s.particles})
     *part = r.text(bytes.size());
   return r.ok() && r.atEnd();
 }
@@ -52,13 +42,12 @@ bool unpack(const std::string& bytes, SystemsState& s) {
 /// The scene's whole simulated state now, exactly: every body's pose,
 /// velocities, mass, material and sleep state, the contacts with their
 /// warm-start impulses, springs and world settings (gravity); every joint
-/// and both joint solvers' memory; ropes and cloth; particle emitters and
-/// their particles. Refused while the scene has vehicles, whose own state it
-/// does not hold yet. Lua state (locals, ctx.state, timers) is not part of it.
+/// and both joint solvers' memory; the vehicles' engines, gears and wheels;
+/// ropes and cloth; particle emitters and their particles. Lua state
+/// (locals, ctx.state, timers, a driving helper's memory) is not part of it.
 /// @return WorldSnapshot in memory, for world.restore in the same run
 /// @example local before = world.snapshot()
 int worldSnapshot(lua_State* L) {
-  refuseOtherSystems(L, "world.snapshot");
   const std::string bytes = pack(saveSystems(ScenarioHost::from(L)->scene()));
   void* p = lua_newuserdatauv(L, bytes.size(), 0);
   std::memcpy(p, bytes.data(), bytes.size());
@@ -69,15 +58,14 @@ int worldSnapshot(lua_State* L) {
 /// @function world.restore
 /// Puts the scene back to a snapshot exactly: stepping on from it gives the
 /// same bits as stepping on from the moment it was taken. The world must
-/// still have the same bodies, ropes and cloth: a body made or removed
-/// since is an error naming the first body slot that differs, and the
-/// scene is then unchanged. Joints and emitters come back as they were
+/// still have the same bodies, vehicles, ropes and cloth: a body made or
+/// removed since is an error naming the first body slot that differs, and
+/// the scene is then unchanged. Joints and emitters come back as they were
 /// (made or removed since: undone). Body, joint and emitter handles stay
 /// valid. Lua state is not touched.
 /// @param snapshot WorldSnapshot from world.snapshot
 /// @example world.restore(before)
 int worldRestore(lua_State* L) {
-  refuseOtherSystems(L, "world.restore");
   auto* p = static_cast<const char*>(luaL_testudata(L, 1, kSnapshotMeta));
   if (!p)
     throw LuaArgError(std::string("world.restore: expected a WorldSnapshot (from world.snapshot), got ") +

@@ -7,16 +7,12 @@
 
 namespace tumble::script {
 
-const char* unsavableSystem(SceneSystems& scene) {
-  if (scene.vehiclesIfAny()) return "vehicles";
-  return nullptr;
-}
-
 SystemsState saveSystems(SceneSystems& scene) {
   SystemsState s;
   s.jointSolver = physics::jointSolverName(scene.jointSolver());
   s.world = scene.world().saveState();
   if (const physics::JointSystem* j = scene.jointsIfAny()) s.joints = j->saveState();
+  if (const vehicle::VehicleSystem* v = scene.vehiclesIfAny()) s.vehicles = v->saveState();
   if (const physics::DeformableSystem* d = scene.deformablesIfAny()) s.ropesAndCloth = d->saveState();
   if (const particles::ParticleSystem* p = scene.particlesIfAny()) s.particles = p->saveState();
   return s;
@@ -44,6 +40,11 @@ Status restoreSystems(SceneSystems& scene, const SystemsState& saved, std::strin
     if (Status st = part("joints", scene.joints().restoreState(saved.joints)); !st) return st;
   } else if (scene.jointsIfAny() && scene.jointsIfAny()->jointCount() > 0) {
     return none("joints", "joints", scene.jointsIfAny()->jointCount());
+  }
+  if (!saved.vehicles.empty()) {
+    if (Status st = part("vehicles", scene.vehicles().restoreState(saved.vehicles)); !st) return st;
+  } else if (scene.vehiclesIfAny() && scene.vehiclesIfAny()->count() > 0) {
+    return none("vehicles", "vehicles", scene.vehiclesIfAny()->count());
   }
   if (!saved.ropesAndCloth.empty()) {
     if (Status st = part("ropes_and_cloth",

@@ -304,6 +304,7 @@ Status VehicleSystem::setDef(VehicleId id, const VehicleDef& def, const std::str
   }
   v.def = def;
   v.def.chassis.inertia_kgm2 = inertia;
+  ++v.defChanges;
   configure(v);
   v.controls.gear = std::clamp(v.controls.gear, -1, int(def.gearbox.ratios.size()));
   v.gear = std::clamp(v.gear, -1, int(def.gearbox.ratios.size()));

@@ -127,6 +127,17 @@ class VehicleSystem {
       if (m_vehicles[i].alive) f(VehicleId{i, m_vehicles[i].generation});
   }
 
+  /// Every vehicle's running state between steps as exact bits, for
+  /// snapshots of a running scene (vehicle_state.cpp): controls, steering,
+  /// engine speed, gear and shift timer, each wheel's spin, angle and
+  /// telemetry, the differentials' state, the bodies the wheels test, and
+  /// surface softness set on bodies. Definitions are not stored: restore
+  /// goes back into a system with the same vehicles made by the same
+  /// scenario, and refuses (naming the vehicle) one spawned, removed or
+  /// re-tuned (Vehicle:tune) since, or bodies the World does not have.
+  std::string saveState() const;
+  Status restoreState(const std::string& bytes);
+
  private:
   struct Wheel {
     int axle = 0;
@@ -159,6 +170,7 @@ class VehicleSystem {
     int gear = 1;
     std::vector<physics::BodyId> nearby;  ///< bodies the wheel rays test this step
     VehicleTelemetry telemetry;
+    std::uint32_t defChanges = 0;  ///< setDef calls since spawn (snapshots: the definition must be the same)
   };
 
   Vehicle& get(VehicleId id);

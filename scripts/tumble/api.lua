@@ -1818,9 +1818,9 @@ function world.remove(body) end
 ---The scene's whole simulated state now, exactly: every body's pose,
 ---velocities, mass, material and sleep state, the contacts with their
 ---warm-start impulses, springs and world settings (gravity); every joint
----and both joint solvers' memory; ropes and cloth; particle emitters and
----their particles. Refused while the scene has vehicles, whose own state it
----does not hold yet. Lua state (locals, ctx.state, timers) is not part of it.
+---and both joint solvers' memory; the vehicles' engines, gears and wheels;
+---ropes and cloth; particle emitters and their particles. Lua state
+---(locals, ctx.state, timers, a driving helper's memory) is not part of it.
 ---
 ---```lua
 ---local before = world.snapshot()
@@ -1830,9 +1830,9 @@ function world.snapshot() end
 
 ---Puts the scene back to a snapshot exactly: stepping on from it gives the
 ---same bits as stepping on from the moment it was taken. The world must
----still have the same bodies, ropes and cloth: a body made or removed
----since is an error naming the first body slot that differs, and the
----scene is then unchanged. Joints and emitters come back as they were
+---still have the same bodies, vehicles, ropes and cloth: a body made or
+---removed since is an error naming the first body slot that differs, and
+---the scene is then unchanged. Joints and emitters come back as they were
 ---(made or removed since: undone). Body, joint and emitter handles stay
 ---valid. Lua state is not touched.
 ---
