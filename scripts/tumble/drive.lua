@@ -29,39 +29,72 @@
 --   drive.show(car, opts)         the chase camera on the car and its chassis mesh, when the
 --                                 camera and model APIs exist (nothing before)
 -- Each returns an object with :update(dt).
+--
+-- Snapshots (run --save-state / --load-state, docs/snapshots.md): give the
+-- controllers the scenario's ctx (opts.ctx, in on_start) and what changes
+-- while they run (the gearbox's hold timer, the traction factor, the
+-- autopilot's waypoint, laps and done, where the player's car last was on
+-- the map) is kept in ctx.state.drive, which a snapshot holds, so a run
+-- loaded from one drives on exactly as the run it was saved from. Without
+-- opts.ctx it is kept in the controller, and a loaded run starts it afresh.
 
 local drive = {}
 
 local function clamp(x, lo, hi) return math.max(lo, math.min(hi, x)) end
 
+-- A controller's changing state: a function returning its table. With a
+-- ctx, entry n of ctx.state.drive (n: the controller's place among those
+-- made with that ctx, the same again when on_start runs again), looked up
+-- at every call because loading a snapshot replaces ctx.state; else a table
+-- of its own.
+local function state_of(ctx, initial)
+  if not ctx then return function() return initial end end
+  ctx.state.drive = ctx.state.drive or {}
+  local n = #ctx.state.drive + 1
+  ctx.state.drive[n] = initial
+  return function() return ctx.state.drive[n] end
+end
+
+-- Methods from the class, other fields (laps, done, ...) from the state.
+local function class()
+  local c = {}
+  c.__index = function(self, k)
+    local m = c[k]
+    if m ~= nil then return m end
+    local state = rawget(self, "state")
+    return state and state()[k]
+  end
+  return c
+end
+
 -- Automatic gearbox --------------------------------------------------------
 
-local Gearbox = {}
-Gearbox.__index = Gearbox
+local Gearbox = class()
 
-function drive.gearbox(car)
+-- opts.ctx: see "Snapshots" above.
+function drive.gearbox(car, opts)
   local def = car:definition()
   return setmetatable({car = car, up = def.gearbox.shift_up_rpm, down = def.gearbox.shift_down_rpm,
-                       gears = #def.gearbox.ratios, hold = 0}, Gearbox)
+                       gears = #def.gearbox.ratios, state = state_of(opts and opts.ctx, {hold = 0})}, Gearbox)
 end
 
 -- Picks the gear for the current rpm; call once per step. `wanted` is the
 -- direction the driver wants: 1 forward, -1 reverse. `t` is this step's
 -- car:telemetry() when the caller has it already.
 function Gearbox:update(dt, wanted, t)
-  local car = self.car
+  local car, s = self.car, self.state()
   t = t or car:telemetry()
   local gear = t.gear
-  self.hold = math.max(0, self.hold - dt)
+  s.hold = math.max(0, s.hold - dt)
   if wanted == -1 then
     if t.speed < 1 then gear = -1 end
   elseif gear < 1 then
     if t.speed > -1 then gear = 1 end
-  elseif not t.shifting and self.hold == 0 then
+  elseif not t.shifting and s.hold == 0 then
     if t.rpm > self.up and gear < self.gears then
-      gear, self.hold = gear + 1, 0.8
+      gear, s.hold = gear + 1, 0.8
     elseif t.rpm < self.down and gear > 1 then
-      gear, self.hold = gear - 1, 0.8
+      gear, s.hold = gear - 1, 0.8
     end
   end
   if gear ~= t.gear then car:set_controls{gear = gear} end
@@ -70,8 +103,7 @@ end
 
 -- Traction control ------------------------------------------------------------
 
-local Traction = {}
-Traction.__index = Traction
+local Traction = class()
 
 function drive.traction(car, opts)
   opts = opts or {}
@@ -79,7 +111,8 @@ function drive.traction(car, opts)
   for i, axle in ipairs(car:definition().axles) do
     if axle.driven then driven[#driven + 1] = 2 * i - 1; driven[#driven + 1] = 2 * i end
   end
-  return setmetatable({car = car, slip = opts.slip or 0.15, factor = 1, driven = driven}, Traction)
+  return setmetatable({car = car, slip = opts.slip or 0.15, driven = driven, state = state_of(opts.ctx, {factor = 1})},
+                      Traction)
 end
 
 -- Returns the throttle to use instead of `throttle`. `t`: this step's
@@ -94,43 +127,46 @@ function Traction:filter(dt, throttle, t)
   end
   -- Cut while spinning, give back while gripping; never below 30% so the
   -- car still pulls away on a slope.
+  local s = self.state()
   if spinning then
-    self.factor = math.max(0.3, self.factor - 3 * dt)
+    s.factor = math.max(0.3, s.factor - 3 * dt)
   else
-    self.factor = math.min(1, self.factor + 1.5 * dt)
+    s.factor = math.min(1, s.factor + 1.5 * dt)
   end
-  return throttle * self.factor
+  return throttle * s.factor
 end
 
 -- Waypoint autopilot ------------------------------------------------------------
 
-local Autopilot = {}
-Autopilot.__index = Autopilot
+local Autopilot = class()
 
 -- opts: waypoints = {{x, z}, ...}, speed = m/s, loop = bool, radius = m
--- (when a waypoint counts as reached, default 6), traction = bool (default true).
+-- (when a waypoint counts as reached, default 6), traction = bool (default
+-- true), ctx (see "Snapshots" above). pilot.index, pilot.laps and
+-- pilot.done say where it is.
 function drive.autopilot(car, opts)
   assert(opts and opts.waypoints and #opts.waypoints > 0, "drive.autopilot: opts.waypoints = {{x, z}, ...} needed")
   return setmetatable({car = car, waypoints = opts.waypoints, speed = opts.speed or 15, loop = opts.loop,
-                       radius = opts.radius or 6, index = 1, laps = 0, done = false,
-                       gearbox = drive.gearbox(car),
+                       radius = opts.radius or 6,
+                       state = state_of(opts.ctx, {index = 1, laps = 0, done = false}),
+                       gearbox = drive.gearbox(car, opts),
                        traction = opts.traction ~= false and drive.traction(car, opts) or nil}, Autopilot)
 end
 
 function Autopilot:update(dt)
-  local car = self.car
-  if self.done then
+  local car, s = self.car, self.state()
+  if s.done then
     car:set_controls{throttle = 0, brake = 1, steer = 0}
     return
   end
   local p, f = car:position(), car:forward()
-  local wp = self.waypoints[self.index]
+  local wp = self.waypoints[s.index]
   local dx, dz = wp[1] - p.x, wp[2] - p.z
   local dist = math.sqrt(dx * dx + dz * dz)
   if dist < self.radius then
-    self.index = self.index + 1
-    if self.index > #self.waypoints then
-      if self.loop then self.index, self.laps = 1, self.laps + 1 else self.done = true end
+    s.index = s.index + 1
+    if s.index > #self.waypoints then
+      if self.loop then s.index, s.laps = 1, s.laps + 1 else s.done = true end
     end
     return self:update(dt)
   end
@@ -142,7 +178,7 @@ function Autopilot:update(dt)
   local steer = clamp(err * 2.0, -1, 1)
   -- Slow down for sharp turns and for the last waypoint.
   local target = self.speed / (1 + 2.5 * math.abs(err))
-  if not self.loop and self.index == #self.waypoints then target = math.min(target, 0.5 * dist + 2) end
+  if not self.loop and s.index == #self.waypoints then target = math.min(target, 0.5 * dist + 2) end
   local t = car:telemetry()
   local v = t.speed
   local throttle, brake = clamp((target - v) * 0.4, 0, 1), 0
@@ -154,19 +190,19 @@ end
 
 -- Player --------------------------------------------------------------------------
 
-local Player = {}
-Player.__index = Player
+local Player = class()
 
 -- The player's controller: switches the `vehicle` input context on (it
 -- starts off, so scenarios without a car keep Space and the mouse for the
 -- camera) and reads the actions named in bindings.lua. In a build without
 -- the input module (no global `input`) update() leaves the controls alone
--- and returns false.
+-- and returns false. opts.automatic (default true): the automatic gearbox;
+-- opts.ctx: see "Snapshots" above.
 function drive.player(car, opts)
   opts = opts or {}
   if type(input) == "table" then input.set_context("vehicle", true) end
-  return setmetatable({car = car, automatic = opts.automatic ~= false, gearbox = drive.gearbox(car),
-                       traction = drive.traction(car, opts)}, Player)
+  return setmetatable({car = car, automatic = opts.automatic ~= false, state = state_of(opts.ctx, {}),
+                       gearbox = drive.gearbox(car, opts), traction = drive.traction(car, opts)}, Player)
 end
 
 function Player:update(dt)
@@ -188,12 +224,12 @@ function Player:update(dt)
   if input.pressed("reset") then drive.upright(car) end
   -- Off the edge of the terrain the car would fall for ever: once it is
   -- off the map and 10 m below where it left it, it comes back there.
-  local p = car:position()
+  local p, s = car:position(), self.state()
   local ground = vehicle.surface(p.x, p.z)
   if ground then
-    self.last_on_map = {x = p.x, z = p.z, y = ground}
-  elseif self.last_on_map and p.y < self.last_on_map.y - 10 then
-    drive.rescue(car, self.last_on_map)
+    s.last_on_map = {x = p.x, z = p.z, y = ground}
+  elseif s.last_on_map and p.y < s.last_on_map.y - 10 then
+    drive.rescue(car, s.last_on_map)
     if type(game) == "table" then game.message("Off the map: back at the edge", 3, "warning") end
   end
   if self.automatic then
@@ -249,17 +285,29 @@ Effects.__index = Effects
 --           that, 0 without contact
 --   smoke = opts.smoke_idle (default 4) + opts.smoke_throttle (default 60)
 --           * throttle * rpm / max_rpm
--- update() spawns "base:dust" at each wheel's contact patch and
--- "base:exhaust" at the back once, and sets their rates (and the dust
+-- drive.effects() spawns "base:dust" at each wheel's contact patch and
+-- "base:exhaust" at the back; update() sets their rates (and the dust
 -- positions) every step; self.dust[i] and self.smoke hold the rates
 -- (scenarios and tests read them). Without a particles module (a build
 -- without it) only the rates are computed.
 function drive.effects(car, opts)
   opts = opts or {}
   local def = car:definition()
-  return setmetatable({car = car, dust = {}, smoke = 0, max_rpm = def.engine.max_rpm,
-                       rear = -def.chassis.size[3] / 2, dust_per_mps = opts.dust_per_mps or 40,
-                       smoke_idle = opts.smoke_idle or 4, smoke_throttle = opts.smoke_throttle or 60}, Effects)
+  local self = setmetatable({car = car, dust = {}, smoke = 0, max_rpm = def.engine.max_rpm,
+                             rear = -def.chassis.size[3] / 2, dust_per_mps = opts.dust_per_mps or 40,
+                             smoke_idle = opts.smoke_idle or 4, smoke_throttle = opts.smoke_throttle or 60}, Effects)
+  -- The emitters are made here, when the scenario starts, so that a run
+  -- loaded from a snapshot (which makes the scenario again, then puts the
+  -- saved emitters back in their slots) finds them behind the same handles.
+  if type(particles) == "table" and particles.spawn then
+    self.emitters = {exhaust = particles.spawn("base:exhaust", {body = car:body(), offset = {0.3, -0.2, self.rear}},
+                                               {rate = 0})}
+    for i, w in ipairs(car:telemetry().wheels) do
+      local p = w.position
+      self.emitters[i] = particles.spawn("base:dust", {position = {p.x, p.y - w.radius, p.z}}, {rate = 0})
+    end
+  end
+  return self
 end
 
 function Effects:update(dt)
@@ -270,14 +318,7 @@ function Effects:update(dt)
     self.dust[i] = w.contact and self.dust_per_mps * w.slip_speed * soft or 0
   end
   self.smoke = self.smoke_idle + self.smoke_throttle * car:controls().throttle * t.rpm / self.max_rpm
-  if type(particles) == "table" and particles.spawn then
-    if not self.emitters then
-      self.emitters = {exhaust = particles.spawn("base:exhaust", {body = car:body(), offset = {0.3, -0.2, self.rear}},
-                                                 {rate = 0})}
-      for i, w in ipairs(t.wheels) do
-        self.emitters[i] = particles.spawn("base:dust", {position = w.position}, {rate = 0})
-      end
-    end
+  if self.emitters then
     -- Dust rises where the tyre meets the ground (world space, moved each
     -- step, so it passes on the wheel's velocity and stays behind the car).
     for i, w in ipairs(t.wheels) do

@@ -39,7 +39,7 @@ return {
       if param("parked", 0) ~= 0 then
         -- no controller: the benchmark's baseline
       elseif i == 1 and param("autopilot", 0) == 0 then
-        player = drive.player(car)
+        player = drive.player(car, {ctx = ctx})
         drive.show(car)
       else
         local waypoints = {}
@@ -47,7 +47,7 @@ return {
           local b = a + k / 16 * 2 * math.pi
           waypoints[k] = {math.cos(b) * radius, math.sin(b) * radius}
         end
-        pilots[#pilots + 1] = drive.autopilot(car, {waypoints = waypoints, speed = 12, loop = true, radius = 8})
+        pilots[#pilots + 1] = drive.autopilot(car, {waypoints = waypoints, speed = 12, loop = true, radius = 8, ctx = ctx})
       end
     end
   end,

@@ -34,7 +34,7 @@ return {
     car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, 0}, heading = 0})
     local speed = param("speed", 15)
     car:body():set_velocity({0, 0, speed})
-    pilot = drive.autopilot(car, {waypoints = {{0, 200}}, speed = speed, traction = false})
+    pilot = drive.autopilot(car, {waypoints = {{0, 200}}, speed = speed, traction = false, ctx = ctx})
     drive.show(car)
   end,
 

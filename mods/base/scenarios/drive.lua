@@ -90,9 +90,9 @@ return {
       waypoints[i] = {math.cos(a) * 60, math.sin(a) * 60}
     end
     if param("autopilot") ~= 0 then
-      pilot = drive.autopilot(car, {waypoints = waypoints, speed = param("speed"), loop = true, radius = 10})
+      pilot = drive.autopilot(car, {waypoints = waypoints, speed = param("speed"), loop = true, radius = 10, ctx = ctx})
     else
-      player = drive.player(car)
+      player = drive.player(car, {ctx = ctx})
     end
     effects = drive.effects(car)
     drive.show(car, {camera = param("camera")})

@@ -45,13 +45,14 @@ end
 
 local autopilot = param("autopilot", 0) ~= 0
 
-local function launch(entry, start, player)
+local function launch(ctx, entry, start, player)
   local h = vehicle.surface(start[1], start[2])
   entry.car = vehicle.spawn(param("car", "base:hatchback"), {position = {start[1], h, start[2]}, heading = math.pi / 2})
   if player then
-    entry.pilot = drive.player(entry.car)
+    entry.pilot = drive.player(entry.car, {ctx = ctx})
   else
-    entry.pilot = drive.autopilot(entry.car, {waypoints = {{start[1] + 400, start[2]}}, speed = 30, traction = false})
+    entry.pilot = drive.autopilot(entry.car,
+                                  {waypoints = {{start[1] + 400, start[2]}}, speed = 30, traction = false, ctx = ctx})
   end
   entry.start, entry.slip, entry.friction_min, entry.softness_max = start, 0, math.huge, 0
   entry.driven = {}
@@ -76,8 +77,8 @@ return {
     local g = m and find_lane(0.6, m)
     expect("a mud lane and a grass lane found", m ~= nil and g ~= nil)
     if not (m and g) then return end
-    launch(mud, m, not autopilot)
-    launch(grass, g, false)
+    launch(ctx, mud, m, not autopilot)
+    launch(ctx, grass, g, false)
     drive.show(mud.car)
   end,
 

@@ -33,7 +33,7 @@ return {
       car:set_model(M .. "hatchback.obj", {offset = {0, -0.87, 0}})
     else
       car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -6}, heading = 0})
-      player = drive.player(car)
+      player = drive.player(car, {ctx = ctx})
       settle_y0 = car:body():position().y
     end
     for _, x in ipairs({-1, 1}) do

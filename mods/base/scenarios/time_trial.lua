@@ -66,9 +66,9 @@ return {
     car = vehicle.spawn(param("car", "base:hatchback"), {position = {0, 0, -12}, heading = 0})
     drive.show(car)
     if param("autopilot", 0) ~= 0 then
-      pilot = drive.autopilot(car, {waypoints = gates, speed = param("speed", 22), loop = false, radius = 4})
+      pilot = drive.autopilot(car, {waypoints = gates, speed = param("speed", 22), loop = false, radius = 4, ctx = ctx})
     else
-      player = drive.player(car)
+      player = drive.player(car, {ctx = ctx})
     end
   end,
 

@@ -1,17 +1,19 @@
--- world.snapshot() / world.restore() with joints, a rope and particles:
--- a swinging chain of hinged boxes, a rope with its end pinned to the
--- chain's last link, and a smoke emitter riding on the first link. After
+-- world.snapshot() / world.restore() with joints, a rope, particles and a
+-- vehicle: a swinging chain of hinged boxes, a rope with its end pinned to
+-- the chain's last link, a smoke emitter riding on the first link, and a
+-- car accelerating in first gear. After
 -- 0.5 s a snapshot is taken and the scene runs 0.5 s more while the links,
 -- the rope's particles and the emitter's live particles are recorded. Then
 -- the scene is disturbed in every system (a link kicked, a joint removed, a
--- new joint, a motor, a second emitter, the rope unpinned), and restored:
--- the next 0.5 s must repeat the recorded ones bit for bit (joint warm
--- starts, the rope's last solve and the emitters' random streams came
--- back), the removed joint is back and the new joint and emitter are gone.
+-- new joint, a motor, a second emitter, the rope unpinned, the car shifted
+-- into reverse with the brakes on), and restored: the next 0.5 s must
+-- repeat the recorded ones bit for bit (joint warm starts, the rope's last
+-- solve, the emitters' random streams, the car's engine, gear and wheel
+-- spins came back), the removed joint is back and the new joint and emitter are gone.
 -- A restore refused part-way (a rope removed since the snapshot) leaves
 -- the scene as it was before the call.
 local links, hinges = {}, {}
-local rope, smoke
+local rope, smoke, car
 local snap
 local first, second = {}, {}
 local kSnapStep, kLength = 30, 30
@@ -28,6 +30,8 @@ local function state()
   end
   out[#out + 1] = smoke:count()
   out[#out + 1] = particles.count()
+  local t, p = car:telemetry(), car:position()
+  for _, x in ipairs({p.x, p.y, p.z, t.rpm, t.gear, t.wheels[1].spin, t.wheels[3].spin}) do out[#out + 1] = x end
   return out
 end
 
@@ -55,6 +59,8 @@ return {
     rope = deformable.rope{from = {3.0, 4, 0}, to = {3.0, 2, 0}, segments = 12, mass = 0.3, pin_start = false}
     rope:pin(1, links[5])  -- carried at the point of the last link where the rope starts
     smoke = particles.spawn("base:smoke", {body = links[1], offset = {0, 0.2, 0}})
+    car = vehicle.spawn("base:hatchback", {position = {0, 0, 10}})
+    car:set_controls{throttle = 0.6, gear = 1}
   end,
   on_update = function(ctx, dt)
     local s = ctx.step
@@ -70,11 +76,13 @@ return {
       hinges[4]:set_motor(5, 50)
       local sparks = particles.spawn("base:smoke", {position = {1, 1, 1}})
       rope:unpin(1)
+      car:set_controls{throttle = 0, brake = 1, gear = -1}
       world.restore(snap)
       expect("restore brings a removed joint back", hinges[2]:is_valid())
       expect("restore removes a joint made since", not extra:is_valid())
       expect("restore removes an emitter made since", not sparks:alive())
       expect("the emitter made before is still there", smoke:alive())
+      expect("the car's controls are back", car:controls().gear == 1 and math.abs(car:controls().throttle - 0.6) < 1e-6)
       ctx.state.replay_from = s
     end
     if ctx.state.replay_from and s > ctx.state.replay_from and s <= ctx.state.replay_from + kLength then
@@ -88,6 +96,7 @@ return {
     end
     expect("the same steps after restore give the same bodies, rope and particles, bit for bit", all)
     expect("the chain swung: the last link moved", first[1] and first[kLength] and first[1][1] ~= first[kLength][1])
+    expect("the car drove: its wheels spun up", first[1] and first[kLength] and first[kLength][#first[1]] > first[1][#first[1]])
     -- A refused restore changes nothing: the rope is gone since the snapshot.
     local before = state()
     rope:remove()
