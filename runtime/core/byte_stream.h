@@ -86,6 +86,8 @@ class ByteReader {
   bool ok() const { return m_ok; }
   bool atEnd() const { return m_pos == m_size; }
   std::size_t position() const { return m_pos; }
+  /// The bytes read since position `start` (a part to read again later).
+  std::string bytesFrom(std::size_t start) const { return std::string(m_data + start, m_pos - start); }
 
  private:
   bool take(std::size_t n) {

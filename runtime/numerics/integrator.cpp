@@ -344,3 +344,32 @@ StepInfo step(Method method, const OdeSystem& system, double t, Eigen::VectorXd&
 }
 
 }  // namespace tumble::numerics
+
+namespace tumble::numerics {
+
+void Integrator::saveState(ByteWriter& w) const {
+  static_assert(kBitwise<IntegratorStats>);
+  w.pod(m_stats);
+  w.pod(std::uint8_t(m_verletCacheValid));
+  w.pod(m_verletLastT);
+  w.vec(std::vector<double>(m_verletAccel.data(), m_verletAccel.data() + m_verletAccel.size()));
+  w.vec(std::vector<double>(m_verletLastY.data(), m_verletLastY.data() + m_verletLastY.size()));
+}
+
+bool Integrator::restoreState(ByteReader& r) {
+  const auto stats = r.pod<IntegratorStats>();
+  const bool valid = r.pod<std::uint8_t>() != 0;
+  const auto lastT = r.pod<double>();
+  const std::vector<double> accel = r.vec<double>(std::size_t(m_dimension));
+  const std::vector<double> lastY = r.vec<double>(std::size_t(m_dimension));
+  if (!r.ok() || accel.size() != std::size_t(m_verletAccel.size()) || lastY.size() != std::size_t(m_verletLastY.size()))
+    return false;
+  m_stats = stats;
+  m_verletCacheValid = valid;
+  m_verletLastT = lastT;
+  if (!accel.empty()) m_verletAccel = Eigen::Map<const Eigen::VectorXd>(accel.data(), Eigen::Index(accel.size()));
+  if (!lastY.empty()) m_verletLastY = Eigen::Map<const Eigen::VectorXd>(lastY.data(), Eigen::Index(lastY.size()));
+  return true;
+}
+
+}  // namespace tumble::numerics

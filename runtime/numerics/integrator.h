@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/byte_stream.h"
 #include "core/result.h"
 #include "numerics/ode.h"
 
@@ -104,6 +105,12 @@ class Integrator {
   /// Advances y from t to t + dt in place. The system must have the
   /// dimension given at construction and suit the method (checkMethodFor).
   StepInfo step(const OdeSystem& system, double t, Eigen::VectorXd& y, double dt);
+
+  /// What a later step reads besides y and t, as exact bits (snapshots of a
+  /// running scene): the counters and velocity Verlet's cached acceleration.
+  /// restoreState refuses bytes of another dimension.
+  void saveState(ByteWriter& w) const;
+  bool restoreState(ByteReader& r);
 
  private:
   void eval(const OdeSystem& system, double t, const Eigen::VectorXd& y, Eigen::VectorXd& dy);

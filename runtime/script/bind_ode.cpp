@@ -165,6 +165,30 @@ struct OdeObject {
   long steps = 0, newtonFailures = 0;
 };
 
+/// Every ode.system by its number (ScenarioHost::noteOdeSystem), weakly
+/// held: a system the script dropped goes with the garbage collector.
+char kOdeRegistryKey;
+void pushOdeRegistry(lua_State* L) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &kOdeRegistryKey) == LUA_TTABLE) return;
+  lua_pop(L, 1);
+  lua_newtable(L);
+  lua_createtable(L, 0, 1);
+  lua_pushliteral(L, "v");
+  lua_setfield(L, -2, "__mode");
+  lua_setmetatable(L, -2);
+  lua_pushvalue(L, -1);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kOdeRegistryKey);
+}
+
+/// System number n if it is alive, else null.
+OdeObject* odeByNumber(lua_State* L, int n) {
+  pushOdeRegistry(L);
+  lua_rawgeti(L, -1, n);
+  auto* o = static_cast<OdeObject*>(luaL_testudata(L, -1, kOdeMeta));
+  lua_pop(L, 2);
+  return o && o->integrator ? o : nullptr;
+}
+
 OdeObject& checkOde(lua_State* L, int idx) {
   auto* o = static_cast<OdeObject*>(luaL_testudata(L, idx, kOdeMeta));
   if (!o || !o->integrator) throw LuaArgError(std::string("expected an OdeSystem, got ") + luaL_typename(L, idx));
@@ -228,11 +252,15 @@ int odeSystem(lua_State* L) {
                       std::to_string(dim) + " numbers");
   const double t0 = optNumberField(L, 1, "time", 0.0);
 
-  ScenarioHost::from(L)->noteOdeSystem();
+  const int number = ScenarioHost::from(L)->noteOdeSystem();
   auto* o = static_cast<OdeObject*>(lua_newuserdatauv(L, sizeof(OdeObject), 0));
   new (o) OdeObject();
   luaL_setmetatable(L, kOdeMeta);
   const int self = lua_gettop(L);
+  pushOdeRegistry(L);
+  lua_pushvalue(L, self);
+  lua_rawseti(L, -2, number);
+  lua_pop(L, 1);
   o->f.L = L;
   o->f.dim = dim;
   o->f.derivativeRef = optFunctionRef(L, "derivative", true);
@@ -419,6 +447,65 @@ const luaL_Reg kGlobals[] = {
 };
 
 }  // namespace
+
+void saveOdeSystems(lua_State* L, int made, ByteWriter& w) {
+  w.pod(std::int32_t(made));
+  for (int n = 1; n <= made; ++n) {
+    const OdeObject* o = odeByNumber(L, n);
+    w.pod(std::uint8_t(o != nullptr));
+    if (!o) continue;
+    w.pod(std::int32_t(o->f.dim));
+    w.pod(std::int32_t(o->method));
+    w.vec(std::vector<double>(o->y.data(), o->y.data() + o->y.size()));
+    w.pod(o->t);
+    w.pod(std::int64_t(o->steps));
+    w.pod(std::int64_t(o->newtonFailures));
+    o->integrator->saveState(w);
+  }
+}
+
+Status restoreOdeSystems(lua_State* L, int made, ByteReader& r) {
+  const auto saved = r.pod<std::int32_t>();
+  if (!r.ok() || saved < 0) return makeError("damaged (ode systems)");
+  // Read and checked whole, then applied: a refused restore changes nothing.
+  struct Saved {
+    OdeObject* o;
+    Eigen::VectorXd y;
+    double t;
+    std::int64_t steps, newtonFailures;
+    std::string integrator;
+  };
+  std::vector<Saved> all;
+  for (int n = 1; n <= saved; ++n) {
+    if (!r.pod<std::uint8_t>()) continue;
+    OdeObject* o = n <= made ? odeByNumber(L, n) : nullptr;
+    if (!o)
+      return makeError("ode.system number " + std::to_string(n) +
+                       " is in the snapshot but was not made by on_start here (made later, or the scenario changed)");
+    const auto dim = r.pod<std::int32_t>();
+    const auto method = r.pod<std::int32_t>();
+    const std::vector<double> y = r.vec<double>(10000);
+    Saved s{o, {}, r.pod<double>(), r.pod<std::int64_t>(), r.pod<std::int64_t>(), {}};
+    if (!r.ok() || dim != o->f.dim || method != std::int32_t(o->method) || y.size() != std::size_t(dim))
+      return makeError("ode.system number " + std::to_string(n) + ": the snapshot's has another size or method");
+    s.y = Eigen::Map<const Eigen::VectorXd>(y.data(), Eigen::Index(y.size()));
+    // The integrator's part, checked on a scratch integrator first.
+    const std::size_t start = r.position();
+    numerics::Integrator scratch(o->method, o->f.dim);
+    if (!scratch.restoreState(r)) return makeError("ode.system number " + std::to_string(n) + ": damaged");
+    s.integrator = r.bytesFrom(start);
+    all.push_back(std::move(s));
+  }
+  for (Saved& s : all) {
+    s.o->y = s.y;
+    s.o->t = s.t;
+    s.o->steps = long(s.steps);
+    s.o->newtonFailures = long(s.newtonFailures);
+    ByteReader ir(s.integrator);
+    s.o->integrator->restoreState(ir);
+  }
+  return Ok{};
+}
 
 void openOdeBindings(lua_State* L, int envIndex) {
   registerType(L, {kOdeMeta, kMethods, odeToString, nullptr, odeGc});

@@ -185,6 +185,7 @@ void ScenarioHost::start() {
   pushCtx(0, 0, 0);
   callLifecycle("on_start", 1, nullptr, nullptr);
   m_firstTimerAfterStart = m_timers.nextId();
+  m_firstTriggerAfterStart = m_triggers.nextId();
   // Timers on_start made with delay 0 fire now, before the first step.
   if (m_timers.anyDue(0)) runTimers(0, 0, 0);
 }

@@ -153,9 +153,10 @@ class ScenarioHost {
   bool hasOnReload();
   /// A path inside the mod's folder made relative to it ("scenarios/x.lua:12").
   std::string modRelative(const std::string& where) const;
-  /// ode.system was called: its state lives in a Lua object a snapshot
-  /// cannot store, so saveState refuses from then on.
-  void noteOdeSystem() { ++m_odeSystemsMade; }
+  /// ode.system was called: returns the system's number (1, 2, ... in the
+  /// order they were made), by which a snapshot finds it again after
+  /// on_start made the systems anew (bind_ode.cpp, saveOdeSystems).
+  int noteOdeSystem() { return ++m_odeSystemsMade; }
   /// Records an error that did not come from a Lua call (a reload hook, an
   /// overrides file); it shows on the HUD and in the report like the others.
   void recordError(ScriptError error);
@@ -315,6 +316,7 @@ class ScenarioHost {
   std::uint64_t m_randomCount = 0;
   int m_odeSystemsMade = 0;  ///< see noteOdeSystem
   std::uint32_t m_firstTimerAfterStart = 1;  ///< first timer id made after on_start (saveState)
+  std::uint32_t m_firstTriggerAfterStart = 1;  ///< first trigger id made after on_start (saveState)
   std::map<std::string, vehicle::VehicleDef> m_vehicleDefs;
   Presentation m_presentation;
 };

@@ -7,13 +7,17 @@
 //     kMaxDepth deep;
 //   - the timers' schedule (due times, periods, order), the scenario's
 //     random generator, math.random's state, random.new()'s seed counter;
-//   - game state (score, outcome, messages) and the expectations so far.
+//   - game state (score, outcome, messages) and the expectations so far;
+//   - every ode.system's state vector, time and integrator memory, by the
+//     number it was made with (bind_ode.cpp: on_start makes them again);
+//   - the trigger volumes on_start made: which bodies are inside each
+//     (their callbacks are on_start's again), and which were removed since.
 // Loading runs on_start again (it re-makes the bodies, locals and timers as
 // at the start), then puts the saved state back. A scenario with on_reload
 // owns its timers and triggers, as after a hot reload: they are dropped and
-// on_reload(ctx, state) re-makes them. Without on_reload, a timer made after
-// on_start (its function would not exist after loading) or a trigger volume
-// is refused at save time with where it was made.
+// on_reload(ctx, state) re-makes them. Without on_reload, a timer or a
+// trigger volume made after on_start (its function would not exist after
+// loading) is refused at save time.
 #include <cstring>
 #include <set>
 
@@ -24,7 +28,8 @@ namespace tumble::script {
 
 namespace {
 
-constexpr std::uint32_t kScriptStateVersion = 1;
+// 2: ode.system objects' state at the end.
+constexpr std::uint32_t kScriptStateVersion = 2;
 constexpr int kMaxDepth = 32;
 constexpr std::size_t kMaxNodes = 1'000'000;
 constexpr std::size_t kMaxText = std::size_t(64) << 20;
@@ -204,15 +209,11 @@ bool ScenarioHost::hasOnReload() {
 
 Result<std::string> ScenarioHost::saveState() {
   lua_State* L = m_vm.state();
-  if (m_odeSystemsMade > 0)
-    return makeError(m_file + ": has " + std::to_string(m_odeSystemsMade) +
-                     " ode.system object(s), whose state lives in Lua objects a snapshot cannot store");
   const bool ownsTimers = hasOnReload();
   if (!ownsTimers) {
-    if (m_triggers.liveCount() > 0)
-      return makeError(m_file + ": " + std::to_string(m_triggers.liveCount()) +
-                       " trigger volume(s) exist, which a snapshot cannot store; give the scenario an "
-                       "on_reload(ctx, state) that re-makes them");
+    if (m_triggers.anyFrom(m_firstTriggerAfterStart))
+      return makeError(m_file + ": a trigger volume was made after on_start, and a snapshot cannot store its "
+                       "callbacks; give the scenario an on_reload(ctx, state) that re-makes its triggers");
     for (const TimerQueue::Schedule& t : m_timers.schedule())
       if (t.id >= m_firstTimerAfterStart)
         return makeError(m_file + ": the timer whose function is defined at " + modRelative(m_timers.definedAt(t.id)) +
@@ -266,6 +267,8 @@ Result<std::string> ScenarioHost::saveState() {
     w.pod(std::uint8_t(e.max.has_value()));
     w.pod(e.max.value_or(0));
   }
+  saveOdeSystems(L, m_odeSystemsMade, w);
+  if (!ownsTimers) m_triggers.saveState(w);
   return w.take();
 }
 
@@ -320,6 +323,10 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
     if (hasMin) e.min = mn;
     if (hasMax) e.max = mx;
   }
+  if (!r.ok()) return fail("damaged (truncated)");
+  if (Status st = restoreOdeSystems(L, m_odeSystemsMade, r); !st) return fail(st.error());
+  if (!ownsTimers)
+    if (Status st = m_triggers.restoreState(r, world().bodySlotCount()); !st) return fail(st.error());
   if (!r.ok() || !r.atEnd()) return fail("damaged (truncated or bytes after the end)");
   if (outcome < int(Outcome::None) || outcome > int(Outcome::Lost)) return fail("damaged (outcome)");
   if (ownsTimers != hasOnReload())

@@ -96,4 +96,51 @@ void TriggerSet::update(const physics::World& world, const Call& call) {
   }
 }
 
+bool TriggerSet::anyFrom(std::uint32_t firstId) const {
+  for (const Trigger& t : m_triggers)
+    if (t.id != 0 && t.id >= firstId) return true;
+  return false;
+}
+
+void TriggerSet::saveState(ByteWriter& w) const {
+  w.pod(m_nextId);
+  w.pod(std::uint64_t(m_triggers.size()));
+  for (const Trigger& t : m_triggers) {
+    w.pod(t.id);
+    if (t.id != 0) w.vec(t.inside);
+  }
+}
+
+Status TriggerSet::restoreState(ByteReader& r, std::size_t bodySlots) {
+  const auto nextId = r.pod<std::uint32_t>();
+  const auto slots = r.pod<std::uint64_t>();
+  if (!r.ok() || slots > (std::uint64_t(1) << 20)) return makeError("damaged (trigger slots)");
+  // Read and checked whole before anything changes.
+  std::vector<std::uint32_t> ids(slots);
+  std::vector<std::vector<physics::BodyId>> inside(slots);
+  for (std::size_t i = 0; i < slots; ++i) {
+    ids[i] = r.pod<std::uint32_t>();
+    if (ids[i] == 0) continue;
+    inside[i] = r.vec<physics::BodyId>(bodySlots);
+    const std::uint32_t here = i < m_triggers.size() ? m_triggers[i].id : 0;
+    if (!r.ok()) return makeError("damaged (trigger " + std::to_string(ids[i]) + ")");
+    if (here != ids[i])
+      return makeError("trigger " + std::to_string(ids[i]) +
+                       " is in the snapshot but on_start did not make it here (made later, or the scenario changed)");
+    for (const physics::BodyId& b : inside[i])
+      if (b.index >= bodySlots) return makeError("damaged (trigger " + std::to_string(ids[i]) + ")");
+  }
+  if (!r.ok() || nextId < 1) return makeError("damaged (triggers)");
+  for (std::size_t i = slots; i < m_triggers.size(); ++i)
+    if (m_triggers[i].id != 0)
+      return makeError("trigger " + std::to_string(m_triggers[i].id) + " was made here but is not in the snapshot");
+  for (std::size_t i = 0; i < slots; ++i) {
+    if (i >= m_triggers.size()) m_triggers.emplace_back();  // a slot of a trigger made and removed since
+    if (ids[i] == 0 && m_triggers[i].id != 0) remove(m_triggers[i].id);  // removed since
+    m_triggers[i].inside = std::move(inside[i]);
+  }
+  m_nextId = nextId;
+  return Ok{};
+}
+
 }  // namespace tumble::script

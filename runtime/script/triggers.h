@@ -10,7 +10,9 @@
 #include <functional>
 #include <vector>
 
+#include "core/byte_stream.h"
 #include "core/math.h"
+#include "core/result.h"
 #include "physics/body.h"
 
 struct lua_State;
@@ -41,6 +43,18 @@ class TriggerSet {
   using Call = std::function<void(physics::BodyId body, std::uint32_t trigger, bool enter)>;
   /// Updates every trigger against the world, then calls back.
   void update(const physics::World& world, const Call& call);
+
+  /// Id the next trigger gets.
+  std::uint32_t nextId() const { return m_nextId; }
+  /// Whether a live trigger has an id >= firstId (made after on_start).
+  bool anyFrom(std::uint32_t firstId) const;
+  /// Snapshots (scenario_state.cpp): each slot's trigger id (0: removed)
+  /// and the bodies inside it, and the next id. restoreState goes back into
+  /// the triggers on_start made again (their callbacks are theirs): a saved
+  /// trigger this set does not have in that slot is refused; triggers
+  /// removed since the start are removed again.
+  void saveState(ByteWriter& w) const;
+  Status restoreState(ByteReader& r, std::size_t bodySlots);
 
  private:
   struct Trigger {

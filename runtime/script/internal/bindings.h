@@ -4,6 +4,8 @@
 // as fields of the environment at envIndex.
 #include <cstdint>
 
+#include "core/byte_stream.h"
+#include "core/result.h"
 #include "physics/body.h"
 
 struct lua_State;
@@ -44,6 +46,14 @@ void openEnvironmentBindings(lua_State* L, int envIndex);
 /// deformable table (bind_deformable.cpp); ode table and draw_line (bind_ode.cpp).
 void openDeformableBindings(lua_State* L, int envIndex);
 void openOdeBindings(lua_State* L, int envIndex);
+/// The ode.system objects' state for snapshots (bind_ode.cpp): made = how
+/// many the scenario made so far (ScenarioHost::noteOdeSystem). Each live
+/// one's state vector, time, counters and integrator memory, by its number.
+/// restoreOdeSystems puts them into the systems on_start made again, and
+/// refuses a live saved one this run has not made (made after on_start) or
+/// one of another size or method.
+void saveOdeSystems(lua_State* L, int made, ByteWriter& w);
+Status restoreOdeSystems(lua_State* L, int made, ByteReader& r);
 /// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
 void openSpringBindings(lua_State* L, int envIndex);
 /// world.snapshot and world.restore (bind_world_snapshot.cpp); after openWorldBindings.
