@@ -21,6 +21,20 @@ template <typename T>
 inline constexpr bool kBitwise =
     std::is_trivially_copyable_v<T> || (std::is_trivially_destructible_v<T> && !std::is_pointer_v<T>);
 
+/// Whether bool members read back as raw bytes hold 0 or 1. Read as bytes:
+/// loading a bool whose byte is anything else is undefined, so damaged or
+/// hand-made bytes are checked with this before any such bool is used.
+template <typename... B>
+bool validBools(const B&... b) {
+  static_assert((std::is_same_v<B, bool> && ...));
+  auto one = [](const bool& v) {
+    unsigned char c;
+    std::memcpy(&c, &v, 1);
+    return c <= 1;
+  };
+  return (one(b) && ...);
+}
+
 class ByteWriter {
  public:
   template <typename T>

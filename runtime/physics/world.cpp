@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/byte_stream.h"
 #include "physics/internal/broad_phase.h"
 #include "physics/internal/height_field_collision.h"
 #include "physics/internal/step_scratch.h"
@@ -90,6 +91,35 @@ const Body& World::body(BodyId id) const {
 Body& World::mutableBody(BodyId id) {
   TUMBLE_ASSERT(isValid(id), "stale or null BodyId; check World::isValid first");
   return m_bodies[id.index];
+}
+
+Status validateWorldSettings(const WorldSettings& s) {
+  auto bad = [](const char* field, const char* expected) {
+    return makeError(std::string("world settings field ") + field + ": expected " + expected);
+  };
+  if (!validBools(s.softContacts, s.continuousStatic, s.meshTree, s.enableSleep, s.gyroscopic))
+    return bad("(a switch)", "true or false");
+  if (s.substeps < 1 || s.substeps > 1000) return bad("substeps", "1..1000");
+  if (s.velocityIterations < 1 || s.velocityIterations > 1000) return bad("velocityIterations", "1..1000");
+  if (s.relaxIterations < 0 || s.relaxIterations > 1000) return bad("relaxIterations", "0..1000");
+  if (s.restitutionIterations < 0 || s.restitutionIterations > 1000) return bad("restitutionIterations", "0..1000");
+  if (s.maxContactPairsPerBody < 0) return bad("maxContactPairsPerBody", ">= 0 (0: no cap)");
+  if (int(s.integrator) < int(BodyIntegrator::SymplecticEuler) || int(s.integrator) > int(BodyIntegrator::Sdirk2))
+    return bad("integrator", "one of the body integrators");
+  if (!s.gravity_mps2.allFinite()) return bad("gravity_mps2", "finite m/s^2");
+  for (auto [field, v] : {std::pair<const char*, Real>{"solverTolerance", s.solverTolerance},
+                          {"restitutionThreshold_mps", s.restitutionThreshold_mps},
+                          {"baumgarte", s.baumgarte},
+                          {"contactHertz", s.contactHertz},
+                          {"contactDampingRatio", s.contactDampingRatio},
+                          {"maxPushoutSpeed_mps", s.maxPushoutSpeed_mps},
+                          {"speculativeDistance_m", s.speculativeDistance_m},
+                          {"linearSlop_m", s.linearSlop_m},
+                          {"sleepLinearSpeed_mps", s.sleepLinearSpeed_mps},
+                          {"sleepAngularSpeed_radps", s.sleepAngularSpeed_radps},
+                          {"timeToSleep_s", s.timeToSleep_s}})
+    if (!std::isfinite(v) || v < 0) return bad(field, "a finite number >= 0");
+  return Ok{};
 }
 
 Result<BodyId> World::createBody(const BodyDef& def) {

@@ -27,6 +27,13 @@
 
 namespace tumble::physics {
 
+struct WorldSettings;
+/// Refuses settings a step cannot run with: substeps or iterations outside
+/// 1..1000 (relax and restitution iterations 0..1000), a negative pair cap,
+/// an integrator that does not exist, non-finite or negative values where a
+/// positive one is needed. The message names the field.
+Status validateWorldSettings(const WorldSettings& s);
+
 struct WorldSettings {
   Vec3 gravity_mps2 = Vec3(0, -kStandardGravity, 0);
   int substeps = 8;            ///< solver substeps per step (>= 1); see contact_solver.cpp
@@ -287,10 +294,12 @@ class World {
   /// body's pose, velocities, mass, material and sleep state, the contact
   /// cache with its warm-start impulses, the broad phase's order, sleep
   /// islands, the collision filter, island links, springs and settings.
-  /// Shapes are not stored: restoreState puts the state back into a world
-  /// with the same bodies (same slots, generations, types and shapes, as the
-  /// same scenario makes them) and refuses anything else, or damaged bytes,
-  /// with a message naming the first difference (the world is then unchanged).
+  /// Of shapes only the primitive ones' sizes are stored: restoreState puts
+  /// the state back into a world with the same bodies (as the same scenario
+  /// makes them); a body it lacks is made again when its shape is a sphere,
+  /// box, capsule, cylinder or plane, one the saved world lacks is removed,
+  /// and a missing hull, mesh or compound, or damaged bytes, are refused
+  /// with a message naming the slot (the world is then unchanged).
   std::string saveState() const;
   Status restoreState(const std::string& bytes);
   const ErrorStats& errorStats() const { return m_error; }

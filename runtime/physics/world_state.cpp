@@ -2,10 +2,17 @@
 // bits, for snapshots of a running scene (app/scene_state.h) and for
 // world.snapshot() / world.restore() in scripts.
 //
-// Shapes, hulls and meshes are not stored: a snapshot goes back into a world
-// with the same bodies (made by the same scenario), so each slot's liveness,
-// generation, type and shape are compared and the first difference refuses
-// the restore. Everything that changes while the world steps is stored: each
+// Hulls, meshes and compounds are not stored: a snapshot goes back into a
+// world with the same bodies (made by the same scenario), so each slot's
+// liveness, generation, type and shape are compared. Where they differ, the
+// saved slot wins when that needs no shape data: a body removed since is
+// removed again, and a body whose shape is a sphere, box, capsule, cylinder
+// or plane (its size is in the snapshot) is made again in its slot (bodies
+// a script spawned after on_start: projectiles, a rag-doll). A saved body
+// with a hull, mesh or compound shape that this world does not have in its
+// slot refuses the restore, naming the slot; bodies in slots the saved world
+// did not have yet are removed. Everything that changes while
+// the world steps is stored: each
 // body's pose, velocities, accumulated force and torque, mass and inertia,
 // material and sleep state; the contact cache with its warm-start impulses
 // (without it the next step solves the stack from zero and the run differs);
@@ -13,6 +20,7 @@
 // the contacts the solver visits); sleep islands, the collision filter,
 // island links, springs, the settings and the error bookkeeping.
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 
@@ -102,6 +110,33 @@ void applyState(const SlotState& s, Body& b) {
   b.frozen = s.frozen;
 }
 
+/// Shapes whose whole data is in SlotShape.
+bool primitive(const SlotShape& s) {
+  switch (ShapeType(s.shape)) {
+    case ShapeType::Sphere:
+    case ShapeType::Box:
+    case ShapeType::Capsule:
+    case ShapeType::Cylinder:
+    case ShapeType::Plane: return true;
+    default: return false;
+  }
+}
+
+bool validSize(const SlotShape& s) {
+  return std::isfinite(s.radius_m) && s.radius_m > 0 && std::isfinite(s.halfHeight_m) && s.halfHeight_m >= 0 &&
+         s.halfExtents_m.allFinite() && (s.halfExtents_m.array() > 0).all();
+}
+
+Shape primitiveShape(const SlotShape& s) {
+  switch (ShapeType(s.shape)) {
+    case ShapeType::Sphere: return Shape::sphere(s.radius_m);
+    case ShapeType::Box: return Shape::box(s.halfExtents_m);
+    case ShapeType::Capsule: return Shape::capsule(s.radius_m, s.halfHeight_m);
+    case ShapeType::Cylinder: return Shape::cylinder(s.radius_m, s.halfHeight_m);
+    default: return Shape::plane();
+  }
+}
+
 bool sameShape(const SlotShape& a, const SlotShape& b) {
   return a.generation == b.generation && a.alive == b.alive && a.type == b.type && a.shape == b.shape &&
          a.radius_m == b.radius_m && a.halfHeight_m == b.halfHeight_m && a.halfExtents_m == b.halfExtents_m;
@@ -161,19 +196,22 @@ Status World::restoreState(const std::string& bytes) {
   const auto settings = r.pod<WorldSettings>();
   const auto slots = r.pod<std::uint64_t>();
   if (!r.ok() || slots > kMaxSlots) return makeError("world state: damaged (body slots)");
-  if (slots != m_bodies.size())
-    return makeError("the saved world has " + std::to_string(slots) + " body slots, this one " +
-                     std::to_string(m_bodies.size()) + " (bodies were made or removed since; a snapshot goes back "
-                     "into the world with the same bodies)");
+  std::vector<SlotShape> shapes(slots);
   std::vector<SlotState> states(slots);
   for (std::size_t i = 0; i < slots; ++i) {
-    const auto saved = r.pod<SlotShape>();
+    shapes[i] = r.pod<SlotShape>();
     states[i] = r.pod<SlotState>();
     if (!r.ok()) return makeError("world state: damaged (body " + std::to_string(i) + ")");
-    const SlotShape here = shapeOf(m_bodies[i]);
-    if (!sameShape(saved, here))
-      return makeError("body slot " + std::to_string(i) + " holds " + describe(here) + ", the saved world " +
-                       describe(saved) + " (a snapshot goes back into the world with the same bodies)");
+    const SlotShape here = i < m_bodies.size() ? shapeOf(m_bodies[i]) : SlotShape{};
+    const SlotShape& saved = shapes[i];
+    if (saved.alive && !sameShape(saved, here) && !primitive(saved))
+      return makeError("body slot " + std::to_string(i) + " holds " + describe(here) + " here, a " + describe(saved) +
+                       " in the saved world (a body made after on_start comes back only with a sphere, box, capsule, "
+                       "cylinder or plane shape: a " + shapeTypeName(ShapeType(saved.shape)) +
+                       "'s data is not in the snapshot)");
+    if (saved.alive && !sameShape(saved, here) &&
+        (saved.type > std::uint8_t(BodyType::Dynamic) || !validSize(saved)))
+      return makeError("world state: damaged (body " + std::to_string(i) + ")");
   }
   auto freeList = r.vec<std::uint32_t>(kMaxSlots);
   const auto bodyCount = r.pod<std::int32_t>();
@@ -201,8 +239,10 @@ Status World::restoreState(const std::string& bytes) {
   // (Old manifolds are only matched by index and child, never followed into
   // a body's shape, so a range check is enough for them.)
   for (const Manifold& m : manifolds)
-    if (m.a >= slots || (m.b >= slots && m.b != kHeightFieldBody) || m.count < 0 || m.count > kMaxManifoldPoints)
+    if (m.a >= slots || (m.b >= slots && m.b != kHeightFieldBody) || m.count < 0 || m.count > kMaxManifoldPoints ||
+        !validBools(m.touchedBefore, m.roundA, m.roundB, m.rimA, m.rimB))
       return makeError("world state: damaged (contact cache)");
+  if (Status st = validateWorldSettings(settings); !st) return makeError("world state: settings: " + st.error());
   auto distinct = [](std::vector<std::uint32_t> v) {
     std::sort(v.begin(), v.end());
     return std::adjacent_find(v.begin(), v.end()) == v.end();
@@ -210,7 +250,7 @@ Status World::restoreState(const std::string& bytes) {
   for (std::uint32_t i : order)
     if (i >= slots) return makeError("world state: damaged (broad phase)");
   for (std::uint32_t i : freeList)
-    if (i >= slots || m_bodies[i].alive) return makeError("world state: damaged (free slots)");
+    if (i >= slots || shapes[i].alive) return makeError("world state: damaged (free slots)");
   if (!distinct(order) || !distinct(freeList)) return makeError("world state: damaged (repeated slots)");
   for (const auto* pairs : {&noCollide, &islandLinks})
     for (const BodyPair& p : *pairs)
@@ -218,7 +258,22 @@ Status World::restoreState(const std::string& bytes) {
   if (Status st = m_integration->restoreSprings(r, std::uint32_t(slots)); !st) return st;
   if (!r.atEnd()) return makeError("world state: damaged (bytes after the end)");
   m_settings = settings;
-  for (std::size_t i = 0; i < slots; ++i) applyState(states[i], m_bodies[i]);
+  m_bodies.resize(slots);
+  for (std::size_t i = 0; i < slots; ++i) {
+    Body& b = m_bodies[i];
+    const SlotShape& saved = shapes[i];
+    if (!sameShape(saved, shapeOf(b))) {
+      // Made again from its saved size, or removed as in the saved run.
+      b = Body{};
+      b.generation = saved.generation;
+      b.alive = saved.alive != 0;
+      if (b.alive) {
+        b.type = BodyType(saved.type);
+        b.shape = primitiveShape(saved);
+      }
+    }
+    applyState(states[i], b);
+  }
   m_freeList = std::move(freeList);
   m_bodyCount = bodyCount;
   m_manifolds = std::move(manifolds);
@@ -260,9 +315,11 @@ Status BodyIntegration::restoreSprings(ByteReader& r, std::uint32_t slotCount) {
   const auto count = r.pod<std::int32_t>();
   const auto failures = r.pod<std::int64_t>();
   if (!r.ok()) return makeError("world state: damaged (springs)");
-  for (const Slot& s : springs)
+  for (const Slot& s : springs) {
+    if (!validBools(s.alive)) return makeError("world state: damaged (springs)");
     if (s.alive && (s.def.a.index >= slotCount || s.def.b.index >= slotCount))
       return makeError("world state: damaged (a spring on a body slot the world does not have)");
+  }
   for (std::uint32_t i : freeSlots)
     if (i >= springs.size()) return makeError("world state: damaged (spring free slots)");
   m_springs = std::move(springs);

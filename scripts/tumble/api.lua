@@ -1829,12 +1829,13 @@ function world.remove(body) end
 function world.snapshot() end
 
 ---Puts the scene back to a snapshot exactly: stepping on from it gives the
----same bits as stepping on from the moment it was taken. The world must
----still have the same bodies, vehicles, ropes and cloth: a body made or
----removed since is an error naming the first body slot that differs, and
----the scene is then unchanged. Joints and emitters come back as they were
----(made or removed since: undone). Body, joint and emitter handles stay
----valid. Lua state is not touched.
+---same bits as stepping on from the moment it was taken. Bodies, joints
+---and emitters made since are removed; ones removed since come back (a
+---body only with a sphere, box, capsule, cylinder or plane shape: a hull,
+---mesh or compound removed since is an error naming its body slot). The
+---scene must still have the same vehicles, ropes and cloth. An error
+---leaves the scene as it was. Handles to what came back are valid again.
+---Lua state is not touched.
 ---
 ---```lua
 ---world.restore(before)

@@ -14,9 +14,10 @@
 --   tumble play base:crash_test --set car=base:truck --set speed=20
 local drive = require "tumble.drive"
 
-local car, pilot, doll, boxes = nil, nil, nil, {}
+local car, pilot, boxes = nil, nil, {}
 local wall_z, doll_z = 40, 37
-local impact_speed, doll_start, doll_speed_max, speed_after = 0, nil, 0, math.huge
+-- The rag-doll (spawned as the car comes near) and what is measured are
+-- kept in ctx.state, so that a run loaded from a snapshot goes on with them.
 
 return {
   title = "Crash test: a car, a rag-doll and a wall of boxes",
@@ -36,32 +37,35 @@ return {
     car:body():set_velocity({0, 0, speed})
     pilot = drive.autopilot(car, {waypoints = {{0, 200}}, speed = speed, traction = false, ctx = ctx})
     drive.show(car)
+    ctx.state.impact_speed, ctx.state.doll_speed_max, ctx.state.speed_after = 0, 0, math.huge
   end,
 
   on_update = function(ctx, dt)
+    local m = ctx.state
     local p = car:position()
     if p.z < doll_z - 3 then pilot:update(dt) else car:set_controls{throttle = 0, brake = 0, steer = 0} end
-    -- The rag-doll is stood up shortly before the car arrives (standing
-    -- unsupported it would fall over by itself within a second or two).
-    if not doll and p.z > doll_z - 14 then
-      doll = spawn_ragdoll{position = {0, 0, doll_z}, rotation = {0, math.pi, 0}}
-      doll_start = doll.pelvis:position()
+    if not m.doll and p.z > doll_z - 14 then
+      m.doll = spawn_ragdoll{position = {0, 0, doll_z}, rotation = {0, math.pi, 0}}
+      local q = m.doll.pelvis:position()
+      m.doll_start = {x = q.x, z = q.z}
     end
-    if doll then
-      doll_speed_max = math.max(doll_speed_max, doll.pelvis:speed())
-      if p.z < doll_z - 3 then impact_speed = car:speed() end
+    if m.doll then
+      m.doll_speed_max = math.max(m.doll_speed_max, m.doll.pelvis:speed())
+      if p.z < doll_z - 3 then m.impact_speed = car:speed() end
     end
-    if ctx.time > 4 then speed_after = math.min(speed_after, math.abs(car:speed())) end
+    if ctx.time > 4 then m.speed_after = math.min(m.speed_after, math.abs(car:speed())) end
   end,
 
   on_finish = function(ctx)
+    local m = ctx.state
+    local impact_speed = m.impact_speed
     expect("car at speed before the impact (m/s)", impact_speed, {min = 0.8 * param("speed", 15)})
-    expect("rag-doll created", doll ~= nil)
-    if doll then
-      local q = doll.pelvis:position()
-      local moved = math.sqrt((q.x - doll_start.x) ^ 2 + (q.z - doll_start.z) ^ 2)
+    expect("rag-doll created", m.doll ~= nil)
+    if m.doll then
+      local q = m.doll.pelvis:position()
+      local moved = math.sqrt((q.x - m.doll_start.x) ^ 2 + (q.z - m.doll_start.z) ^ 2)
       expect("rag-doll thrown (pelvis moved, m)", moved, {min = 2})
-      expect("rag-doll hit hard (pelvis speed max, m/s)", doll_speed_max, {min = 5, max = 60})
+      expect("rag-doll hit hard (pelvis speed max, m/s)", m.doll_speed_max, {min = 5, max = 60})
     end
     -- A box is scattered when it left its place in the wall (0.5 m along
     -- z) and is still a box on the ground: finite, its centre no lower than
@@ -79,7 +83,7 @@ return {
     end
     expect("boxes knocked out of the wall", scattered, {min = 5})
     expect("boxes non-finite or below the ground", lost, {max = 0})
-    expect("car slowed by the crash (m/s, after 4 s)", speed_after, {max = impact_speed * 0.8})
+    expect("car slowed by the crash (m/s, after 4 s)", m.speed_after, {max = impact_speed * 0.8})
     local p = car:position()
     expect("car state finite", p.x == p.x and p.y == p.y and p.z == p.z and p.y > -1)
   end,

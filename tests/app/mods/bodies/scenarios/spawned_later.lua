@@ -1,0 +1,36 @@
+-- Bodies spawned after on_start (tests/app/scene_state_test.cpp): a ball is
+-- shot at a stack every half second, its handle kept in ctx.state. A
+-- snapshot holds each ball's size, so a run loaded after the shots makes
+-- them again and ends as the run without a split. With --set hull=1 a
+-- wedge (a convex hull, whose points a snapshot does not hold) is dropped
+-- at 0.75 s: loading a snapshot taken after that is refused, naming the
+-- body slot and the shape.
+return {
+  title = "Balls shot at a stack after on_start",
+  duration = 3,
+  params = {hull = {default = 0, description = "1: also drop a convex-hull wedge at 0.75 s (loading is then refused)"}},
+  on_start = function(ctx)
+    world.plane{}
+    for i = 0, 3 do world.box{size = {1, 1, 1}, position = {0, 0.5 + i, 0}} end
+    ctx.state.balls = {}
+  end,
+  on_update = function(ctx, dt)
+    if ctx.step % 30 == 0 and ctx.step > 0 then
+      local n = #ctx.state.balls + 1
+      ctx.state.balls[n] = world.sphere{radius = 0.2, position = {-6, 0.5 + 0.4 * (n % 4), 0}, velocity = {12, 2, 0},
+                                        mass = 2}
+    end
+    if param("hull") == 1 and ctx.step == 45 then
+      world.hull{points = {{0,0,0}, {1,0,0}, {0,0,1}, {1,0,1}, {0,1,0}, {0,1,1}}, position = {3, 2, 0}}
+    end
+  end,
+  on_finish = function(ctx)
+    local moved = 0
+    for _, b in ipairs(ctx.state.balls) do
+      local p = b:position()
+      if p.x == p.x and p.x > -5 then moved = moved + 1 end
+    end
+    expect("every ball flew", moved, {min = #ctx.state.balls, max = #ctx.state.balls})
+    expect("balls were shot", #ctx.state.balls, {min = 5})
+  end,
+}
