@@ -5,6 +5,7 @@
 // the saved set replaces the system's. Each particle's ten arrays are stored
 // up to its live count; the pool's size (max_count) comes back as it was.
 #include <algorithm>
+#include <cmath>
 
 #include "particles/particle_system.h"
 
@@ -146,9 +147,13 @@ Status ParticleSystem::restoreState(const std::string& bytes) {
     const auto f = r.pod<EmitterFields>();
     if (!r.ok()) return makeError("particle state: damaged (emitter " + std::to_string(i) + ")");
     if (Status st = validate(e.def); !st) return makeError("emitter " + std::to_string(i) + ": " + st.error());
+    // Bounds that keep the next step's work what a script could ask for:
+    // the carried fraction below one particle, a rate and a pending burst
+    // within the per-emitter limits.
     if (f.poolSize > std::size_t(kMaxParticlesPerEmitter) || f.count > f.poolSize ||
-        f.nextBurst > e.def.bursts.size() || f.pendingBurst < 0 || !f.position_m.allFinite() ||
-        !f.rotation.coeffs().allFinite())
+        f.nextBurst > e.def.bursts.size() || f.pendingBurst < 0 || f.pendingBurst > kMaxParticlesPerEmitter ||
+        !(f.carry >= 0 && f.carry <= 1) || !(f.rate_per_s >= 0 && f.rate_per_s <= 1e6f) ||
+        !(f.age_s >= 0 && std::isfinite(f.age_s)) || !f.position_m.allFinite() || !f.rotation.coeffs().allFinite())
       return makeError("particle state: damaged (emitter " + std::to_string(i) + ")");
     e.position_m = f.position_m;
     e.rotation = f.rotation;

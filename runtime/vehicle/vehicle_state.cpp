@@ -113,8 +113,11 @@ Status VehicleSystem::restoreState(const std::string& bytes) {
         (!s.axleDrive.empty() && s.axleDrive.size() != v.derived.size()))
       return makeError("vehicle state: damaged (vehicle " + std::to_string(i) + ")");
     // Indices the next step follows: wheels to their axle, bodies into the World.
+    if (!validBools(s.running.telemetry.shifting))
+      return makeError("vehicle state: damaged (vehicle " + std::to_string(i) + ")");
     for (const Wheel& w : s.wheels)
-      if (w.axle < 0 || std::size_t(w.axle) >= v.derived.size() || !known(w.t.ground))
+      if (w.axle < 0 || std::size_t(w.axle) >= v.derived.size() || !known(w.t.ground) ||
+          !validBools(w.locked, w.t.contact))
         return makeError("vehicle state: damaged (wheels of vehicle " + std::to_string(i) + ")");
     if (!std::all_of(s.nearby.begin(), s.nearby.end(), known))
       return makeError("vehicle state: damaged (bodies near vehicle " + std::to_string(i) + ")");

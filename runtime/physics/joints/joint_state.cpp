@@ -18,6 +18,7 @@
 // Everything else is rebuilt by each step from these and the World (rows,
 // the sparse system and its factorization, the impulse solver's geometry).
 #include <algorithm>
+#include <cmath>
 
 #include "core/byte_stream.h"
 #include "physics/internal/impulse_joints.h"
@@ -114,13 +115,22 @@ Status JointSystem::restoreState(const std::string& bytes) {
       (settings.solver != JointSolverKind::Lagrange && settings.solver != JointSolverKind::Impulse) ||
       (settings.solver == JointSolverKind::Impulse && kind != JointSolverKind::Impulse))
     return makeError("joint state: damaged (solver)");
+  if (!validBools(settings.gyroscopic, settings.postStabilize, settings.projectPositions) ||
+      settings.maxActiveSetIterations < 0 || settings.maxActiveSetIterations > 1000 ||
+      !(settings.lagrangeMaxFactorWorkPerRow >= 0) || !std::isfinite(settings.impulseHertz) ||
+      !std::isfinite(settings.impulseDampingRatio) || !std::isfinite(settings.stiffness_per_s2) ||
+      !std::isfinite(settings.damping_per_s) || !std::isfinite(settings.compliance))
+    return makeError("joint state: damaged (settings)");
   const std::size_t n = slots.size();
   int alive = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Slot& s = slots[i];
+    if (!validBools(s.alive, s.def.enableLimit, s.def.enableMotor))
+      return makeError("joint state: damaged (joint " + std::to_string(i) + ")");
     if (!s.alive) continue;
     ++alive;
-    if (s.generation % 2 == 0) return makeError("joint state: damaged (joint " + std::to_string(i) + ")");
+    if (s.generation % 2 == 0 || std::uint32_t(s.def.type) > std::uint32_t(JointType::Fixed))
+      return makeError("joint state: damaged (joint " + std::to_string(i) + ")");
     // A joint may outlive its body until the next step drops it, so a dead
     // body is allowed here; a body slot the World never had is not.
     if (s.def.bodyA.isNull() || s.def.bodyA.index >= m_world.bodySlotCount() ||
@@ -196,7 +206,10 @@ void ImpulseJoints::saveState(ByteWriter& w) const {
 Status ImpulseJoints::restoreState(ByteReader& r, std::size_t slotCount) {
   auto accum = r.vec<Accum>(slotCount);
   auto out = r.vec<Output>(slotCount);
-  if (!r.ok()) return makeError("joint state: damaged (impulse solver)");
+  // prepare() grows both together and indexes both by slot.
+  if (!r.ok() || accum.size() != out.size()) return makeError("joint state: damaged (impulse solver)");
+  for (const Output& o : out)
+    if (!validBools(o.broken)) return makeError("joint state: damaged (impulse solver)");
   m_accum = std::move(accum);
   m_out = std::move(out);
   return Ok{};
