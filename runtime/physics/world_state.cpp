@@ -11,14 +11,14 @@
 // a script spawned after on_start: projectiles, a rag-doll). A saved body
 // with a hull, mesh or compound shape that this world does not have in its
 // slot refuses the restore, naming the slot; bodies in slots the saved world
-// did not have yet are removed. Everything that changes while
-// the world steps is stored: each
-// body's pose, velocities, accumulated force and torque, mass and inertia,
-// material and sleep state; the contact cache with its warm-start impulses
-// (without it the next step solves the stack from zero and the run differs);
-// the broad phase's sort order (it decides the order of the pairs, hence of
-// the contacts the solver visits); sleep islands, the collision filter,
-// island links, springs, the settings and the error bookkeeping.
+// did not have yet are removed. Everything that changes while the world
+// steps is stored: each body's pose, velocities, accumulated force and
+// torque, mass and inertia, material and sleep state; the contact cache
+// with its warm-start impulses (without it the next step solves the stack
+// from zero and the run differs); the broad phase's sort order (it decides
+// the order of the pairs, hence of the contacts the solver visits); sleep
+// islands, the collision filter, island links, springs, the settings and
+// the error bookkeeping.
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -210,7 +210,8 @@ Status World::restoreState(const std::string& bytes) {
                        "cylinder or plane shape: a " + shapeTypeName(ShapeType(saved.shape)) +
                        "'s data is not in the snapshot)");
     if (saved.alive && !sameShape(saved, here) &&
-        (saved.type > std::uint8_t(BodyType::Dynamic) || !validSize(saved)))
+        (saved.type > std::uint8_t(BodyType::Dynamic) || !validSize(saved) ||
+         (ShapeType(saved.shape) == ShapeType::Plane && BodyType(saved.type) != BodyType::Static)))
       return makeError("world state: damaged (body " + std::to_string(i) + ")");
   }
   auto freeList = r.vec<std::uint32_t>(kMaxSlots);

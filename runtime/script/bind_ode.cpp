@@ -478,22 +478,28 @@ Status restoreOdeSystems(lua_State* L, int made, ByteReader& r) {
   std::vector<Saved> all;
   for (int n = 1; n <= saved; ++n) {
     if (!r.pod<std::uint8_t>()) continue;
-    OdeObject* o = n <= made ? odeByNumber(L, n) : nullptr;
-    if (!o)
-      return makeError("ode.system number " + std::to_string(n) +
-                       " is in the snapshot but was not made by on_start here (made later, or the scenario changed)");
     const auto dim = r.pod<std::int32_t>();
     const auto method = r.pod<std::int32_t>();
     const std::vector<double> y = r.vec<double>(10000);
-    Saved s{o, {}, r.pod<double>(), r.pod<std::int64_t>(), r.pod<std::int64_t>(), {}};
-    if (!r.ok() || dim != o->f.dim || method != std::int32_t(o->method) || y.size() != std::size_t(dim))
-      return makeError("ode.system number " + std::to_string(n) + ": the snapshot's has another size or method");
-    s.y = Eigen::Map<const Eigen::VectorXd>(y.data(), Eigen::Index(y.size()));
+    Saved s{nullptr, {}, r.pod<double>(), r.pod<std::int64_t>(), r.pod<std::int64_t>(), {}};
+    if (!r.ok() || dim < 1 || dim > 10000 || y.size() != std::size_t(dim) || method < 0 ||
+        method > std::int32_t(numerics::Method::Sdirk2))
+      return makeError("damaged (ode.system number " + std::to_string(n) + ")");
     // The integrator's part, checked on a scratch integrator first.
     const std::size_t start = r.position();
-    numerics::Integrator scratch(o->method, o->f.dim);
-    if (!scratch.restoreState(r)) return makeError("ode.system number " + std::to_string(n) + ": damaged");
+    numerics::Integrator scratch(numerics::Method(method), dim);
+    if (!scratch.restoreState(r)) return makeError("damaged (ode.system number " + std::to_string(n) + ")");
     s.integrator = r.bytesFrom(start);
+    if (n > made)
+      return makeError("ode.system number " + std::to_string(n) +
+                       " is in the snapshot but was made after on_start (a snapshot holds its numbers, not its Lua "
+                       "functions)");
+    // Made by on_start but collected here since: nothing can reach it.
+    s.o = odeByNumber(L, n);
+    if (!s.o) continue;
+    if (dim != s.o->f.dim || method != std::int32_t(s.o->method))
+      return makeError("ode.system number " + std::to_string(n) + ": the snapshot's has another size or method");
+    s.y = Eigen::Map<const Eigen::VectorXd>(y.data(), Eigen::Index(y.size()));
     all.push_back(std::move(s));
   }
   for (Saved& s : all) {

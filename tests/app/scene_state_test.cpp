@@ -227,7 +227,7 @@ TEST(SnapshotTimers, ATimerMadeAfterOnStartIsRefusedNamingWhereItIsDefined) {
   const ProcessResult r =
       runTumble(testMods() + " run bodies:script_state --set late_timer=1 --save-state " + file + " --at 1");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("defined at scenarios/script_state.lua:43 "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("defined at scenarios/script_state.lua:45 "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("after on_start"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(file));
 }
@@ -264,6 +264,21 @@ TEST(SnapshotLimits, AHullMadeAfterOnStartRefusesTheLoadNamingTheBodySlot) {
   EXPECT_EQ(loaded.exitCode, 1) << loaded.output;
   EXPECT_NE(loaded.output.find("field \"world\": body slot 6"), std::string::npos) << loaded.output;
   EXPECT_NE(loaded.output.find("dynamic hull"), std::string::npos) << loaded.output;
+}
+
+// An ode.system made after on_start: its Lua functions are not stored.
+TEST(SnapshotLimits, AnOdeSystemMadeAfterOnStartRefusesTheLoad) {
+  const std::string dir = outDir("scene_state_limit_ode");
+  const std::string file = dir + "/snap.json";
+  const std::string run = testMods() + " run bodies:script_state";
+  const ProcessResult saving = runTumble(run + " --set late_ode=1 --save-state " + file + " --at 1");
+  ASSERT_TRUE(std::filesystem::exists(file)) << saving.output;
+  const ProcessResult loaded = runTumble(run + " --load-state " + file);
+  EXPECT_EQ(loaded.exitCode, 1) << loaded.output;
+  EXPECT_NE(loaded.output.find("field \"script\""), std::string::npos) << loaded.output;
+  EXPECT_NE(loaded.output.find("ode.system number 1 is in the snapshot but was made after on_start"),
+            std::string::npos)
+      << loaded.output;
 }
 
 // A vehicle re-tuned after on_start: its definition is not stored.

@@ -10,14 +10,16 @@
 -- the trigger's occupants are restored too. With --set late_timer=1 a timer
 -- is also made after on_start, which a snapshot cannot hold: saving is
 -- refused, naming where its function is defined; --set late_trigger=1 does
--- the same with a trigger volume.
-local ball, boxes = nil, {}
+-- the same with a trigger volume, and --set late_ode=1 makes an ode.system
+-- after on_start, which refuses the load.
+local ball, boxes, late = nil, {}, nil
 
 return {
   title = "Timers, random numbers and ctx.state across a snapshot",
   duration = 3,
   params = {late_timer = {default = 0, description = "1: also make a timer after on_start (saving is then refused)"},
-            late_trigger = {default = 0, description = "1: also make a trigger after on_start (saving is then refused)"}},
+            late_trigger = {default = 0, description = "1: also make a trigger after on_start (saving is then refused)"},
+            late_ode = {default = 0, description = "1: also make an ode.system after on_start (loading is then refused)"}},
   on_start = function(ctx)
     world.plane{}
     ball = world.sphere{radius = 0.3, position = {0, 0.3, 0}}
@@ -42,6 +44,10 @@ return {
     if param("late_timer") == 1 and ctx.step == 10 then
       timer.after(5, function() ball:apply_impulse{0, 1, 0} end)
     end
+    if param("late_ode") == 1 and ctx.step == 10 then
+      late = ode.system{state = {1, 0}, derivative = function(t, y) return {y[2], -y[1]} end}
+    end
+    if late then late:step(dt) end
     if param("late_trigger") == 1 and ctx.step == 10 then
       trigger.box{center = {0, 0, 0}, size = {1, 1, 1}, on_enter = function(body) end}
     end
