@@ -136,7 +136,7 @@ class Scene final : public script::SceneSystems {
   /// The listener's velocity from its movement between audio steps (Doppler).
   audio::ListenerMotion& listenerMotion() { return m_listenerMotion; }
   /// The joint solver (--set physics.joint_solver, else the scenario's
-  /// joint_solver field, else lagrange; world.set_joint_solver switches it).
+  /// joint_solver field, else impulse; world.set_joint_solver switches it).
   physics::JointSolverKind jointSolver() const override { return m_jointSolver; }
   void setJointSolver(physics::JointSolverKind kind) override;
   /// Largest joint anchor separation seen (m), 0 without joints: the run
@@ -229,7 +229,7 @@ class Scene final : public script::SceneSystems {
   std::map<std::uint64_t, physics::BodyId> m_soundBodies;
   std::optional<Listener> m_listener;
   audio::ListenerMotion m_listenerMotion;
-  physics::JointSolverKind m_jointSolver = physics::JointSolverKind::Lagrange;
+  physics::JointSolverKind m_jointSolver = physics::JointSolverKind::Impulse;  ///< JointSettings' default
   double m_requestedDt_s = 0;  ///< world.set_dt, 0 = none
   std::unique_ptr<script::ScenarioHost> m_host;  ///< last: scripts reach every system above
   std::vector<Vec3> m_prevPosition;

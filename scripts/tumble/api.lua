@@ -814,7 +814,7 @@ function Vehicle:remove() end
 ---@class Scenario
 ---@field title string shown in the window title and the HUD
 ---@field duration number seconds `tumble run` simulates without --seconds/--steps (default 10)
----@field joint_solver string "lagrange" (default: Lagrange multipliers solved with the joints' sparse factor each substep) or "impulse" (impulses solved together with the contacts); --set physics.joint_solver=... overrides it
+---@field joint_solver string "impulse" (default: impulses solved together with the contacts) or "lagrange" (Lagrange multipliers solved with the joints' sparse factor each substep: tighter on long chains); --set physics.joint_solver=... overrides it
 ---@field integrator string how the world advances bodies between contact solves: "symplectic_euler" (default), "euler", "heun", "rk4", "verlet", "implicit_euler", "implicit_midpoint", "sdirk2"; --integrator overrides it
 ---@field params table<string, ParamDeclaration>? the parameters the scenario reads with param(); when present, --set NAME=VALUE must name one of them with a value of its default's type (checked before the run starts), param(NAME) without a default returns the declared one, and the run report lists each with the value used
 ---@field on_start fun(ctx: Ctx) called once before the first step

@@ -295,7 +295,9 @@ numerics::StabilityCase heavyOnRagdollCase() {
   c.run = [name = c.name](numerics::Method m, double dt, bool quick) {
     World w;
     addPlane(w);
-    physics::JointSystem joints(w);
+    physics::JointSettings lagrangeSolver;
+    lagrangeSolver.solver = physics::JointSolverKind::Lagrange;
+    physics::JointSystem joints(w, lagrangeSolver);
     const Quat lying(Eigen::AngleAxis<Real>(-kPi / 2, Vec3::UnitX()));
     auto doll = physics::buildRagdoll(w, joints, physics::defaultHuman(), Vec3(0, Real(0.15), 0), lying);
     TUMBLE_ASSERT(bool(doll), "the default human builds");
@@ -599,7 +601,9 @@ double chainDrift(const JointSolverCase& f, double dt) {
 double ragdollDropDrift(double dt) {
   World w;
   addPlane(w);
-  physics::JointSystem joints(w);
+  physics::JointSettings lagrangeSolver;
+  lagrangeSolver.solver = physics::JointSolverKind::Lagrange;
+  physics::JointSystem joints(w, lagrangeSolver);
   const Quat tilt(Eigen::AngleAxis<Real>(Real(2.5), Vec3(1, 0, Real(0.3)).normalized()));
   auto doll = physics::buildRagdoll(w, joints, physics::defaultHuman(), Vec3(0, Real(2.2), 0), tilt);
   TUMBLE_ASSERT(bool(doll), "the default human builds");

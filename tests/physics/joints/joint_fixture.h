@@ -12,6 +12,14 @@
 
 namespace tumble::physics::test {
 
+/// The Lagrange solver's settings (the default is the impulse solver; these
+/// tests were written for the Lagrange one).
+inline JointSettings lagrange() {
+  JointSettings s;
+  s.solver = JointSolverKind::Lagrange;
+  return s;
+}
+
 inline WorldSettings quietSettings() {
   WorldSettings s;
   s.enableSleep = false;

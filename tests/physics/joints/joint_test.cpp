@@ -20,7 +20,7 @@ using test::makeChain;
 using test::quietSettings;
 
 TEST(JointSystem, BallPendulumMatchesSmallAnglePeriod) {
-  const test::PendulumSwing p = test::swingPendulum(JointSettings{});
+  const test::PendulumSwing p = test::swingPendulum(test::lagrange());
   std::printf("[pendulum] analytic T = %.5f s, measured %.5f s (%.3f%%), anchor error max %.2e m\n", p.analytic_s,
               p.measured_s, 100 * (p.measured_s - p.analytic_s) / p.analytic_s, p.anchorErrorMax_m);
   EXPECT_NEAR(p.measured_s, p.analytic_s, 0.01 * p.analytic_s);
@@ -71,7 +71,7 @@ TEST(JointSystem, PendulumKeepsItsEnergyAtEveryAmplitude) {
 
 TEST(JointSystem, TenLinkChainAtRestKeepsAnchorsWithinAMillimetre) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   Chain c = makeChain(world, joints, 10, Vec3(0, 5, 0), Vec3(0, -1, 0));
   // Hanging straight down, with a small sideways nudge to the bottom link so
   // the solver has real work (a perfectly still chain is trivially exact).
@@ -89,7 +89,7 @@ TEST(JointSystem, TenLinkChainAtRestKeepsAnchorsWithinAMillimetre) {
 // compliance relative to the own links (before) 100 links opened by 7.7 mm.
 TEST(JointSystem, HundredLinkHangingChainDoesNotSag) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   Chain c = makeChain(world, joints, 100, Vec3(0, 60, 0), Vec3(0, -1, 0));
   // Neighbours do not collide, as in a rag-doll: links touching end to end
   // would count as contacts and get the compliance of touched assemblies.
@@ -103,7 +103,7 @@ TEST(JointSystem, HundredLinkHangingChainDoesNotSag) {
 
 TEST(JointSystem, SwingingChainDoesNotGainEnergy) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   // Released horizontal: the largest swing a chain can have.
   makeChain(world, joints, 10, Vec3(0, 5, 0), Vec3(1, 0, 0));
   const double e0 = world.totalEnergy();
@@ -138,7 +138,7 @@ double freeChainEnergyGain(BodyIntegrator method, int substeps, double* anchorEr
   ws.integrator = method;
   ws.substeps = substeps;
   World world(ws);
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   Chain c = makeChain(world, joints, 10, Vec3(0, 5, 0), Vec3(1, 0, 0));
   for (std::size_t i = 1; i < c.links.size(); ++i) world.disableCollision(c.links[i], c.links[i - 1]);
   const double e0 = world.totalEnergy(), scale = 10 * 0.5 * 9.81 * 2.5;  // m g L of the chain
@@ -175,7 +175,7 @@ TEST(JointSystem, FreeChainHoldsWithEveryIntegrator) {
 
 TEST(JointSystem, HingeKeepsItsAxisAndItsLimits) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   const Vec3 pivot(0, 3, 0);
   const BodyId box = addBox(world, pivot - Vec3(0, Real(0.3), 0), Vec3(Real(0.1), Real(0.3), Real(0.1)), 1);
   JointDef def = makeJointDef(world, JointType::Hinge, box, BodyId{}, pivot, Vec3::UnitZ());
@@ -211,7 +211,7 @@ TEST(JointSystem, HingeKeepsItsAxisAndItsLimits) {
 
 TEST(JointSystem, ConeTwistHoldsSwingAndTwistLimits) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   const Vec3 pivot(0, 3, 0);
   const BodyId rod = addBox(world, pivot - Vec3(0, Real(0.4), 0), Vec3(Real(0.06), Real(0.4), Real(0.06)), 1);
   JointDef def = makeJointDef(world, JointType::ConeTwist, rod, BodyId{}, pivot, -Vec3::UnitY());
@@ -240,7 +240,7 @@ TEST(JointSystem, ConeTwistHoldsSwingAndTwistLimits) {
 
 TEST(JointSystem, FixedJointHoldsPoseUnderGravity) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   const BodyId a = addBox(world, Vec3(Real(0.25), 3, 0), Vec3(Real(0.25), Real(0.05), Real(0.05)), 1);
   const BodyId b = addBox(world, Vec3(Real(0.75), 3, 0), Vec3(Real(0.25), Real(0.05), Real(0.05)), 1);
   // A cantilever: a welded to the world at its left end, b welded to a.
@@ -256,7 +256,7 @@ TEST(JointSystem, FixedJointHoldsPoseUnderGravity) {
 
 TEST(JointSystem, SoftJointStretchesLikeASpring) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   const Real k = 500, m = 2;
   const BodyId box = addBox(world, Vec3(0, Real(2.9), 0), Vec3::Constant(Real(0.1)), m);
   JointDef def = makeJointDef(world, JointType::Ball, box, BodyId{}, Vec3(0, 3, 0));
@@ -273,7 +273,7 @@ TEST(JointSystem, SoftJointStretchesLikeASpring) {
 TEST(JointSystem, BreakableJointBreaksAboveItsThresholdOnly) {
   for (double fraction : {1.5, 0.5}) {
     World world(quietSettings());
-    JointSystem joints(world);
+    JointSystem joints(world, test::lagrange());
     const Real m = 3;
     const BodyId box = addBox(world, Vec3(0, Real(2.8), 0), Vec3::Constant(Real(0.2)), m);
     JointDef def = makeJointDef(world, JointType::Ball, box, BodyId{}, Vec3(0, 3, 0));
@@ -308,7 +308,7 @@ TEST(JointSystem, SolveTimeGrowsLinearlyWithLinks) {
   double factorPerLink10 = 0, factorPerLink1000 = 0;
   for (int n : {10, 100, 1000}) {
     World world(quietSettings());
-    JointSystem joints(world);
+    JointSystem joints(world, test::lagrange());
     makeChain(world, joints, n, Vec3(0, 0, 0), Vec3(1, 0, 0).normalized());
     for (int i = 0; i < 3; ++i) joints.step(Real(1.0 / 60.0));  // warm up, set the chain moving
     const int reps = n >= 1000 ? 10 : 50;
@@ -367,13 +367,13 @@ Wheel makeWheel(World& world, JointSystem& joints) {
 // links (26 per row) stays under the cap.
 TEST(JointSystem, ABodyCarryingManyJointsIsSolvedByTheImpulseSolverUntilItCarriesFewer) {
   World world(quietSettings());
-  JointSystem joints(world);
+  JointSystem joints(world, test::lagrange());
   ASSERT_EQ(joints.solver(), JointSolverKind::Lagrange);
   Wheel wheel = makeWheel(world, joints);
   for (int i = 0; i < 60; ++i) joints.step(Real(1.0 / 60.0));
   // The same wheel, the Lagrange solver with no cap.
   World uncappedWorld(quietSettings());
-  JointSettings uncapped;
+  JointSettings uncapped = test::lagrange();
   uncapped.lagrangeMaxFactorWorkPerRow = std::numeric_limits<double>::infinity();
   JointSystem uncappedJoints(uncappedWorld, uncapped);
   makeWheel(uncappedWorld, uncappedJoints);
@@ -401,7 +401,7 @@ TEST(JointSystem, ABodyCarryingManyJointsIsSolvedByTheImpulseSolverUntilItCarrie
   EXPECT_LT(joints.lastSolve().factorWork, 500.0 * joints.lastSolve().rows);
 
   World chainWorld(quietSettings());
-  JointSystem chainJoints(chainWorld);
+  JointSystem chainJoints(chainWorld, test::lagrange());
   makeChain(chainWorld, chainJoints, 300, Vec3(0, 0, 0), Vec3(1, 0, 0));
   for (int i = 0; i < 10; ++i) chainJoints.step(Real(1.0 / 60.0));
   EXPECT_EQ(chainJoints.runningSolver(), JointSolverKind::Lagrange);
@@ -422,7 +422,7 @@ double largestStableDt(JointIntegrator method, double ks, double kd) {
   double best = 0;
   for (double dt : grid) {
     World world(quietSettings());
-    JointSettings js;
+    JointSettings js = test::lagrange();
     js.stiffness_per_s2 = ks;
     js.damping_per_s = kd;
     JointSystem joints(world, js);

@@ -97,13 +97,16 @@ DropResult dropRagdoll(const JointSettings& settings, const char* label) {
 // (World::applyForce wakes the body every step) and joints within 1 cm on
 // the ground (contact forces are not in Q: joints stretch by ~g / k_s).
 TEST(Ragdoll, DroppedOnTheGroundStaysInOnePiece) {
-  const DropResult d = dropRagdoll(JointSettings{}, "defaults (velocity + position projection)");
+  JointSettings s;
+  s.solver = JointSolverKind::Lagrange;
+  const DropResult d = dropRagdoll(s, "Lagrange (velocity + position projection)");
   EXPECT_LT(d.errorMax_m, 0.1);
   EXPECT_LT(d.errorEnd_m, 0.05);
 }
 
 TEST(Ragdoll, DroppedOnTheGroundComesToRestWithVelocityProjection) {
   JointSettings s;
+  s.solver = JointSolverKind::Lagrange;
   s.projectPositions = false;
   const DropResult d = dropRagdoll(s, "velocity projection only");
   EXPECT_LT(d.errorEnd_m, 0.05);
@@ -126,6 +129,7 @@ static PileResult pileUnderA(int count, double dt_s, int substeps, double second
   World world;
   world.settings().substeps = substeps;
   JointSettings s;
+  s.solver = JointSolverKind::Lagrange;
   s.projectPositions = false;  // as the scenario host
   JointSystem joints(world, s);
   BodyDef ground;
