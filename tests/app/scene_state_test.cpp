@@ -72,6 +72,7 @@ void PrintTo(const SplitCase& c, std::ostream* os) {
 constexpr const char* kSplittable[] = {
     "base:bullets", "base:cradle", "base:drop",  "base:incline", "base:mass_ratio", "base:overlap", "base:pyramid",
     "base:spin",    "base:springs", "base:stack", "base:hills",   "base:island",     "base:valley",
+    "base:rolling",  // a cylinder and a sphere rolling down an incline
     // joints under both solvers: a chain, rag-dolls falling, piled and hit
     "base:chain",   "base:ragdoll_hit", "base:ragdoll_pile", "base:ragdoll_stairs",
     // ropes and cloth (implicit solves warm-started), emitters and their particles
