@@ -156,8 +156,8 @@ Result<SceneStateFile> loadSceneState(const std::string& path) {
   if (physics::JointSolverKind kind; !physics::parseJointSolver(s.systems.jointSolver, &kind))
     return makeError(fieldError(path, "joint_solver", "\"lagrange\" or \"impulse\""));
   for (auto [f, out] : {std::pair<const char*, std::string*>{"world", &s.systems.world}, {"script", &s.script},
-                        {"joints", &s.systems.joints}, {"vehicles", &s.systems.vehicles}, {"ropes_and_cloth", &s.systems.ropesAndCloth},
-                        {"particles", &s.systems.particles}})
+                        {"joints", &s.systems.joints}, {"vehicles", &s.systems.vehicles},
+                        {"ropes_and_cloth", &s.systems.ropesAndCloth}, {"particles", &s.systems.particles}})
     if (!doc[f].is_string() || !fromHex(doc[f].get<std::string>(), *out))
       return makeError(fieldError(path, f, "hex digits (the saved state's bytes)"));
   return s;

@@ -62,7 +62,9 @@ int worldSnapshot(lua_State* L) {
 /// body only with a sphere, box, capsule, cylinder or plane shape: a hull,
 /// mesh or compound removed since is an error naming its body slot). The
 /// scene must still have the same vehicles, ropes and cloth. An error
-/// leaves the scene as it was. Handles to what came back are valid again.
+/// leaves the scene as it was, except after removing a hull, mesh or
+/// compound body made since (it cannot be made again), which the error
+/// says. Handles to what came back are valid again.
 /// Lua state is not touched.
 /// @param snapshot WorldSnapshot from world.snapshot
 /// @example world.restore(before)
@@ -75,11 +77,15 @@ int worldRestore(lua_State* L) {
   if (!unpack(std::string(p, lua_rawlen(L, 1)), saved)) throw LuaArgError("world.restore: a damaged WorldSnapshot");
   SceneSystems& scene = ScenarioHost::from(L)->scene();
   // All or nothing: a part refused after others were restored puts back
-  // the state from before the call.
+  // the state from before the call. That fails only when the first restore
+  // removed a body made since whose shape a snapshot cannot hold (a hull, a
+  // mesh, a compound): the error then says the scene is the snapshot's
+  // world with the rest as it was.
   const SystemsState now = saveSystems(scene);
   if (Status st = restoreSystems(scene, saved); !st) {
-    const Status back = restoreSystems(scene, now);
-    TUMBLE_ASSERT(back, "world.restore could not put back the state it started from");
+    if (Status back = restoreSystems(scene, now); !back)
+      throw LuaArgError("world.restore: " + st.error() + "; and the state before the call could not be put back (" +
+                        back.error() + "): the bodies are the snapshot's, the rest as before the call");
     throw LuaArgError("world.restore: " + st.error());
   }
   return 0;

@@ -1834,7 +1834,9 @@ function world.snapshot() end
 ---body only with a sphere, box, capsule, cylinder or plane shape: a hull,
 ---mesh or compound removed since is an error naming its body slot). The
 ---scene must still have the same vehicles, ropes and cloth. An error
----leaves the scene as it was. Handles to what came back are valid again.
+---leaves the scene as it was, except after removing a hull, mesh or
+---compound body made since (it cannot be made again), which the error
+---says. Handles to what came back are valid again.
 ---Lua state is not touched.
 ---
 ---```lua
