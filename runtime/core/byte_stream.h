@@ -6,6 +6,7 @@
 // wrote them (a snapshot is read by the same build; its header says which).
 // ByteReader never reads past the end: a short or damaged buffer makes
 // ok() false and every later read a no-op returning zeros.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -33,6 +34,13 @@ bool validBools(const B&... b) {
     return c <= 1;
   };
   return (one(b) && ...);
+}
+
+/// Whether a restored list of slot indices names no slot twice (free lists,
+/// orders: a repeat would hand one slot out twice).
+inline bool allDistinct(std::vector<std::uint32_t> v) {
+  std::sort(v.begin(), v.end());
+  return std::adjacent_find(v.begin(), v.end()) == v.end();
 }
 
 class ByteWriter {

@@ -188,10 +188,7 @@ Status ParticleSystem::restoreState(const std::string& bytes) {
   const auto gravity = r.pod<Eigen::Vector3f>();
   if (!r.ok() || !r.atEnd()) return makeError("particle state: damaged (truncated or bytes after the end)");
   if (liveCount != live) return makeError("particle state: damaged (emitter count)");
-  std::vector<std::uint32_t> sorted = freeSlots;
-  std::sort(sorted.begin(), sorted.end());
-  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-    return makeError("particle state: damaged (free slots)");
+  if (!allDistinct(freeSlots)) return makeError("particle state: damaged (free slots)");
   for (std::uint32_t i : freeSlots)
     if (i >= slotCount || slots[i].live) return makeError("particle state: damaged (free slots)");
   m_slots = std::move(slots);

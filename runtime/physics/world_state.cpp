@@ -244,15 +244,11 @@ Status World::restoreState(const std::string& bytes) {
         !validBools(m.touchedBefore, m.roundA, m.roundB, m.rimA, m.rimB))
       return makeError("world state: damaged (contact cache)");
   if (Status st = validateWorldSettings(settings); !st) return makeError("world state: settings: " + st.error());
-  auto distinct = [](std::vector<std::uint32_t> v) {
-    std::sort(v.begin(), v.end());
-    return std::adjacent_find(v.begin(), v.end()) == v.end();
-  };
   for (std::uint32_t i : order)
     if (i >= slots) return makeError("world state: damaged (broad phase)");
   for (std::uint32_t i : freeList)
     if (i >= slots || shapes[i].alive) return makeError("world state: damaged (free slots)");
-  if (!distinct(order) || !distinct(freeList)) return makeError("world state: damaged (repeated slots)");
+  if (!allDistinct(order) || !allDistinct(freeList)) return makeError("world state: damaged (repeated slots)");
   for (const auto* pairs : {&noCollide, &islandLinks})
     for (const BodyPair& p : *pairs)
       if (p.a >= slots || p.b >= slots) return makeError("world state: damaged (body pairs)");

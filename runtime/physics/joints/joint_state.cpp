@@ -39,11 +39,6 @@ static_assert(kBitwise<JointBreakEvent>);
 static_assert(kBitwise<JointSolveStats>);
 static_assert(kBitwise<JointSystem::Impl::Memo>);
 
-bool distinct(std::vector<std::uint32_t> v) {
-  std::sort(v.begin(), v.end());
-  return std::adjacent_find(v.begin(), v.end()) == v.end();
-}
-
 }  // namespace
 
 std::string JointSystem::saveState() const {
@@ -148,7 +143,7 @@ Status JointSystem::restoreState(const std::string& bytes) {
     if (i >= n) return makeError("joint state: damaged (joint order)");
   for (std::uint32_t i : evSlots)
     if (i >= n) return makeError("joint state: damaged (last solve)");
-  if (!distinct(freeList) || !distinct(order) || evGenerations.size() != evSlots.size() ||
+  if (!allDistinct(freeList) || !allDistinct(order) || evGenerations.size() != evSlots.size() ||
       jointForce.size() != jointTorque.size() || jointForce.size() > evSlots.size())
     return makeError("joint state: damaged (arrays)");
   for (const auto* events : {&broken, &pendingBreaks})
