@@ -227,7 +227,8 @@ Status readRandom(const json& j, const std::string& file, SweepSpec& spec) {
 
 Result<SweepSpec> specFromJson(const json& j, const std::string& file, const std::string& baseDir) {
   if (!j.is_object()) return makeError(file + ": a sweep spec is a table (JSON object) of fields");
-  for (const auto& [k, v] : j.items()) {
+  for (const auto& item : j.items()) {
+    const std::string& k = item.key();
     bool known = std::any_of(std::begin(kSpecFields), std::end(kSpecFields), [&](const char* f) { return k == f; });
     if (!known) {
       std::string list;
