@@ -165,7 +165,7 @@ TEST(ModelsCli, ShowroomChaseAndCockpitViews) {
 // The player's car (a real vehicle, drive.show) gets the same cockpit: the
 // interior model at the driver's eye, the car's own body hidden.
 TEST(ModelsCli, DrivenCarCockpitShowsTheInterior) {
-  const std::string dir = outDir("models_cli");
+  const std::string dir = outDir("models_cli_driven");  // its own: outDir empties the folder
   auto cockpit = runTumble("run base:showroom --set camera=cockpit --at 0.5 --screenshot " + dir +
                            "/driven_cockpit.png --width 320 --height 180");
   ASSERT_EQ(cockpit.exitCode, 0) << cockpit.output;
