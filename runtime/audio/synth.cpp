@@ -130,7 +130,8 @@ std::vector<float> tyreLoop(TyreSurface surface) {
       return seamlessLoop(length, [&] {
         if (noise.unit() < 400.0 / kRate) env = 0.4 + 0.6 * noise.unit();  // ~400 stones a second
         env *= std::exp(-1.0 / (0.004 * kRate));                            // each a 4 ms click
-        return band(noise.next() * env) + 0.05 * noise.next();
+        const double click = noise.next();  // drawn first: the operands of + are unsequenced
+        return band(click * env) + 0.05 * noise.next();
       });
     }
     case TyreSurface::Grass: {

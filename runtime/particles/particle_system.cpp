@@ -181,9 +181,18 @@ void ParticleSystem::spawnOne(Emitter& e, float birthFraction, float dt_s) {
   Eigen::Vector3f dir = d.direction;
   switch (d.shape) {
     case EmitterShape::Point: break;
-    case EmitterShape::Box:
-      local = Eigen::Vector3f(r.uniform() - 0.5f, r.uniform() - 0.5f, r.uniform() - 0.5f).cwiseProduct(d.boxSize_m);
+    case EmitterShape::Box: {
+      // Three draws in a fixed order: a constructor's arguments are evaluated
+      // in an order C++ leaves open (GCC goes right to left, clang left to
+      // right), so drawing inside the call gave each compiler other
+      // particles. z, y, x is the order the GCC builds always drew in, so
+      // recorded hashes and replays are kept.
+      const float z = r.uniform() - 0.5f;
+      const float y = r.uniform() - 0.5f;
+      const float x = r.uniform() - 0.5f;
+      local = Eigen::Vector3f(x, y, z).cwiseProduct(d.boxSize_m);
       break;
+    }
     case EmitterShape::Sphere: {
       // Uniform in the ball: a uniform direction, radius ~ cbrt(u).
       Eigen::Vector3f n = sampleCap(r, Eigen::Vector3f::UnitY(), 3.14159265f);
