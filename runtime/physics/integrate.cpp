@@ -19,9 +19,9 @@
 // Non-penetration is enforced on the velocity after the free step for every
 // method, so the contact solver's guarantees do not depend on the choice.
 //
-// Rotation is not routed through the methods: orientation always advances
-// with the implicit-midpoint gyroscopic step and q += h/2 (0, w) q (world.cpp
-// explains why explicit rotation loses). Springs act at centres of mass, so
+// Rotation is not routed through the methods: the orientation always turns
+// torque-free with the angular momentum kept (world_step.cpp explains why,
+// and why explicit rotation loses). Springs act at centres of mass, so
 // they add no torque and their stiffness lives entirely in the translational
 // state the methods see.
 //

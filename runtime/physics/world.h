@@ -6,9 +6,10 @@
 // each part is):
 //   broad phase (sweep and prune) -> narrow phase (contact manifolds, once per
 //   step, speculative so fast bodies do not tunnel) -> K substeps of
-//   { integrate velocities (gravity, forces, applied springs, implicit
-//     gyroscopic term; translation by WorldSettings::integrator, integrate.h),
-//     warm start, solve contacts with soft constraints, integrate positions,
+//   { integrate velocities (gravity, forces, applied springs; translation
+//     by WorldSettings::integrator, integrate.h), warm start, solve contacts
+//     with soft constraints, integrate positions (rotation torque-free with
+//     the angular momentum kept, which carries the gyroscopic term),
 //     relax contacts without bias, restitution and impact friction for the
 //     points that first pushed in this substep } -> sleep.
 #include <cstdint>
@@ -99,7 +100,9 @@ struct WorldSettings {
   /// past the cap (in sweep order) get no contact in that step and are
   /// counted in ErrorStats::contactPairsSkipped. 0: no cap.
   int maxContactPairsPerBody = 32;
-  bool gyroscopic = true;  ///< include the gyroscopic term w x Iw (implicit)
+  /// The gyroscopic term: bodies turn with their angular momentum kept
+  /// (world_step.cpp). false: w stays fixed in the world between impulses.
+  bool gyroscopic = true;
   /// How bodies move between contact solves (integrate.h; --integrator).
   BodyIntegrator integrator = BodyIntegrator::SymplecticEuler;
 };

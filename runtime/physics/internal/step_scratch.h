@@ -32,6 +32,7 @@ struct StepScratch {
   std::vector<std::uint32_t> usedOld;   ///< old height-field manifolds already inherited from
   std::vector<std::uint32_t> filterStart;  ///< per body a: its pairs in m_noCollide start here (sorted by a)
   std::vector<Vec3> linear;  ///< per body slot: linear velocities for BodyIntegration::advance
+  std::vector<Vec3> turn;  ///< per body slot: w change of the torque-free turn not yet applied
   bool integrationEngaged = false;  ///< this substep's translation came from integrate.cpp
 };
 

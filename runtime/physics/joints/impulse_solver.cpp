@@ -185,6 +185,10 @@ void ImpulseJoints::refreshGeometry(const Body* bodies) {
     j.geometryValid = true;
     j.refPositionA_m = A.position_m;
     j.refOrientationA = A.orientation;
+    // The inverse world inertia as of these poses (the World refreshes it
+    // for turning bodies in every substep; see world_step.cpp).
+    if (j.movesA) j.iA = A.invInertiaWorld;
+    if (!j.world && j.movesB) j.iB = bodies[j.b].invInertiaWorld;
     if (!j.world) j.refPositionB_m = bodies[j.b].position_m, j.refOrientationB = bodies[j.b].orientation;
     // The two sides: anchor offsets, anchor points, joint frames (world).
     const Vec3 rA = A.orientation * d.localAnchorA_m;
