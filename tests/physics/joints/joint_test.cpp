@@ -411,6 +411,98 @@ TEST(JointSystem, ABodyCarryingManyJointsIsSolvedByTheImpulseSolverUntilItCarrie
   EXPECT_LT(chainJoints.lastSolve().factorWork, 50.0 * chainJoints.lastSolve().rows);
 }
 
+// A hub on a ball joint with `spokes` rods on hinges round it, each hinge
+// stopped at +-limit_rad and its rod held level at the start: gravity
+// swings the rods onto their stops, and the stops' rows enter the system.
+struct StoppedWheel {
+  BodyId hub;
+  std::vector<BodyId> rods;
+};
+StoppedWheel makeStoppedWheel(World& world, JointSystem& joints, int spokes, Real limit_rad) {
+  StoppedWheel w;
+  w.hub = addBox(world, Vec3(0, 10, 0), Vec3::Constant(Real(0.2)), 5);
+  EXPECT_TRUE(joints.createJoint(makeJointDef(world, JointType::Ball, w.hub, BodyId{}, Vec3(0, Real(10.2), 0))).ok());
+  for (int i = 0; i < spokes; ++i) {
+    const Real a = Real(2 * M_PI * i / spokes);
+    const Vec3 dir(std::cos(a), 0, std::sin(a));
+    const BodyId rod = addBox(world, Vec3(0, 10, 0) + dir * Real(0.6), Vec3::Constant(Real(0.05)), Real(0.5));
+    world.disableCollision(rod, w.hub);
+    // The hinge axis is horizontal and across the rod, so the rod swings down.
+    JointDef d = makeJointDef(world, JointType::Hinge, rod, w.hub, Vec3(0, 10, 0) + dir * Real(0.3),
+                              Vec3(-dir.z(), 0, dir.x()));
+    d.enableLimit = true;
+    d.lowerAngle_rad = -limit_rad;
+    d.upperAngle_rad = limit_rad;
+    EXPECT_TRUE(joints.createJoint(d).ok());
+    w.rods.push_back(rod);
+  }
+  return w;
+}
+
+// The cost cap found inside a step: the system fits the cap when the joints
+// are made, then the stops' rows enter (the rods swing onto them) and the
+// factorization's work per row grows past it. That step the joints are not
+// solved; from the next step on the impulse solver stands in. The cap here
+// is set between the work per row of the system without and with its stop
+// rows, as measured in the same run with no cap, so that only the stops
+// take it over.
+TEST(JointSystem, StopRowsThatGrowTheSystemPastTheCapInAStepHandItToTheImpulseSolver) {
+  const int spokes = 8;
+  const Real limit = Real(0.1);
+  World uncappedWorld(quietSettings());
+  JointSettings uncapped = test::lagrange();
+  uncapped.lagrangeMaxFactorWorkPerRow = std::numeric_limits<double>::infinity();
+  JointSystem uncappedJoints(uncappedWorld, uncapped);
+  makeStoppedWheel(uncappedWorld, uncappedJoints, spokes, limit);
+  uncappedJoints.step(Real(1.0 / 60.0));
+  const int rowsFree = uncappedJoints.lastSolve().rows;
+  const double workFree = uncappedJoints.lastSolve().factorWork / rowsFree;
+  int rowsStopped = rowsFree;
+  double workStopped = workFree;
+  for (int i = 1; i < 60; ++i) {
+    uncappedJoints.step(Real(1.0 / 60.0));
+    if (uncappedJoints.lastSolve().rows > rowsStopped) {
+      rowsStopped = uncappedJoints.lastSolve().rows;
+      workStopped = uncappedJoints.lastSolve().factorWork / rowsStopped;
+    }
+  }
+  std::printf("[cost cap in a step] %d rows, %.0f multiply-adds per row free; %d rows, %.0f per row on the stops\n",
+              rowsFree, workFree, rowsStopped, workStopped);
+  ASSERT_EQ(rowsStopped, rowsFree + spokes) << "every rod reached a stop";
+  ASSERT_GT(workStopped, workFree);
+
+  World world(quietSettings());
+  JointSettings capped = test::lagrange();
+  capped.lagrangeMaxFactorWorkPerRow = std::sqrt(workFree * workStopped);
+  JointSystem joints(world, capped);
+  const StoppedWheel wheel = makeStoppedWheel(world, joints, spokes, limit);
+  joints.step(Real(1.0 / 60.0));
+  EXPECT_EQ(joints.runningSolver(), JointSolverKind::Lagrange) << "fits the cap as made";
+  EXPECT_EQ(joints.stepsOverCostCap(), 0);
+  int handedOverAt = -1;
+  for (int i = 1; i < 60; ++i) {
+    joints.step(Real(1.0 / 60.0));
+    if (handedOverAt < 0 && joints.runningSolver() == JointSolverKind::Impulse) handedOverAt = i;
+  }
+  std::printf("[cost cap in a step] cap %.0f: handed over at step %d, %ld steps over; anchor error max %.2e m "
+              "(uncapped %.2e m)\n",
+              capped.lagrangeMaxFactorWorkPerRow, handedOverAt, joints.stepsOverCostCap(), joints.maxAnchorError_m(),
+              uncappedJoints.maxAnchorError_m());
+  EXPECT_GT(handedOverAt, 0) << "found in a step, not when the joints were made";
+  EXPECT_EQ(joints.solver(), JointSolverKind::Lagrange) << "the request stays";
+  EXPECT_GT(joints.stepsOverCostCap(), 0);
+  EXPECT_GT(joints.overCostCapWorkPerRow(), capped.lagrangeMaxFactorWorkPerRow);
+  // The step in which nothing was solved and the stand-in after it keep the
+  // wheel together and finite; the rods hang on their stops as without the cap.
+  EXPECT_EQ(world.errorStats().nanEvents, 0);
+  EXPECT_LT(joints.maxAnchorError_m(), 0.01);
+  for (std::size_t i = 0; i < wheel.rods.size(); ++i) {
+    const Vec3 p = world.body(wheel.rods[i]).position_m;
+    ASSERT_TRUE(p.allFinite());
+    EXPECT_LT(p.y(), Real(10)) << "rod " << i << " swung down";
+  }
+}
+
 /// Largest stable dt of integrateFree for a 5-link chain released at 45
 /// degrees, for 5 s: stable = no blow-up: finite, anchor error < 5 cm and
 /// |E - E0| below the chain's m g L. (Explicit Euler gains energy at every dt
