@@ -335,8 +335,9 @@ void tops(std::vector<AccuracyRow>& rows) {
         for (AccuracyRow& r : rows3) {
           if (solver == physics::JointSolverKind::Lagrange && !r.pass()) {
             r.knownLimit = true;
-            r.note = "known limit of the Lagrange solver with a fast spin: the joint opens by centimetres (cause not yet "
-                     "traced; the impulse solver holds the same tops within 1.4 mm)";
+            r.note = "known limit of the Lagrange solver with a fast spin: the joint opens by centimetres, second order "
+                     "in the substep (the sphere at 200 rad/s: 183, 51, 13, 3.6 mm at 4, 8, 16, 32 substeps); the "
+                     "impulse solver holds the same tops within 1.4 mm";
           }
           rows.push_back(r);
         }
