@@ -297,12 +297,12 @@ class World {
   /// body's pose, velocities, mass, material and sleep state, the contact
   /// cache with its warm-start impulses, the broad phase's order, sleep
   /// islands, the collision filter, island links, springs and settings.
-  /// Of shapes only the primitive ones' sizes are stored: restoreState puts
-  /// the state back into a world with the same bodies (as the same scenario
-  /// makes them); a body it lacks is made again when its shape is a sphere,
-  /// box, capsule, cylinder or plane, one the saved world lacks is removed,
-  /// and a missing hull, mesh or compound, or damaged bytes, are refused
-  /// with a message naming the slot (the world is then unchanged).
+  /// Shapes: the primitive ones' sizes and hulls and compounds whole (a
+  /// mesh's tree is not stored): restoreState puts the state back into a
+  /// world with the same bodies (as the same scenario makes them); a body it
+  /// lacks is made again, one the saved world lacks is removed, and a
+  /// missing mesh body, or damaged bytes, are refused with a message naming
+  /// the slot (the world is then unchanged).
   std::string saveState() const;
   Status restoreState(const std::string& bytes);
   const ErrorStats& errorStats() const { return m_error; }

@@ -58,13 +58,12 @@ int worldSnapshot(lua_State* L) {
 /// @function world.restore
 /// Puts the scene back to a snapshot exactly: stepping on from it gives the
 /// same bits as stepping on from the moment it was taken. Bodies, joints
-/// and emitters made since are removed; ones removed since come back (a
-/// body only with a sphere, box, capsule, cylinder or plane shape: a hull,
-/// mesh or compound removed since is an error naming its body slot). The
-/// scene must still have the same vehicles, ropes and cloth. An error
-/// leaves the scene as it was, except after removing a hull, mesh or
-/// compound body made since (it cannot be made again), which the error
-/// says. Handles to what came back are valid again.
+/// and emitters made since are removed; ones removed since come back, with
+/// any shape but a static triangle mesh (a mesh removed since is an error
+/// naming its body slot). The scene must still have the same vehicles,
+/// ropes and cloth. An error leaves the scene as it was, except after
+/// removing a mesh body made since (it cannot be made again), which the
+/// error says. Handles to what came back are valid again.
 /// Lua state is not touched.
 /// @param snapshot WorldSnapshot from world.snapshot
 /// @example world.restore(before)
@@ -78,9 +77,9 @@ int worldRestore(lua_State* L) {
   SceneSystems& scene = ScenarioHost::from(L)->scene();
   // All or nothing: a part refused after others were restored puts back
   // the state from before the call. That fails only when the first restore
-  // removed a body made since whose shape a snapshot cannot hold (a hull, a
-  // mesh, a compound): the error then says the scene is the snapshot's
-  // world with the rest as it was.
+  // removed a body made since whose shape a snapshot cannot hold (a static
+  // triangle mesh): the error then says the scene is the snapshot's world
+  // with the rest as it was.
   const SystemsState now = saveSystems(scene);
   if (Status st = restoreSystems(scene, saved); !st) {
     if (Status back = restoreSystems(scene, now); !back)

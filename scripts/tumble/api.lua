@@ -1830,13 +1830,12 @@ function world.snapshot() end
 
 ---Puts the scene back to a snapshot exactly: stepping on from it gives the
 ---same bits as stepping on from the moment it was taken. Bodies, joints
----and emitters made since are removed; ones removed since come back (a
----body only with a sphere, box, capsule, cylinder or plane shape: a hull,
----mesh or compound removed since is an error naming its body slot). The
----scene must still have the same vehicles, ropes and cloth. An error
----leaves the scene as it was, except after removing a hull, mesh or
----compound body made since (it cannot be made again), which the error
----says. Handles to what came back are valid again.
+---and emitters made since are removed; ones removed since come back, with
+---any shape but a static triangle mesh (a mesh removed since is an error
+---naming its body slot). The scene must still have the same vehicles,
+---ropes and cloth. An error leaves the scene as it was, except after
+---removing a mesh body made since (it cannot be made again), which the
+---error says. Handles to what came back are valid again.
 ---Lua state is not touched.
 ---
 ---```lua

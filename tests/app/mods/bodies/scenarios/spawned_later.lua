@@ -2,13 +2,19 @@
 -- shot at a stack every half second, its handle kept in ctx.state. A
 -- snapshot holds each ball's size, so a run loaded after the shots makes
 -- them again and ends as the run without a split. With --set hull=1 a
--- wedge (a convex hull, whose points a snapshot does not hold) is dropped
--- at 0.75 s: loading a snapshot taken after that is refused, naming the
--- body slot and the shape.
+-- wedge (a convex hull) is dropped at 0.75 s and a hammer (a compound of a
+-- box and a hull) at 0.9 s: a snapshot holds their polyhedra and children,
+-- so a run loaded after that makes them again too. With --set mesh=1 a
+-- static model (a triangle mesh, whose tree a snapshot does not hold) is
+-- placed at 0.75 s: loading a snapshot taken after that is refused, naming
+-- the body slot and the shape.
 return {
   title = "Balls shot at a stack after on_start",
   duration = 3,
-  params = {hull = {default = 0, description = "1: also drop a convex-hull wedge at 0.75 s (loading is then refused)"}},
+  params = {
+    hull = {default = 0, description = "1: also drop a convex-hull wedge at 0.75 s and a compound hammer at 0.9 s"},
+    mesh = {default = 0, description = "1: also place a static model at 0.75 s (loading is then refused)"},
+  },
   on_start = function(ctx)
     world.plane{}
     for i = 0, 3 do world.box{size = {1, 1, 1}, position = {0, 0.5 + i, 0}} end
@@ -22,6 +28,15 @@ return {
     end
     if param("hull") == 1 and ctx.step == 45 then
       world.hull{points = {{0,0,0}, {1,0,0}, {0,0,1}, {1,0,1}, {0,1,0}, {0,1,1}}, position = {3, 2, 0}}
+    end
+    if param("hull") == 1 and ctx.step == 54 then
+      world.compound{children = {
+          {shape = "box", size = {0.2, 1.2, 0.2}},
+          {shape = "hull", points = {{-0.3,0,-0.2}, {0.3,0,-0.2}, {-0.3,0,0.2}, {0.3,0,0.2}, {0,0.4,0}}, position = {0, 0.6, 0}},
+        }, position = {1.5, 3, 0.5}, angular_velocity = {0, 2, 5}}
+    end
+    if param("mesh") == 1 and ctx.step == 45 then
+      world.add_static_model("base:assets/models/barrier.obj", {position = {4, 0, 3}})
     end
   end,
   on_finish = function(ctx)

@@ -4,12 +4,14 @@
 -- is tried, then the world is restored: the poses must be the snapshot's,
 -- bit for bit, and running the same 0.5 s again must give the recorded
 -- poses bit for bit (the contacts' warm starts came back too). A body made
--- after the snapshot is removed by world.restore, a sphere removed since is
--- made again, and a convex hull removed since (its points are not in the
--- snapshot) makes world.restore refuse, naming the body slot, and changes
--- nothing.
+-- after the snapshot is removed by world.restore, a sphere and a convex hull
+-- removed since are made again (the hull from its polyhedron in the
+-- snapshot), and a static model removed since (a triangle mesh, whose tree
+-- is not in the snapshot) makes world.restore refuse, naming the body slot,
+-- and changes nothing.
 local bodies = {}
 local wedge  -- a convex hull far from the rest
+local barrier  -- a static model (triangle mesh) far from the rest
 local snap, first, second = nil, {}, {}
 local tried = false
 
@@ -42,6 +44,7 @@ return {
     for i = 0, 4 do bodies[#bodies + 1] = world.box{size = {1, 1, 1}, position = {0, 0.5 + i * 1.0, 0}} end
     bodies[#bodies + 1] = world.sphere{radius = 0.4, position = {3, 0.4, 0}, velocity = {-2, 0, 0}}
     wedge = world.hull{points = {{0,0,0}, {1,0,0}, {0,0,1}, {1,0,1}, {0,1,0}, {0,1,1}}, position = {30, 0.5, 0}}
+    barrier = world.add_static_model("base:assets/models/barrier.obj", {position = {-30, 0, 0}})
   end,
   on_update = function(ctx, dt)
     local s = ctx.step
@@ -78,15 +81,22 @@ return {
     world.restore(snap)
     expect("a body made since the snapshot is removed by restore", not extra:is_valid())
     expect("a sphere removed since is back", bodies[6]:is_valid() and same(poses(), ctx.state.at_snapshot))
-    -- A hull removed since cannot be made again: refused, nothing changed.
+    -- A hull removed since is made again from the snapshot, where it was.
+    local wedgeAt = wedge:position()
     world.remove(wedge)
+    world.restore(snap)
+    local back = wedge:is_valid() and wedge:position()
+    expect("a hull removed since is back where it was", back and back.x == wedgeAt.x and back.y == wedgeAt.y and
+                                                         back.z == wedgeAt.z)
+    -- A static model removed since cannot be made again: refused, nothing changed.
+    world.remove(barrier)
     bodies[1]:apply_impulse{0, 100, 0}
     local moved = poses()
     local ok, err = pcall(world.restore, snap)
-    expect("a hull removed since the snapshot makes restore refuse", not ok)
+    expect("a static model removed since the snapshot makes restore refuse", not ok)
     expect("the message names the body slot and the shape", tostring(err):find("body slot %d+") ~= nil and
-                                                             tostring(err):find("hull") ~= nil)
-    expect("a refused restore changes nothing", same(poses(), moved) and not wedge:is_valid())
+                                                             tostring(err):find("mesh") ~= nil)
+    expect("a refused restore changes nothing", same(poses(), moved) and not barrier:is_valid())
     print(tostring(snap))
   end,
 }

@@ -111,9 +111,9 @@ return {
     local bodiesBefore = {table.unpack(before, 1, #after)}
     expect("a refused restore leaves every body as it was", same(bodiesBefore, after))
     expect("... and every joint", hinges[2]:is_valid() and hinges[5]:is_valid())
-    -- Refused part-way after removing a hull made since: the hull cannot be
-    -- put back, which the error says; nothing crashes.
-    world.hull{points = {{0,0,0}, {1,0,0}, {0,0,1}, {1,0,1}, {0,1,0}, {0,1,1}}, position = {20, 1, 0}}
+    -- Refused part-way after removing a static model placed since: its
+    -- triangle mesh cannot be put back, which the error says; nothing crashes.
+    world.add_static_model("base:assets/models/barrier.obj", {position = {20, 0, 0}})
     local ok2, err2 = pcall(world.restore, snap)
     expect("a restore that cannot be undone says so", not ok2 and tostring(err2):find("could not be put back") ~= nil)
     print(tostring(snap))
