@@ -16,8 +16,8 @@
 // never followed. A saved body with a static triangle mesh that this world
 // does not have in its slot refuses the restore, naming the slot (a mesh's
 // tree is not stored; meshes come from models placed by on_start); bodies
-// in slots the saved world did not have yet are removed. Everything that changes while the world
-// steps is stored: each body's pose, velocities, accumulated force and
+// in slots the saved world did not have yet are removed. Everything that
+// changes while the world steps is stored: each body's pose, velocities, accumulated force and
 // torque, mass and inertia, material and sleep state; the contact cache
 // with its warm-start impulses (without it the next step solves the stack
 // from zero and the run differs); the broad phase's sort order (it decides
@@ -247,7 +247,8 @@ Status readShapeData(ByteReader& r, ShapeType type, Shape& shape) {
     auto hull = readHull(r);
     if (!hull) return makeError(hull.error());
     shape.hull = hull.value();
-    return validateShape(shape);
+    if (!validateShape(shape)) return makeError("world state: damaged (a hull)");
+    return Ok{};
   }
   if (type != ShapeType::Compound) return Ok{};
   const auto damaged = [] { return makeError("world state: damaged (a compound)"); };
@@ -291,7 +292,8 @@ Status readShapeData(ByteReader& r, ShapeType type, Shape& shape) {
       !finite(c.boundingRadius_m) || !finite(c.innerRadius_m))
     return damaged();
   shape.compound = std::make_shared<const CompoundShape>(std::move(c));
-  return validateShape(shape);
+  if (!validateShape(shape)) return damaged();
+  return Ok{};
 }
 
 std::string describe(const SlotShape& s) {
@@ -364,11 +366,9 @@ Status World::restoreState(const std::string& bytes) {
       made.radius_m = saved.radius_m;
       made.halfHeight_m = saved.halfHeight_m;
       made.halfExtents_m = saved.halfExtents_m;
-      if (Status st = readShapeData(r, type, made); !st)
-        return makeError(st.error().rfind("world state", 0) == 0 ? st.error()
-                                                                 : "world state: damaged (body " + std::to_string(i) +
-                                                                       "'s shape: " + st.error() + ")");
-      if (saved.type > std::uint8_t(BodyType::Dynamic)) return makeError("world state: damaged (body " + std::to_string(i) + ")");
+      if (Status st = readShapeData(r, type, made); !st) return st;
+      if (saved.type > std::uint8_t(BodyType::Dynamic))
+        return makeError("world state: damaged (body " + std::to_string(i) + ")");
       continue;
     }
     if (saved.alive && !sameShape(saved, here) && !primitive(saved))

@@ -84,18 +84,14 @@ TEST(WorldState, HullsAndCompoundsMadeLaterComeBackInAWorldThatNeverHadThem) {
   EXPECT_TRUE(a.body(later[1]).position_m.allFinite());
 }
 
-// Every cut is refused; single changed bytes in the hull and compound data
-// (the part after the first two bodies' records) are refused or restored
-// and stepped.
+// Every cut is refused; single changed bytes anywhere (most of the state is
+// the hull and compound data) are refused or restored and stepped.
 TEST(WorldState, DamagedHullAndCompoundBytesAreRefusedOrRunNeverCrash) {
   World a;
   setUp(a);
   makeLater(a);
   for (int i = 0; i < 40; ++i) a.step(Real(1.0 / 60));
   const std::string bytes = a.saveState();
-  World probe;
-  setUp(probe);
-  const std::size_t setUpBytes = probe.saveState().size();  // a lower bound on where the later bodies begin
   std::mt19937 rng(11);
   int refused = 0, accepted = 0;
   auto attempt = [&](const std::string& damaged) {
@@ -110,15 +106,14 @@ TEST(WorldState, DamagedHullAndCompoundBytesAreRefusedOrRunNeverCrash) {
   };
   for (int k = 0; k < 64; ++k) attempt(bytes.substr(0, bytes.size() * std::size_t(k) / 64));
   EXPECT_EQ(refused, 64);
-  const std::size_t from = std::min(setUpBytes / 2, bytes.size() - 1);
   for (int k = 0; k < 3000; ++k) {
     std::string damaged = bytes;
-    const std::size_t at = std::uniform_int_distribution<std::size_t>(from, damaged.size() - 1)(rng);
+    const std::size_t at = std::uniform_int_distribution<std::size_t>(0, damaged.size() - 1)(rng);
     damaged[at] = char(std::uniform_int_distribution<int>(0, 255)(rng));
     attempt(damaged);
   }
-  std::printf("[world state] %zu bytes, changed from byte %zu: %d refused, %d accepted and stepped\n", bytes.size(),
-              from, refused - 64, accepted);
+  std::printf("[world state] %zu bytes: %d refused, %d accepted and stepped\n", bytes.size(), refused - 64,
+              accepted);
   EXPECT_GT(refused - 64, 0);
 }
 

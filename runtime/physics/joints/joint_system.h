@@ -71,7 +71,8 @@ struct JointSettings {
   double stiffness_per_s2 = 400;
   double damping_per_s = 40;
   /// Gyroscopic term -w x (I w) in Q (the applied generalized force) of
-  /// integrateFree; in the World's substeps the World's own gyroscopic step
+  /// integrateFree; in the World's substeps the change of w from the World's
+  /// torque-free turn (applied at the next substep's start, world_step.cpp)
   /// is part of the known Q.
   bool gyroscopic = true;
   /// Solves per call when limit rows enter or leave the active set, and when
