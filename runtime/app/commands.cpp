@@ -55,6 +55,10 @@ void addSceneOptions(CLI::App* cmd, SceneOptions& scene, std::vector<std::string
   cmd->add_option("--dt", scene.dt_s, "fixed time step, s (default 1/60)")->check(kFinite)->check(CLI::PositiveNumber);
   cmd->add_option("--substeps", scene.substeps, "physics substeps per step (default: the world's, 8)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--threads", scene.threads,
+                  "threads of the physics step, 1..64 (default 1); the results are the same, bit for bit, for any "
+                  "number")
+      ->check(CLI::Range(1, 64));
   cmd->add_option("--integrator", scene.integrator, "rigid-body integrator: symplectic_euler (default), euler, heun, rk4, verlet, implicit_euler, implicit_midpoint, sdirk2; overrides the scenario's integrator field");
   cmd->add_option("--set", sets, "KEY=VALUE: a scenario parameter (param() in Lua), a physics.* setting or a tunable (tune.NAME)");
   cmd->add_option("--seed", scene.seed, "seed for the scenario's random numbers (default 1)");

@@ -43,6 +43,10 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
     if (!(st = parseSetting(key, value, &i))) return st;
     if (i < 0 || i > 1000) return makeError("--set " + key + ": relax_iterations must be 0..1000");
     s.relaxIterations = i;
+  } else if (k == "threads") {
+    if (!(st = parseSetting(key, value, &i))) return st;
+    if (i < 1 || i > 64) return makeError("--set " + key + ": threads must be 1..64");
+    s.threads = i;
   } else if (k == "soft_contacts") {
     if (!(st = parseSetting(key, value, &b))) return st;
     s.softContacts = b;
@@ -63,7 +67,7 @@ Status applyPhysicsSetting(physics::WorldSettings& s, const std::string& key, co
   } else {
     return makeError("--set " + key +
                      ": unknown physics setting (known: physics.substeps, physics.iterations, "
-                     "physics.relax_iterations, physics.soft_contacts, physics.sleep, physics.baumgarte, "
+                     "physics.relax_iterations, physics.threads, physics.soft_contacts, physics.sleep, physics.baumgarte, "
                      "physics.solver_tolerance, physics.gravity, physics.joint_solver)");
   }
   return Ok{};

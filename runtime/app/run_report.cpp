@@ -140,6 +140,8 @@ nlohmann::json buildReport(Scene& scene, long long steps, double simulatedSecond
       {"seed", scene.options().seed},
       {"dt", scene.options().dt_s},
       {"substeps", world.settings().substeps},
+      {"threads", world.settings().threads},
+      {"steps_on_threads", world.stepsOnThreads()},
       {"integrator", scene.integratorName()},
       {"joint_solver", physics::jointSolverName(scene.jointSolver())},
       {"steps", steps},

@@ -114,6 +114,7 @@ Result<std::unique_ptr<Scene>> Scene::build(const SceneOptions& options, bool sc
 
   physics::WorldSettings ws;
   if (options.substeps > 0) ws.substeps = options.substeps;
+  if (options.threads > 0) ws.threads = options.threads;
   script::ScenarioOptions so;
   so.seed = options.seed;
   so.limits = options.limits;

@@ -43,6 +43,7 @@ struct SceneOptions {
   std::map<std::string, std::string> sets;  ///< --set KEY=VALUE (physics.* go to the world)
   double dt_s = 1.0 / 60.0;
   int substeps = 0;  ///< 0: the world's default
+  int threads = 0;   ///< threads of the physics step (--threads); 0: the world's default, 1
   std::string integrator;  ///< --integrator; empty: the scenario's field, else symplectic_euler
   std::uint64_t seed = 1;
   /// terrain.* settings a scenario asks for by default (terrain_scene.h lists

@@ -100,6 +100,7 @@ Status validateWorldSettings(const WorldSettings& s) {
   if (!validBools(s.softContacts, s.continuousStatic, s.meshTree, s.enableSleep, s.gyroscopic))
     return bad("(a switch)", "true or false");
   if (s.substeps < 1 || s.substeps > 1000) return bad("substeps", "1..1000");
+  if (s.threads < 1 || s.threads > 64) return bad("threads", "1..64");
   if (s.velocityIterations < 1 || s.velocityIterations > 1000) return bad("velocityIterations", "1..1000");
   if (s.relaxIterations < 0 || s.relaxIterations > 1000) return bad("relaxIterations", "0..1000");
   if (s.restitutionIterations < 0 || s.restitutionIterations > 1000) return bad("restitutionIterations", "0..1000");

@@ -105,6 +105,11 @@ struct WorldSettings {
   bool gyroscopic = true;
   /// How bodies move between contact solves (integrate.h; --integrator).
   BodyIntegrator integrator = BodyIntegrator::SymplecticEuler;
+  /// Threads that share a step's contact passes (1..64; the caller is one of
+  /// them). Every result is the same, bit for bit, for any count: the sweeps
+  /// keep their sequential order ("Threads" in contact_solver.cpp). 1: no
+  /// thread is started.
+  int threads = 1;
 };
 
 /// A contact event for scripts: reported once when a pair first touches,
@@ -263,6 +268,10 @@ class World {
   /// Contacts that began during the last step.
   const std::vector<ContactEvent>& contactEvents() const { return m_events; }
   int contactPointCount() const { return m_lastContactPoints; }
+  /// Steps whose contact passes were shared between WorldSettings::threads
+  /// threads (a step with fewer than about a hundred contact manifolds runs
+  /// on the caller alone: waking the threads would cost more).
+  std::uint64_t stepsOnThreads() const { return m_stepsOnThreads; }
   /// Overlapping pairs the cost cap left out of the last step's collisions
   /// (WorldSettings::maxContactPairsPerBody).
   long contactPairsSkippedLastStep() const { return m_lastContactPairsSkipped; }
@@ -382,6 +391,7 @@ class World {
   std::vector<BodyPair> m_noCollide;    ///< sorted; see disableCollision
   std::vector<BodyPair> m_islandLinks;  ///< sorted; see setIslandLinks
   int m_lastContactPoints = 0;
+  std::uint64_t m_stepsOnThreads = 0;
   long m_lastContactPairsSkipped = 0;
   ErrorStats m_error;
   mutable MeshStats m_meshStats;  ///< see meshStats (rays, which are const, count too)

@@ -141,7 +141,13 @@ void World::step(Real dt) {
   const SolverSettings ss = solverSettings(m_settings, dt / Real(substeps));
   gatherVelocities();
   ContactSolver& contacts = m_scratch->contacts;
+  std::unique_ptr<WorkerPool>& pool = m_scratch->pool;
+  const int threads = std::clamp(m_settings.threads, 1, 64);
+  if (threads == 1) pool.reset();
+  else if (!pool || pool->threads() != threads) pool = std::make_unique<WorkerPool>(threads);
+  contacts.setPool(pool.get());
   contacts.prepare(m_manifolds, m_bodies);
+  if (contacts.threadedLevels() > 0) ++m_stepsOnThreads;
   m_inStep = true;
   ConstraintSolver* joints = m_constraintSolver;  // the joint hook (constraint_solver.h), usually null
   if (joints) joints->prepare(*this, dt, substeps);

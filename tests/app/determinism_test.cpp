@@ -8,6 +8,8 @@
 // moves a single bit of the end state fails here.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <ostream>
 #include <regex>
 #include <string>
@@ -86,6 +88,33 @@ TEST_P(Determinism, StateHashIsTheRecordedOne) {
   EXPECT_EQ(m[1].str(), c.hash) << "tumble run " << c.args << " ends in another state than the recorded one; "
                                 << "see the comment at kCases before changing the constant\n"
                                 << r.output;
+}
+
+// WorldSettings::threads: the contact passes shared between two threads
+// give the sequential result bit for bit ("Threads" in
+// runtime/physics/contact_solver.cpp), so the recorded constants hold with
+// --threads 2. The pyramid has enough contacts for the threads (at least
+// 128 manifolds in a step; drop and the rag-doll pile have fewer): it must
+// have used them (the report's steps_on_threads), or this would test
+// nothing but the one-thread path.
+TEST_P(Determinism, TwoThreadsGiveTheRecordedHash) {
+#if defined(TUMBLE_DOUBLE)
+  GTEST_SKIP() << "the constants are for float rigid-body state; this build stores double (TUMBLE_DOUBLE=ON)";
+#endif
+  const HashCase& c = GetParam();
+  const std::string report = outDir(std::string("determinism_threads_") + c.name) + "/report.json";
+  const ProcessResult r = runTumble(std::string("run ") + c.args + " --threads 2 --report " + report);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("; state ([0-9a-f]{16})"))) << r.output;
+  EXPECT_EQ(m[1].str(), c.hash) << "tumble run " << c.args << " --threads 2 ends elsewhere than with one thread\n"
+                                << r.output;
+  std::ifstream in(report);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_TRUE(std::regex_search(text, m, std::regex("\"steps_on_threads\": ?([0-9]+)"))) << text.substr(0, 2000);
+  if (std::string(c.name) == "Pyramid") {
+    EXPECT_GT(std::stoll(m[1].str()), 0) << "the threads were never used: " << c.args;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BaseScenarios, Determinism, testing::ValuesIn(kCases),

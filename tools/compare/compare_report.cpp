@@ -54,6 +54,7 @@ json tumbleSettings(const TumbleConfig& c) {
   if (c.iterations > 0) s.velocityIterations = c.iterations;
   if (c.tolerance >= 0) s.solverTolerance = Real(c.tolerance);
   json j;
+  j["threads"] = c.threads;
   j["substeps"] = s.substeps;
   j["iterations"] = s.velocityIterations;
   j["relax_iterations"] = s.relaxIterations;

@@ -101,6 +101,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 10000));
   app.add_flag("--no-bullet-default", noBulletDefault, "skip the extra Bullet run at its default 10 iterations");
   app.add_flag("--sleep", sleep, "let both engines put resting bodies to sleep (off: time the solvers, not idle worlds)");
+  int threads = 1;
+  app.add_option("--threads", threads,
+                 "threads of Tumble's step (WorldSettings::threads; the peers use one); step_cpu_ms then sums all "
+                 "threads")
+      ->check(CLI::Range(1, 64));
   bool sweep = false;
   std::string outDir = ".";
   app.add_flag("--sweep", sweep,
@@ -170,6 +175,7 @@ int main(int argc, char** argv) {
   TumbleConfig tumbleConfig;
   tumbleConfig.sleep = sleep;
   tumbleConfig.jointSolver = jointSolver;
+  tumbleConfig.threads = threads;
   json tumble = measured(runTumble(scene, steps, dt, tumbleConfig));
   tumble.update(tumbleSettings(tumbleConfig));
   if (!scene.joints.empty()) tumble["joint_solver"] = jointSolver;
@@ -190,7 +196,7 @@ int main(int argc, char** argv) {
   report["gravity_mps2"] = {scene.gravity_mps2.x(), scene.gravity_mps2.y(), scene.gravity_mps2.z()};
   report["friction"] = scene.friction;
   report["restitution"] = scene.restitution;
-  report["threads"] = 1;
+  report["threads"] = threads;  // Tumble's; Bullet runs on one
   report["sleep"] = sleep;
   report["tumble"] = tumble;
   report["bullet"] = bullet;

@@ -285,6 +285,12 @@ double threadCpuMs() {
   return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 void measureEnd(const SceneSpec& scene, const std::vector<V3>& end, RunResult* r) {
   r->escaped = 0;
   r->stackDrift_m = 0;

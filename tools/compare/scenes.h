@@ -111,6 +111,7 @@ struct TumbleConfig {
   double tolerance = -1;      ///< WorldSettings::solverTolerance; < 0: default
   bool sleep = false;
   std::string jointSolver = "impulse";  ///< "impulse" or "lagrange"
+  int threads = 1;  ///< WorldSettings::threads
 };
 
 /// ODE configuration for one run (Debian's libode, double precision).
@@ -137,6 +138,9 @@ const char* bulletPrecision();
 
 /// CPU time consumed by the calling thread so far, ms (CLOCK_THREAD_CPUTIME_ID).
 double threadCpuMs();
+/// CPU time consumed by all threads of the process so far, ms
+/// (CLOCK_PROCESS_CPUTIME_ID): a run with Tumble's worker threads.
+double processCpuMs();
 
 /// Shared end-of-run measurements (start and end positions of dynamic bodies).
 void measureEnd(const SceneSpec& scene, const std::vector<V3>& endPositions, RunResult* r);

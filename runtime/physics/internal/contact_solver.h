@@ -8,13 +8,18 @@
 // separate array of 24-byte entries (gathered before the substeps, scattered
 // after), never the large Body struct. Inverse world inertia is taken at the
 // start of the step, as rA, rB and the effective masses already were.
+#include <array>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "physics/body.h"
 #include "physics/internal/manifold.h"
 
 namespace tumble::physics {
+
+class WorkerPool;
 
 struct SolverSettings {
   Real h = 0;  ///< substep length, s
@@ -185,6 +190,14 @@ class ContactSolver {
   /// Accumulated impulses back to the manifolds (warm start, events).
   void store(std::vector<Manifold>& manifolds) const;
 
+  /// Threads for the passes over the constraints (null: all on the caller).
+  /// No result depends on it ("Threads" in contact_solver.cpp).
+  void setPool(WorkerPool* pool) { m_pool = pool; }
+  /// Levels of the last prepare()'s schedule for the pool: the longest
+  /// chain of constraints that share moving bodies ("Threads" in
+  /// contact_solver.cpp); 0 when the passes run on the caller alone.
+  std::size_t threadedLevels() const { return m_levels; }
+
   std::size_t size() const { return m_constraints.size(); }
   /// Sum of squared accumulated normal impulses after the last sweep.
   Real lastMagnitude() const { return m_lastMagnitude; }
@@ -209,6 +222,43 @@ class ContactSolver {
   void solveConstraint(const Constraint& c, std::vector<SolverVelocity>& vel, std::vector<SolverVelocity>& pseudo,
                        const SweepConstants& k, Real& residual, Real& magnitude);
   Real m_lastMagnitude = 0;
+
+  // Threads ("Threads" in contact_solver.cpp).
+  WorkerPool* m_pool = nullptr;
+  /// Whether this step's passes go to the pool (enough constraints for it).
+  bool threaded() const;
+  std::vector<std::uint32_t> m_level;  ///< per constraint (sequential order)
+  std::vector<Vec3> m_place;           ///< per constraint: its first point, m (world)
+  /// Per constraint (storage order once the schedule is built): the last
+  /// earlier one moving its body a, its body b (-1: none).
+  std::vector<std::array<std::int32_t, 2>> m_pred;
+  std::vector<std::vector<std::uint32_t>> m_threadOrder;  ///< per thread: its constraints, in level order
+  std::vector<std::int32_t> m_lastConstraint;             ///< per body slot (scratch of the schedule)
+  std::vector<std::uint32_t> m_levelCount;                ///< per level (scratch of the schedule)
+  mutable std::uint32_t m_pass = 0;  ///< ordered passes since prepare()
+  /// Per constraint (storage order): the last ordered pass that has solved it.
+  std::unique_ptr<std::atomic<std::uint32_t>[]> m_done;
+  std::vector<std::array<Real, 2>> m_sweepSums;  ///< per constraint: the last sweep's residual and magnitude
+  /// With threads the constraints are stored in the threads' order: thread
+  /// t solves [m_threadStart[t], m_threadStart[t + 1]); m_logical lists
+  /// them in the sequential order (empty without threads: storage is it).
+  std::vector<std::uint32_t> m_threadStart, m_logical;
+  std::vector<Constraint> m_permutedConstraints;      ///< scratch of the schedule
+  std::vector<ConstraintPoint> m_permutedPoints;      ///< scratch of the schedule
+  std::vector<std::array<std::int32_t, 2>> m_permutedPred;  ///< scratch of the schedule
+  std::vector<std::uint32_t> m_storageOf;             ///< per constraint in the sequential order: where it is stored
+  std::size_t m_levels = 0;
+  void buildSchedule(std::size_t bodySlots);
+  /// Calls visit(ci) for every constraint ci (storage index); two that move
+  /// the same body are visited in the sequential order, the later one only
+  /// once the earlier one has finished (on the same thread, or waited for).
+  template <class Visit>
+  void forEachOrdered(Visit&& visit) const;
+  /// Calls visit(begin, end) over ranges of constraints (storage index)
+  /// that together cover them all once, each thread its own share
+  /// (independent work only).
+  template <class Visit>
+  void forEachShare(Visit&& visit) const;
 };
 
 }  // namespace tumble::physics

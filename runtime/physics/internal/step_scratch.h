@@ -3,6 +3,7 @@
 // step (world_step.cpp, collision_pipeline.cpp, ccd.cpp). Kept between steps
 // so that stepping does not allocate once warm.
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -11,10 +12,12 @@
 #include "physics/internal/contact_solver.h"
 #include "physics/internal/height_field_collision.h"
 #include "physics/internal/manifold.h"
+#include "physics/internal/worker_pool.h"
 
 namespace tumble::physics {
 
 struct StepScratch {
+  std::unique_ptr<WorkerPool> pool;  ///< WorldSettings::threads > 1: the other threads
   ContactSolver contacts;
   std::vector<SolverVelocity> vel, pseudo;  ///< real and split-impulse velocities, per body slot
   std::vector<SolverPose> pose;             ///< displacement since the step began, per body slot

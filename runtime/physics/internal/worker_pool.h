@@ -1,0 +1,78 @@
+#pragma once
+// A small pool of std::threads for the step's data-parallel phases (the
+// narrow phase, the contact solver's independent batches). One job at a time:
+// run(fn) calls fn(t) on every thread t (the caller is thread 0) and returns
+// when all have finished; inside a job, barrier() waits until every thread
+// has reached it. Work is split by thread index only (static ranges), never
+// by who gets there first, and each item's result lands in its own slot, so
+// what a step computes does not depend on the number of threads.
+//
+// Why not oneTBB: a contact sweep is a sequence of batches of a few hundred
+// row solves each (microseconds), one after another; a task scheduler's
+// fork and join per batch costs about as much as the batch. Here the workers
+// spin between batches while a job runs, and between jobs they spin a short
+// while (the next substep's job comes within microseconds) and then sleep on
+// the job counter (std::atomic::wait, a futex on Linux), so a pool that has
+// no work uses no CPU.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <thread>
+#include <vector>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace tumble::physics {
+
+class WorkerPool {
+ public:
+  /// threads >= 1 in all: the caller and threads - 1 workers.
+  explicit WorkerPool(int threads);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  int threads() const { return m_threads; }
+  /// Calls job(t) for t = 0 .. threads() - 1, t = 0 on the calling thread.
+  void run(const std::function<void(int)>& job);
+  /// Inside a job: returns once every thread of the pool has called it.
+  void barrier();
+
+  /// A spin wait: pause hints (the loop does not flood the memory bus), and
+  /// after kSpinsBeforeYield of them a yield each time, so that a waiting
+  /// thread gives its core to the one it waits for when there are more
+  /// threads than cores (a preempted thread would otherwise be waited for
+  /// by spinning for a whole time slice).
+  class Spin {
+   public:
+    void operator()() {
+      if (++m_count < kSpinsBeforeYield) {
+#if defined(__x86_64__) || defined(__i386__)
+        _mm_pause();
+#endif
+      } else {
+        std::this_thread::yield();
+      }
+    }
+
+   private:
+    static constexpr int kSpinsBeforeYield = 2000;
+    int m_count = 0;
+  };
+
+ private:
+  void workerLoop(int index);
+
+  int m_threads = 1;
+  std::vector<std::thread> m_workers;
+  const std::function<void(int)>* m_job = nullptr;
+  alignas(64) std::atomic<std::uint32_t> m_jobCounter{0};  ///< bumped for each job (and to stop)
+  alignas(64) std::atomic<int> m_unfinished{0};
+  alignas(64) std::atomic<int> m_barrierArrived{0};
+  alignas(64) std::atomic<std::uint32_t> m_barrierRound{0};
+  bool m_stop = false;
+};
+
+}  // namespace tumble::physics
