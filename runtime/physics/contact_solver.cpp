@@ -490,7 +490,7 @@ void ContactSolver::forEachOrdered(Visit&& visit) const {
     for (std::uint32_t ci = m_threadStart[std::size_t(t)]; ci < m_threadStart[std::size_t(t) + 1]; ++ci) {
       for (std::int32_t p : m_pred[ci]) {
         if (p < 0) continue;
-        WorkerPool::Spin spin;
+        WorkerPool::Spin spin(m_pool->oversubscribed());
         while (done[p].load(std::memory_order_acquire) != pass) spin();
       }
       visit(ci);

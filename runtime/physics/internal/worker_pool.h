@@ -40,17 +40,23 @@ class WorkerPool {
   /// Inside a job: returns once every thread of the pool has called it.
   void barrier();
 
-  /// A spin wait: pause hints (the loop does not flood the memory bus), and
-  /// after kSpinsBeforeYield of them a yield each time, so that a waiting
-  /// thread gives its core to the one it waits for when there are more
-  /// threads than cores (a preempted thread would otherwise be waited for
-  /// by spinning for a whole time slice).
+  /// More threads than the machine has cores (hardware threads).
+  bool oversubscribed() const { return m_oversubscribed; }
+
+  /// A spin wait: pause hints (the loop does not flood the memory bus).
+  /// In an oversubscribed pool it yields after a few: a waiting thread then
+  /// gives its core to the one it waits for, which would otherwise be
+  /// waited for by spinning through a whole time slice. Otherwise it never
+  /// yields: a yield is a system call, and a worker in one answers late.
   class Spin {
    public:
+    explicit Spin(bool yields) : m_yields(yields) {}
     void operator()() {
-      if (++m_count < kSpinsBeforeYield) {
+      if (!m_yields || ++m_count < kPausesBeforeYield) {
 #if defined(__x86_64__) || defined(__i386__)
         _mm_pause();
+#else
+        std::this_thread::yield();
 #endif
       } else {
         std::this_thread::yield();
@@ -58,7 +64,8 @@ class WorkerPool {
     }
 
    private:
-    static constexpr int kSpinsBeforeYield = 2000;
+    static constexpr int kPausesBeforeYield = 64;
+    bool m_yields = false;
     int m_count = 0;
   };
 
@@ -66,6 +73,7 @@ class WorkerPool {
   void workerLoop(int index);
 
   int m_threads = 1;
+  bool m_oversubscribed = false;
   std::vector<std::thread> m_workers;
   const std::function<void(int)>* m_job = nullptr;
   alignas(64) std::atomic<std::uint32_t> m_jobCounter{0};  ///< bumped for each job (and to stop)
