@@ -401,9 +401,13 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
       if (score > best) best = score, axis = k;
     }
   }
-  std::vector<std::uint32_t> start(levels + 1, 0);
+  std::vector<std::uint32_t>& start = m_levelStart;
+  start.assign(levels + 1, 0);
   for (std::size_t l = 0; l < levels; ++l) start[l + 1] = start[l] + m_levelCount[l];
-  std::vector<std::uint32_t> byLevel(n), cursor(start.begin(), start.end() - 1);
+  std::vector<std::uint32_t>& byLevel = m_byLevel;
+  std::vector<std::uint32_t>& cursor = m_levelCount;  // reused: the next free place of each level
+  byLevel.resize(n);
+  for (std::size_t l = 0; l < levels; ++l) cursor[l] = start[l];
   for (std::size_t ci = 0; ci < n; ++ci) byLevel[cursor[m_level[ci]]++] = std::uint32_t(ci);
   m_threadOrder.resize(std::size_t(threads));
   for (auto& order : m_threadOrder) order.clear();
@@ -441,7 +445,7 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   m_permutedPred.resize(n);
   // Each thread's first point, then each thread copies its own share (and
   // finds it in its cache in the first pass).
-  std::vector<std::uint32_t>& pointStart = m_levelCount;  // reused: per thread
+  std::vector<std::uint32_t>& pointStart = m_levelStart;  // reused: per thread
   pointStart.assign(std::size_t(threads) + 1, 0);
   for (std::size_t t = 0; t < m_threadOrder.size(); ++t) {
     std::uint32_t points = 0;
@@ -468,7 +472,13 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   for (std::uint32_t& ci : m_external) ci = storageOf[ci];
   for (RoundOffsetRows& r : m_roundOffset) r.constraint = storageOf[r.constraint];
   for (RimRows& r : m_rims) r.constraint = storageOf[r.constraint];
-  m_done = std::make_unique<std::atomic<std::uint32_t>[]>(n);
+  // The pass counter runs on across steps, so the flags of an earlier
+  // step are all below it and need no clearing (only a new array or a
+  // wrapped counter starts from zero).
+  if (n > m_doneCapacity) {
+    m_doneCapacity = std::max(n, 2 * m_doneCapacity);
+    m_done = std::make_unique<std::atomic<std::uint32_t>[]>(m_doneCapacity);
+    }
   m_sweepSums.resize(n);
   m_pass = 0;
   m_levels = levels;
@@ -484,6 +494,10 @@ void ContactSolver::forEachOrdered(Visit&& visit) const {
   // constraint, until its predecessors of this pass are done (a thread's
   // own are; the other's are usually done by then). No deadlock: a thread
   // waits only for a lower level, which the other thread reaches first.
+  if (m_pass == std::numeric_limits<std::uint32_t>::max()) {  // after 4e9 passes: clear and count again
+    for (std::size_t ci = 0; ci < m_doneCapacity; ++ci) m_done[ci].store(0, std::memory_order_relaxed);
+    m_pass = 0;
+  }
   const std::uint32_t pass = ++m_pass;
   std::atomic<std::uint32_t>* done = m_done.get();
   m_pool->run([&](int t) {

@@ -42,15 +42,15 @@ TEST(WorkerPool, EveryThreadRunsEveryJobAndBarriersHoldThemTogether) {
   }
 }
 
-/// A scene with every kind of contact row: a pyramid of boxes on a static
-/// box, spheres that bounce (restitution, solved in the sequential order),
-/// capsules and cylinders (rim contacts), a compound rolling on an
-/// off-centre sphere, a kinematic paddle sweeping through, and sleep on.
 struct Dropped {
   BodyId id;
   Real startHeight_m = 0;
 };
 
+/// A scene with every kind of contact row: a pyramid of boxes on a static
+/// box, spheres that bounce (restitution, solved in the sequential order),
+/// capsules and cylinders (rim contacts), a compound rolling on an
+/// off-centre sphere, a kinematic paddle sweeping through, and sleep on.
 std::vector<Dropped> buildMixedScene(World& w) {
   std::vector<Dropped> spheres;
   BodyDef floor;
@@ -96,6 +96,8 @@ std::vector<Dropped> buildMixedScene(World& w) {
   return spheres;
 }
 
+// 90 steps: the test runs beside other tests under ctest, where threads
+// that spin for each other are slow (README, "Two cores").
 TEST(Threads, TwoAndThreeThreadsGiveTheOneThreadStateBitForBit) {
   WorldSettings settings;
   World one(settings);
@@ -107,17 +109,17 @@ TEST(Threads, TwoAndThreeThreadsGiveTheOneThreadStateBitForBit) {
     shared.push_back(std::make_unique<World>(s));
     buildMixedScene(*shared.back());
   }
-  for (int step = 0; step < 150; ++step) {
+  for (int step = 0; step < 90; ++step) {
     one.step(Real(1.0 / 60.0));
     for (auto& w : shared) {
       w->step(Real(1.0 / 60.0));
       ASSERT_EQ(w->stateHash(), one.stateHash()) << w->settings().threads << " threads, step " << step;
     }
   }
-  // The threads did the work: most steps had enough manifolds for them
-  // (the first, before the boxes settle onto each other, and the last,
-  // once much of the scene sleeps, may not).
-  for (auto& w : shared) EXPECT_GT(w->stepsOnThreads(), 75u) << w->settings().threads << " threads";
+  // The threads took part: the steps with at least 128 manifolds (the
+  // pile falls asleep after about half a second, and what is left awake
+  // has fewer; 33 of the 90 steps on this code).
+  for (auto& w : shared) EXPECT_GT(w->stepsOnThreads(), 20u) << w->settings().threads << " threads";
   EXPECT_EQ(one.stepsOnThreads(), 0u);
   // And the world stepped: every sphere fell from its start (1 to 12 m up)
   // onto the floor or onto the others (a radius of 0.3 m: the lowest ends

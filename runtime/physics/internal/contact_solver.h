@@ -235,9 +235,11 @@ class ContactSolver {
   std::vector<std::vector<std::uint32_t>> m_threadOrder;  ///< per thread: its constraints, in level order
   std::vector<std::int32_t> m_lastConstraint;             ///< per body slot (scratch of the schedule)
   std::vector<std::uint32_t> m_levelCount;                ///< per level (scratch of the schedule)
-  mutable std::uint32_t m_pass = 0;  ///< ordered passes since prepare()
+  std::vector<std::uint32_t> m_levelStart, m_byLevel;      ///< scratch of the schedule
+  mutable std::uint32_t m_pass = 0;  ///< ordered passes so far (all steps)
   /// Per constraint (storage order): the last ordered pass that has solved it.
   std::unique_ptr<std::atomic<std::uint32_t>[]> m_done;
+  std::size_t m_doneCapacity = 0;
   std::vector<std::array<Real, 2>> m_sweepSums;  ///< per constraint: the last sweep's residual and magnitude
   /// With threads the constraints are stored in the threads' order: thread
   /// t solves [m_threadStart[t], m_threadStart[t + 1]); m_logical lists
