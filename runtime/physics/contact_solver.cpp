@@ -478,9 +478,9 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   if (n > m_doneCapacity) {
     m_doneCapacity = std::max(n, 2 * m_doneCapacity);
     m_done = std::make_unique<std::atomic<std::uint32_t>[]>(m_doneCapacity);
-    }
+    m_pass = 0;
+  }
   m_sweepSums.resize(n);
-  m_pass = 0;
   m_levels = levels;
 }
 
@@ -534,7 +534,7 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
   const Mat3 zero = Mat3::Zero();
   for (std::uint32_t mi = 0; mi < manifolds.size(); ++mi) {
     const Manifold& m = manifolds[mi];
-    if (m.count == 0) continue;  // no rows (the first point holds a constraint's sweep sums)
+    if (m.count == 0) continue;  // no rows (and m_place takes a constraint's first point)
     const Body& a = bodies[m.a];
     // The height field is side b of its manifolds: a static body at the
     // origin whose velocity slot is the extra one after the bodies.
@@ -1174,7 +1174,7 @@ Real ContactSolver::solve(std::vector<SolverVelocity>& vel, std::vector<SolverVe
       magnitude += m_sweepSums[ci][1];
     }
   } else {
-      for (std::uint32_t ci = 0; ci < m_constraints.size(); ++ci) {
+    for (std::uint32_t ci = 0; ci < m_constraints.size(); ++ci) {
       Real r = 0, m = 0;
       one(ci, r, m);
       residual += r;

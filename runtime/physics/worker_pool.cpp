@@ -43,18 +43,6 @@ void WorkerPool::run(const std::function<void(int)>& job) {
   m_job = nullptr;
 }
 
-void WorkerPool::barrier() {
-  if (m_threads == 1) return;
-  const std::uint32_t round = m_barrierRound.load(std::memory_order_acquire);
-  if (m_barrierArrived.fetch_add(1, std::memory_order_acq_rel) == m_threads - 1) {
-    m_barrierArrived.store(0, std::memory_order_relaxed);
-    m_barrierRound.store(round + 1, std::memory_order_release);
-    return;
-  }
-  Spin spin(m_oversubscribed);
-  while (m_barrierRound.load(std::memory_order_acquire) == round) spin();
-}
-
 void WorkerPool::workerLoop(int index) {
   std::uint32_t seen = 0;
   for (;;) {

@@ -1,19 +1,17 @@
 #pragma once
-// A small pool of std::threads for the step's data-parallel phases (the
-// narrow phase, the contact solver's independent batches). One job at a time:
-// run(fn) calls fn(t) on every thread t (the caller is thread 0) and returns
-// when all have finished; inside a job, barrier() waits until every thread
-// has reached it. Work is split by thread index only (static ranges), never
-// by who gets there first, and each item's result lands in its own slot, so
-// what a step computes does not depend on the number of threads.
+// A small pool of std::threads for the contact solver's passes
+// ("Threads" in contact_solver.cpp). One job at a time: run(fn) calls fn(t)
+// on every thread t (the caller is thread 0) and returns when all have
+// finished. Work is split by thread index only, never by who gets there
+// first, so what a step computes does not depend on the number of threads.
 //
-// Why not oneTBB: a contact sweep is a sequence of batches of a few hundred
-// row solves each (microseconds), one after another; a task scheduler's
-// fork and join per batch costs about as much as the batch. Here the workers
-// spin between batches while a job runs, and between jobs they spin a short
-// while (the next substep's job comes within microseconds) and then sleep on
-// the job counter (std::atomic::wait, a futex on Linux), so a pool that has
-// no work uses no CPU.
+// Why not oneTBB: a contact pass is a few hundred microseconds of
+// constraints, each waiting for at most two others; a task scheduler's fork
+// and join per pass costs a good part of what the second thread saves.
+// Between jobs the workers spin for a while (the next pass of a step comes
+// within microseconds) and then sleep on the job counter
+// (std::atomic::wait, a futex on Linux), so a pool that has no work uses no
+// CPU.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -37,8 +35,6 @@ class WorkerPool {
   int threads() const { return m_threads; }
   /// Calls job(t) for t = 0 .. threads() - 1, t = 0 on the calling thread.
   void run(const std::function<void(int)>& job);
-  /// Inside a job: returns once every thread of the pool has called it.
-  void barrier();
 
   /// More threads than the machine has cores (hardware threads).
   bool oversubscribed() const { return m_oversubscribed; }
@@ -78,8 +74,6 @@ class WorkerPool {
   const std::function<void(int)>* m_job = nullptr;
   alignas(64) std::atomic<std::uint32_t> m_jobCounter{0};  ///< bumped for each job (and to stop)
   alignas(64) std::atomic<int> m_unfinished{0};
-  alignas(64) std::atomic<int> m_barrierArrived{0};
-  alignas(64) std::atomic<std::uint32_t> m_barrierRound{0};
   bool m_stop = false;
 };
 
