@@ -11,6 +11,7 @@
 #include "core/file_util.h"
 #include "core/hash.h"
 #include "physics/joints/joint_system.h"
+#include "script/presentation.h"
 
 namespace tumble::app {
 
@@ -188,7 +189,10 @@ Status restoreSceneState(Scene& scene, const SceneStateFile& s, const std::strin
     if (!s.modVersions.count(name))
       return makeError(path + ": field \"mods\": mod " + name + " " + version + " was not there when saved");
   std::string part;
-  if (Status st = script::restoreSystems(scene, s.systems, &part); !st)
+  const std::map<std::string, std::string>& modDirs = scene.host().options().modDirs;
+  if (Status st = script::restoreSystems(
+          scene, s.systems, [&](const std::string& file) { return script::isFileInMods(file, modDirs); }, &part);
+      !st)
     return makeError(path + ": field \"" + part + "\": " + st.error());
   if (s.requestedDt_s > 0) scene.requestDt(s.requestedDt_s);
   if (Status st = scene.host().restoreState(s.script, s.clock.time_s, s.clock.step); !st)

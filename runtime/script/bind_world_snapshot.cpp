@@ -12,6 +12,7 @@
 
 #include "core/byte_stream.h"
 #include "script/internal/bind_common.h"
+#include "script/presentation.h"
 #include "script/systems_state.h"
 
 namespace tumble::script {
@@ -60,8 +61,9 @@ int worldSnapshot(lua_State* L) {
 /// same bits as stepping on from the moment it was taken. Bodies, joints
 /// and emitters made since are removed; ones removed since come back, with
 /// any shape but a static triangle mesh (a mesh removed since is an error
-/// naming its body slot). The scene must still have the same vehicles,
-/// ropes and cloth. An error leaves the scene as it was, except after
+/// naming its body slot). Vehicles spawned, re-tuned or removed since come
+/// back as they were; the scene must still have the same ropes and cloth.
+/// An error leaves the scene as it was, except after
 /// removing a mesh body made since (it cannot be made again), which the
 /// error says. Handles to what came back are valid again.
 /// Lua state is not touched.
@@ -81,8 +83,10 @@ int worldRestore(lua_State* L) {
   // triangle mesh): the error then says the scene is the snapshot's world
   // with the rest as it was.
   const SystemsState now = saveSystems(scene);
-  if (Status st = restoreSystems(scene, saved); !st) {
-    if (Status back = restoreSystems(scene, now); !back)
+  const std::map<std::string, std::string>& modDirs = ScenarioHost::from(L)->options().modDirs;
+  auto inMods = [&](const std::string& file) { return isFileInMods(file, modDirs); };
+  if (Status st = restoreSystems(scene, saved, inMods); !st) {
+    if (Status back = restoreSystems(scene, now, inMods); !back)
       throw LuaArgError("world.restore: " + st.error() + "; and the state before the call could not be put back (" +
                         back.error() + "): the bodies are the snapshot's, the rest as before the call");
     throw LuaArgError("world.restore: " + st.error());

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/byte_stream.h"
 #include "core/math.h"
 #include "core/result.h"
 #include "physics/body.h"
@@ -116,6 +117,20 @@ struct Presentation {
   void clearScriptLines() { m_scriptLines.clear(); }
   static constexpr std::size_t kMaxScriptLines = 65536;
 
+  /// Snapshots (docs/snapshots.md): everything above but the lines of this
+  /// step, so that a run loaded from a snapshot looks as the run without a
+  /// split (a body made after on_start keeps its colour and model, a camera
+  /// or sky set in on_update stays). Model files are written as "MOD:path"
+  /// (`refOf`) and read back through `resolve` (resolveModFile: inside a
+  /// mod, or refused).
+  void saveState(ByteWriter& w, const std::function<std::string(const std::string&)>& refOf) const;
+  /// Reads what saveState wrote, checked whole (every number finite and in
+  /// the range the script API allows, every body one `bodyKnown` knows,
+  /// every file resolved) before anything changes. The revisions move on,
+  /// so the app reloads models and sky.
+  Status restoreState(ByteReader& r, const std::function<Result<std::string>(const std::string&)>& resolve,
+                      const std::function<bool(physics::BodyId)>& bodyKnown, std::size_t bodySlots);
+
  private:
   std::vector<Eigen::Vector3f> m_colors;  ///< by body slot index; x < 0: unset
   std::vector<int> m_groundTextures;      ///< by body slot index; -1: the checkerboard
@@ -128,5 +143,8 @@ struct Presentation {
 /// folder; the file must exist. `modDirs` maps mod names to their folders.
 Result<std::string> resolveModFile(const std::string& ref, const ModInfo& caller,
                                    const std::map<std::string, std::string>& modDirs);
+/// Whether `file` (a path resolveModFile gave) is a regular file inside one
+/// of the folders of `modDirs` (snapshots check the files they name with it).
+bool isFileInMods(const std::string& file, const std::map<std::string, std::string>& modDirs);
 
 }  // namespace tumble::script

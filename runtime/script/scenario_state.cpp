@@ -11,7 +11,12 @@
 //   - every ode.system's state vector, time and integrator memory, by the
 //     number it was made with (bind_ode.cpp: on_start makes them again);
 //   - the trigger volumes on_start made: which bodies are inside each
-//     (their callbacks are on_start's again), and which were removed since.
+//     (their callbacks are on_start's again), and which were removed since;
+//   - what is seen (Presentation::saveState): body, rope and cloth colours,
+//     ground textures, models on bodies and static models (files as
+//     "MOD:path"), the camera, the sky and the lap display, so that a body
+//     made after on_start keeps its colour and model, and a camera or sky
+//     set in on_update stays, as in the run without a split.
 // Loading runs on_start again (it re-makes the bodies, locals and timers as
 // at the start), then puts the saved state back. A scenario with on_reload
 // owns its timers and triggers, as after a hot reload: they are dropped and
@@ -19,6 +24,7 @@
 // trigger volume made after on_start (its function would not exist after
 // loading) is refused at save time.
 #include <cstring>
+#include <filesystem>
 #include <set>
 
 #include "core/byte_stream.h"
@@ -26,10 +32,12 @@
 
 namespace tumble::script {
 
+namespace fs = std::filesystem;
+
 namespace {
 
-// 2: ode.system objects' state at the end.
-constexpr std::uint32_t kScriptStateVersion = 2;
+// 2: ode.system objects' state at the end. 3: the presentation after it.
+constexpr std::uint32_t kScriptStateVersion = 3;
 constexpr int kMaxDepth = 32;
 constexpr std::size_t kMaxNodes = 1'000'000;
 constexpr std::size_t kMaxText = std::size_t(64) << 20;
@@ -269,6 +277,17 @@ Result<std::string> ScenarioHost::saveState() {
   }
   saveOdeSystems(L, m_odeSystemsMade, w);
   if (!ownsTimers) m_triggers.saveState(w);
+  // Model files as "MOD:path": every one came through resolveModFile, so it
+  // lies inside one of the mods' folders.
+  std::vector<std::pair<std::string, fs::path>> roots;
+  for (const auto& [name, dir] : m_options.modDirs) roots.emplace_back(name, fs::weakly_canonical(fs::path(dir)));
+  m_presentation.saveState(w, [&](const std::string& file) {
+    for (const auto& [name, root] : roots) {
+      const fs::path rel = fs::path(file).lexically_relative(root);
+      if (!rel.empty() && *rel.begin() != "..") return name + ":" + rel.generic_string();
+    }
+    return file;  // not inside a mod: refused when loading
+  });
   return w.take();
 }
 
@@ -327,6 +346,11 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
   if (Status st = restoreOdeSystems(L, m_odeSystemsMade, r); !st) return fail(st.error());
   if (!ownsTimers)
     if (Status st = m_triggers.restoreState(r, world().bodySlotCount()); !st) return fail(st.error());
+  Presentation presentation = m_presentation;
+  Status seen = presentation.restoreState(
+      r, [&](const std::string& ref) { return resolveModFile(ref, m_mod, m_options.modDirs); },
+      [&](physics::BodyId id) { return world().isValid(id); }, world().bodySlotCount());
+  if (!seen) return fail(seen.error());
   if (!r.ok() || !r.atEnd()) return fail("damaged (truncated or bytes after the end)");
   if (outcome < int(Outcome::None) || outcome > int(Outcome::Lost)) return fail("damaged (outcome)");
   if (ownsTimers != hasOnReload())
@@ -357,6 +381,7 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
   m_outcomeTime_s = outcomeTime;
   m_messages = std::move(messages);
   m_expectations = std::move(expectations);
+  m_presentation = std::move(presentation);
   lua_settop(L, top);
   m_now_s = time_s;
   if (ownsTimers) {  // as after a hot reload: the scenario re-makes its timers and triggers

@@ -18,7 +18,8 @@ SystemsState saveSystems(SceneSystems& scene) {
   return s;
 }
 
-Status restoreSystems(SceneSystems& scene, const SystemsState& saved, std::string* failedPart) {
+Status restoreSystems(SceneSystems& scene, const SystemsState& saved,
+                      const std::function<bool(const std::string&)>& fileInMods, std::string* failedPart) {
   auto part = [&](const char* name, Status st) -> Status {
     if (st) return Ok{};
     if (failedPart) {
@@ -41,10 +42,12 @@ Status restoreSystems(SceneSystems& scene, const SystemsState& saved, std::strin
   } else if (scene.jointsIfAny() && scene.jointsIfAny()->jointCount() > 0) {
     return none("joints", "joints", scene.jointsIfAny()->jointCount());
   }
-  if (!saved.vehicles.empty()) {
-    if (Status st = part("vehicles", scene.vehicles().restoreState(saved.vehicles)); !st) return st;
-  } else if (scene.vehiclesIfAny() && scene.vehiclesIfAny()->count() > 0) {
-    return none("vehicles", "vehicles", scene.vehiclesIfAny()->count());
+  // Vehicles spawned, re-tuned or removed since are made again from their
+  // stored definitions, or removed (vehicle_state.cpp); with none saved,
+  // every vehicle here was spawned since.
+  if (!saved.vehicles.empty() || (scene.vehiclesIfAny() && scene.vehiclesIfAny()->count() > 0)) {
+    const std::string bytes = saved.vehicles.empty() ? vehicle::VehicleSystem::emptyState() : saved.vehicles;
+    if (Status st = part("vehicles", scene.vehicles().restoreState(bytes, fileInMods)); !st) return st;
   }
   if (!saved.ropesAndCloth.empty()) {
     if (Status st = part("ropes_and_cloth",

@@ -5,6 +5,7 @@
 // together by `run --save-state` / `--load-state` (app/scene_state.cpp, one
 // file field per part) and by world.snapshot() / world.restore() in
 // scripts (bind_world_snapshot.cpp, in memory).
+#include <functional>
 #include <string>
 
 #include "core/result.h"
@@ -30,7 +31,10 @@ SystemsState saveSystems(SceneSystems& scene);
 /// vehicles, ropes_and_cloth, particles) goes to *failedPart, or, when failedPart is
 /// null, starts the message. A refused part leaves the parts before it
 /// restored: callers that must not change on failure save first and put
-/// that back (world.restore does).
-Status restoreSystems(SceneSystems& scene, const SystemsState& saved, std::string* failedPart = nullptr);
+/// that back (world.restore does). `fileInMods` accepts the files a stored
+/// vehicle definition may name (its resolved engine sample): those inside
+/// the mods' folders (isFileInMods).
+Status restoreSystems(SceneSystems& scene, const SystemsState& saved,
+                      const std::function<bool(const std::string&)>& fileInMods, std::string* failedPart = nullptr);
 
 }  // namespace tumble::script

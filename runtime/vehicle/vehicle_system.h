@@ -12,6 +12,7 @@
 //
 // Index: VehicleControls | WheelTelemetry | VehicleTelemetry | VehicleSystem
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/handle.h"
@@ -127,16 +128,20 @@ class VehicleSystem {
       if (m_vehicles[i].alive) f(VehicleId{i, m_vehicles[i].generation});
   }
 
-  /// Every vehicle's running state between steps as exact bits, for
-  /// snapshots of a running scene (vehicle_state.cpp): controls, steering,
-  /// engine speed, gear and shift timer, each wheel's spin, angle and
-  /// telemetry, the differentials' state, the bodies the wheels test, and
-  /// surface softness set on bodies. Definitions are not stored: restore
-  /// goes back into a system with the same vehicles made by the same
-  /// scenario, and refuses (naming the vehicle) one spawned, removed or
-  /// re-tuned (Vehicle:tune) since, or bodies the World does not have.
+  /// Every vehicle's definition and running state between steps as exact
+  /// bits, for snapshots of a running scene (vehicle_state.cpp): controls,
+  /// steering, engine speed, gear and shift timer, each wheel's spin, angle
+  /// and telemetry, the differentials' state, the bodies the wheels test,
+  /// and surface softness set on bodies. Restore runs after the World's (it
+  /// puts the chassis bodies back): a vehicle spawned or re-tuned since is
+  /// made again from its stored definition around its chassis, one removed
+  /// since is removed. Every stored definition passes validateVehicleDef;
+  /// its files stay inside its mod, and a resolved engine sample must be a
+  /// file `fileInMods` accepts (none without it).
   std::string saveState() const;
-  Status restoreState(const std::string& bytes);
+  /// The state of a system without vehicles (restoring it removes every vehicle).
+  static std::string emptyState();
+  Status restoreState(const std::string& bytes, const std::function<bool(const std::string&)>& fileInMods = {});
 
  private:
   struct Wheel {

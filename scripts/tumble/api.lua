@@ -1832,8 +1832,9 @@ function world.snapshot() end
 ---same bits as stepping on from the moment it was taken. Bodies, joints
 ---and emitters made since are removed; ones removed since come back, with
 ---any shape but a static triangle mesh (a mesh removed since is an error
----naming its body slot). The scene must still have the same vehicles,
----ropes and cloth. An error leaves the scene as it was, except after
+---naming its body slot). Vehicles spawned, re-tuned or removed since come
+---back as they were; the scene must still have the same ropes and cloth.
+---An error leaves the scene as it was, except after
 ---removing a mesh body made since (it cannot be made again), which the
 ---error says. Handles to what came back are valid again.
 ---Lua state is not touched.

@@ -8,7 +8,9 @@
 //   - scenarios with systems a snapshot does not hold are refused at save
 //     time with a message naming them;
 //   - a tampered, truncated, foreign or mismatched file is refused with a
-//     message naming the field, never a crash.
+//     message naming the field, never a crash;
+//   - a run loaded from a snapshot draws the picture of the unsplit run
+//     (colours, models, camera and sky set after on_start).
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -18,6 +20,9 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <stb/stb_image.h>
 
 #include "tumble_process.h"
 
@@ -87,6 +92,9 @@ constexpr const char* kSplittable[] = {
     "bodies:script_state",
     // balls shot after on_start (bodies made again from their saved size)
     "bodies:spawned_later",
+    // vehicles spawned, re-tuned and removed after on_start (made again
+    // from their saved definitions), and a car re-tuned in on_update
+    "bodies:vehicles_later", "bodies:tuned_later",
 };
 constexpr double kSplitTimes_s[] = {0.5, 1.5};
 // The joint scenes again under their other joint solver (chain, ragdoll_hit
@@ -161,7 +169,7 @@ INSTANTIATE_TEST_SUITE_P(BaseScenarios, SplitRun, testing::ValuesIn(splitCases()
 
 // No base scenario is refused. What a snapshot cannot hold is made after
 // on_start: a timer's or a trigger's function (SnapshotTimers below), a
-// body, a vehicle re-tuned (SnapshotLimits).
+// static triangle mesh or an ode.system (SnapshotLimits).
 
 class SnapshotFile : public testing::Test {
  protected:
@@ -284,17 +292,85 @@ TEST(SnapshotLimits, AnOdeSystemMadeAfterOnStartRefusesTheLoad) {
       << loaded.output;
 }
 
-// A vehicle re-tuned after on_start: its definition is not stored.
-TEST(SnapshotLimits, AVehicleRetunedAfterOnStartRefusesTheLoadNamingIt) {
-  const std::string dir = outDir("scene_state_limit_tune");
+// What is seen is part of a snapshot: a run loaded after a coloured ball, a
+// box drawn as a model, a building without collision, a follow camera and
+// an evening sky were set in on_update (bodies:seen_later, at 0.5 s) draws
+// the very picture of the run without a split. Before, the loaded run drew
+// the ball and box in the default grey, no models, the default camera and
+// the afternoon sky.
+std::vector<unsigned char> pixelsOf(const std::string& path, int* w, int* h) {
+  int n = 0;
+  unsigned char* data = stbi_load(path.c_str(), w, h, &n, 3);
+  if (!data) return {};
+  std::vector<unsigned char> out(data, data + std::size_t(*w) * std::size_t(*h) * 3);
+  stbi_image_free(data);
+  return out;
+}
+
+TEST(SnapshotPresentation, ARunLoadedAfterColoursModelsCameraAndSkyWereSetLooksAsTheRunWithoutASplit) {
+  const std::string dir = outDir("scene_state_presentation");
+  const std::string run = testMods() + " run bodies:seen_later";
+  const ProcessResult plain = runTumble(run + " --screenshot " + dir + "/plain.png --at 1.5");
+  const ProcessResult saving = runTumble(run + " --save-state " + dir + "/snap.json --at 1");
+  const ProcessResult loaded =
+      runTumble(run + " --load-state " + dir + "/snap.json --screenshot " + dir + "/loaded.png --at 1.5");
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  ASSERT_EQ(saving.exitCode, 0) << saving.output;
+  ASSERT_EQ(loaded.exitCode, 0) << loaded.output;
+  EXPECT_EQ(hashOf(loaded), hashOf(plain)) << loaded.output;
+  int w = 0, h = 0, w2 = 0, h2 = 0;
+  const std::vector<unsigned char> a = pixelsOf(dir + "/plain.png", &w, &h);
+  const std::vector<unsigned char> b = pixelsOf(dir + "/loaded.png", &w2, &h2);
+  ASSERT_FALSE(a.empty());
+  ASSERT_EQ(w, w2);
+  ASSERT_EQ(h, h2);
+  // The picture shows what on_update made: the red ball the camera follows
+  // and the red and white barrier (720 such pixels at 1280 x 720; none in
+  // the picture a loaded run drew before snapshots held what is seen).
+  std::size_t red = 0, differ = 0;
+  for (std::size_t i = 0; i < a.size(); i += 3) {
+    if (a[i] > 2 * a[i + 1] + 20 && a[i] > 2 * a[i + 2] + 20) ++red;
+    if (a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2]) ++differ;
+  }
+  EXPECT_GT(red, std::size_t(100)) << "no red ball or barrier in " << dir << "/plain.png";
+  EXPECT_EQ(differ, 0u) << "of " << w * h << " pixels; compare " << dir << "/plain.png and loaded.png";
+}
+
+// The models of a snapshot are read as "MOD:path" and resolved inside the
+// mods: a snapshot edited to point a model outside (its checksum made to
+// match) is refused, naming the field, and nothing is read there.
+TEST(SnapshotPresentation, AModelPathEditedToLeaveTheModIsRefused) {
+  const std::string dir = outDir("scene_state_presentation_path");
   const std::string file = dir + "/snap.json";
-  const std::string run = testMods() + " run bodies:tuned_later";
-  const ProcessResult saving = runTumble(run + " --save-state " + file + " --at 1");
-  ASSERT_TRUE(std::filesystem::exists(file)) << saving.output;
-  const ProcessResult loaded = runTumble(run + " --load-state " + file);
-  EXPECT_EQ(loaded.exitCode, 1) << loaded.output;
-  EXPECT_NE(loaded.output.find("field \"vehicles\""), std::string::npos) << loaded.output;
-  EXPECT_NE(loaded.output.find("Vehicle:tune"), std::string::npos) << loaded.output;
+  const std::string run = testMods() + " run bodies:seen_later";
+  ASSERT_EQ(runTumble(run + " --save-state " + file + " --at 1").exitCode, 0);
+  std::string text = readAll(file);
+  auto hex = [](const std::string& s) {
+    std::string out;
+    for (unsigned char ch : s) out += "0123456789abcdef"[ch >> 4], out += "0123456789abcdef"[ch & 15];
+    return out;
+  };
+  // The same length: the byte count before the text stays right.
+  const std::string from = hex("base:assets/models/barrier.obj"), to = hex("base:../../../../../etc/passwd");
+  ASSERT_EQ(from.size(), to.size());
+  const std::size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << "the model's reference is not in the snapshot's script bytes";
+  text.replace(at, from.size(), to);
+  const std::string edited = dir + "/edited.json";
+  writeAll(edited, text);
+  ProcessResult r = runTumble(run + " --load-state " + edited);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("content gives ([0-9a-f]{16})"))) << r.output;
+  const std::size_t sum = text.find("\"checksum\"");
+  ASSERT_NE(sum, std::string::npos);
+  const std::size_t q = text.find('"', text.find(':', sum) + 1);
+  text.replace(q + 1, 16, m[1].str());
+  writeAll(edited, text);
+  r = runTumble(run + " --load-state " + edited);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("field \"script\": script state: presentation: models on bodies"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("leaves the folder of mod \"base\""), std::string::npos) << r.output;
 }
 
 }  // namespace

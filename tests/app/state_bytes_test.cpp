@@ -26,6 +26,7 @@
 #include "app/fixed_step.h"
 #include "app/run_report.h"
 #include "app/scene.h"
+#include "script/presentation.h"
 #include "script/systems_state.h"
 
 namespace tumble::app {
@@ -57,7 +58,9 @@ struct Saved {
 };
 
 Status restore(Scene& scene, const Saved& s) {
-  if (Status st = script::restoreSystems(scene, s.systems); !st) return st;
+  const auto& modDirs = scene.host().options().modDirs;
+  auto inMods = [&](const std::string& file) { return script::isFileInMods(file, modDirs); };
+  if (Status st = script::restoreSystems(scene, s.systems, inMods); !st) return st;
   return scene.host().restoreState(s.script, 0, 0);
 }
 

@@ -1,7 +1,7 @@
 -- A car re-tuned while running (Vehicle:tune in on_update): a snapshot
--- holds the vehicles' running state, not their definitions, so loading one
--- saved after the tune is refused, naming the vehicle and Vehicle:tune
--- (tests/app/scene_state_test.cpp).
+-- holds each vehicle's definition, so a run loaded after the tune drives
+-- the tuned car and ends as the run without a split
+-- (tests/app/scene_state_test.cpp, SplitRun).
 local car
 
 return {
@@ -10,8 +10,13 @@ return {
   on_start = function(ctx)
     world.plane{}
     car = vehicle.spawn("base:hatchback", {position = {0, 0, 0}})
+    car:set_controls{throttle = 1, gear = 1}
+    ctx.state.chassis = car:body()
   end,
   on_update = function(ctx, dt)
-    if ctx.step == 30 then car:tune{engine = {max_rpm = 7000}} end
+    if ctx.step == 30 then car:tune{engine = {max_rpm = 6300}, tyre = {rolling_resistance = 0.03}} end
+  end,
+  on_finish = function(ctx)
+    expect("the car drove forward (m)", ctx.state.chassis:position().z, {min = 1})
   end,
 }

@@ -6,10 +6,11 @@
 -- the rope's particles and the emitter's live particles are recorded. Then
 -- the scene is disturbed in every system (a link kicked, a joint removed, a
 -- new joint, a motor, a second emitter, the rope unpinned, the car shifted
--- into reverse with the brakes on), and restored: the next 0.5 s must
--- repeat the recorded ones bit for bit (joint warm starts, the rope's last
--- solve, the emitters' random streams, the car's engine, gear and wheel
--- spins came back), the removed joint is back and the new joint and emitter are gone.
+-- into reverse with the brakes on and re-tuned, a truck spawned), and
+-- restored: the next 0.5 s must repeat the recorded ones bit for bit (joint
+-- warm starts, the rope's last solve, the emitters' random streams, the
+-- car's definition, engine, gear and wheel spins came back), the removed
+-- joint is back and the new joint, emitter and truck are gone.
 -- A restore refused part-way (a rope removed since the snapshot) leaves
 -- the scene as it was before the call.
 local links, hinges = {}, {}
@@ -77,7 +78,11 @@ return {
       local sparks = particles.spawn("base:smoke", {position = {1, 1, 1}})
       rope:unpin(1)
       car:set_controls{throttle = 0, brake = 1, gear = -1}
+      car:tune{steering = {rate = 1.2}, engine = {max_rpm = 6500}}
+      local truck = vehicle.spawn("base:truck", {position = {12, 0, 10}})
       world.restore(snap)
+      expect("restore removes a vehicle spawned since", not truck:is_valid())
+      expect("restore undoes a tune", car:definition().steering.rate == 2.5 and car:definition().engine.max_rpm == 6800)
       expect("restore brings a removed joint back", hinges[2]:is_valid())
       expect("restore removes a joint made since", not extra:is_valid())
       expect("restore removes an emitter made since", not sparks:alive())
