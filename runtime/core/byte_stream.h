@@ -108,6 +108,9 @@ class ByteReader {
   bool ok() const { return m_ok; }
   bool atEnd() const { return m_pos == m_size; }
   std::size_t position() const { return m_pos; }
+  /// Bytes not read yet: a count read from the bytes is checked against
+  /// this before anything is allocated for it.
+  std::size_t remaining() const { return m_size - m_pos; }
   /// The bytes read since position `start` (a part to read again later).
   std::string bytesFrom(std::size_t start) const { return std::string(m_data + start, m_pos - start); }
 

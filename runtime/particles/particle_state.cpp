@@ -131,7 +131,10 @@ Status ParticleSystem::restoreState(const std::string& bytes) {
     return makeError("particle state version " + std::to_string(v) + ", this build reads " +
                      std::to_string(kStateVersion));
   const auto slotCount = r.pod<std::uint64_t>();
-  if (!r.ok() || slotCount > kMaxSlots) return makeError("particle state: damaged (emitter slots)");
+  // Each slot takes at least its generation and liveness bytes: a damaged
+  // count allocates no more than the bytes could hold.
+  if (!r.ok() || slotCount > kMaxSlots || slotCount > r.remaining() / (sizeof(std::uint32_t) + 1))
+    return makeError("particle state: damaged (emitter slots)");
   // Read and checked whole before anything changes: a refused restore
   // leaves the system as it was.
   std::vector<Slot> slots(slotCount);

@@ -13,9 +13,10 @@
 // from its own vertices gives another face and vertex order in 451 of 500
 // random clouds, and the run would then differ). Those are checked as they
 // are read (sizes, indices, finite numbers), so damaged bytes are refused,
-// never followed. A saved body with a static triangle mesh that this world
-// does not have in its slot refuses the restore, naming the slot (a mesh's
-// tree is not stored; meshes come from models placed by on_start); bodies
+// never followed. A static triangle mesh (a model placed by a script) is
+// stored as built: its node tree and its triangles with their boxes and
+// active edges, so a mesh placed after on_start, or removed since a
+// world.snapshot(), comes back bit for bit without its model file; bodies
 // in slots the saved world did not have yet are removed. Everything that
 // changes while the world steps is stored: each body's pose, velocities, accumulated force and
 // torque, mass and inertia, material and sleep state; the contact cache
@@ -37,6 +38,7 @@
 #include "physics/internal/broad_phase.h"
 #include "physics/internal/height_field_collision.h"
 #include "physics/internal/manifold.h"
+#include "physics/mesh_shape.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
@@ -46,7 +48,8 @@ namespace {
 constexpr std::uint32_t kStateMagic = 0x54574c44;  // "TWLD"
 // 2: WorldSettings::maxContactPairsPerBody and ErrorStats::contactPairsSkipped
 // (both stored as bytes). 3: hull and compound shapes after their slot.
-constexpr std::uint32_t kStateVersion = 3;
+// 4: triangle meshes after their slot too.
+constexpr std::uint32_t kStateVersion = 4;
 constexpr std::size_t kMaxSlots = std::size_t(1) << 24;
 
 static_assert(kBitwise<Manifold>);
@@ -212,10 +215,83 @@ Result<std::shared_ptr<const ConvexHull>> readHull(ByteReader& r) {
   return std::shared_ptr<const ConvexHull>(std::make_shared<const ConvexHull>(std::move(h)));
 }
 
-/// The data of a hull or compound shape (children: their size or hull and
-/// their pose). Other shapes have none beyond SlotShape.
+// ---- triangle meshes --------------------------------------------------------------
+
+/// A MeshNode and a MeshTriangle as stored: the same fields without padding
+/// bytes (in float and in double builds), so that equal meshes give equal bytes.
+struct SavedMeshNode {
+  std::uint32_t firstTriangle, triangleCount, subtreeEnd, unused;
+  Vec3 tightLo_m, tightHi_m, coverLo_m, coverHi_m;
+};
+struct SavedMeshTriangle {
+  Vec3 v[3], normal, lo_m, hi_m;
+  std::uint32_t activeEdges, unused;
+};
+static_assert(sizeof(SavedMeshNode) == 4 * sizeof(std::uint32_t) + 4 * sizeof(Vec3));
+static_assert(sizeof(SavedMeshTriangle) == 6 * sizeof(Vec3) + 2 * sizeof(std::uint32_t));
+
+void writeMesh(ByteWriter& w, const MeshShape& m) {
+  std::vector<SavedMeshNode> nodes;
+  nodes.reserve(m.nodes.size());
+  for (const MeshNode& n : m.nodes)
+    nodes.push_back({n.firstTriangle, n.triangleCount, n.subtreeEnd, 0, n.tightLo_m, n.tightHi_m, n.coverLo_m,
+                     n.coverHi_m});
+  std::vector<SavedMeshTriangle> triangles;
+  triangles.reserve(m.triangles.size());
+  for (const MeshTriangle& t : m.triangles)
+    triangles.push_back({{t.v[0], t.v[1], t.v[2]}, t.normal, t.lo_m, t.hi_m, t.activeEdges, 0});
+  w.vec(nodes);
+  w.vec(triangles);
+}
+
+/// A mesh as writeMesh wrote it, or an error. What the queries follow is
+/// checked so that they stay inside the arrays and end (each node's
+/// triangle range inside the triangles, its subtree end past itself and
+/// within the nodes), every vertex is finite and no box holds a NaN; the
+/// bounding radius is computed again from the triangles.
+Result<std::shared_ptr<const MeshShape>> readMesh(ByteReader& r) {
+  const auto damaged = [] { return makeError("world state: damaged (a triangle mesh)"); };
+  auto nodes = r.vec<SavedMeshNode>(kMaxMeshTriangles);
+  auto triangles = r.vec<SavedMeshTriangle>(kMaxMeshTriangles);
+  if (!r.ok() || nodes.empty() || triangles.empty()) return damaged();
+  MeshShape m;
+  m.nodes.reserve(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const SavedMeshNode& n = nodes[i];
+    // A node without triangles of its own has an empty tight box (lo > hi: infinite bounds).
+    if (std::uint64_t(n.firstTriangle) + n.triangleCount > triangles.size() || n.subtreeEnd <= i ||
+        n.subtreeEnd > nodes.size() || n.tightLo_m.hasNaN() || n.tightHi_m.hasNaN() || n.coverLo_m.hasNaN() ||
+        n.coverHi_m.hasNaN())
+      return damaged();
+    m.nodes.push_back({n.firstTriangle, n.triangleCount, n.subtreeEnd, n.tightLo_m, n.tightHi_m, n.coverLo_m,
+                       n.coverHi_m});
+  }
+  if (m.nodes[0].subtreeEnd != nodes.size()) return damaged();  // the root's subtree is the whole tree
+  m.triangles.reserve(triangles.size());
+  for (const SavedMeshTriangle& t : triangles) {
+    if (!t.v[0].allFinite() || !t.v[1].allFinite() || !t.v[2].allFinite() || !t.normal.allFinite() ||
+        std::abs(t.normal.norm() - 1) > Real(1e-3) || !t.lo_m.allFinite() || !t.hi_m.allFinite() || t.activeEdges > 7)
+      return damaged();
+    MeshTriangle tri;
+    for (int k = 0; k < 3; ++k) {
+      tri.v[k] = t.v[k];
+      m.boundingRadius_m = std::max(m.boundingRadius_m, t.v[k].norm());
+    }
+    tri.normal = t.normal;
+    tri.lo_m = t.lo_m;
+    tri.hi_m = t.hi_m;
+    tri.activeEdges = std::uint8_t(t.activeEdges);
+    m.triangles.push_back(tri);
+  }
+  if (!std::isfinite(m.boundingRadius_m)) return damaged();
+  return std::shared_ptr<const MeshShape>(std::make_shared<const MeshShape>(std::move(m)));
+}
+
+/// The data of a hull, compound or mesh shape (children: their size or hull
+/// and their pose). Other shapes have none beyond SlotShape.
 void writeShapeData(ByteWriter& w, const Shape& s) {
   if (s.type == ShapeType::Hull) writeHull(w, *s.hull);
+  if (s.type == ShapeType::Mesh) writeMesh(w, *s.mesh);
   if (s.type != ShapeType::Compound) return;
   const CompoundShape& c = *s.compound;
   w.pod(std::uint32_t(c.children.size()));
@@ -236,13 +312,21 @@ void writeShapeData(ByteWriter& w, const Shape& s) {
 
 bool storesShapeData(const Body& b) {
   return b.alive && ((b.shape.type == ShapeType::Hull && b.shape.hull) ||
-                     (b.shape.type == ShapeType::Compound && b.shape.compound));
+                     (b.shape.type == ShapeType::Compound && b.shape.compound) ||
+                     (b.shape.type == ShapeType::Mesh && b.shape.mesh));
 }
 
 /// Reads what writeShapeData wrote for a slot saved with this shape type
-/// into `shape` (type, hull or compound), checked as it goes.
+/// into `shape` (type, hull, compound or mesh), checked as it goes.
 Status readShapeData(ByteReader& r, ShapeType type, Shape& shape) {
   shape.type = type;
+  if (type == ShapeType::Mesh) {
+    auto mesh = readMesh(r);
+    if (!mesh) return makeError(mesh.error());
+    shape.mesh = mesh.value();
+    if (!validateShape(shape)) return makeError("world state: damaged (a triangle mesh)");
+    return Ok{};
+  }
   if (type == ShapeType::Hull) {
     auto hull = readHull(r);
     if (!hull) return makeError(hull.error());
@@ -296,13 +380,6 @@ Status readShapeData(ByteReader& r, ShapeType type, Shape& shape) {
   return Ok{};
 }
 
-std::string describe(const SlotShape& s) {
-  if (!s.alive) return "no body";
-  static const char* kTypes[] = {"static", "kinematic", "dynamic"};
-  return std::string(s.type < 3 ? kTypes[s.type] : "?") + " " + shapeTypeName(ShapeType(s.shape)) + " (generation " +
-         std::to_string(s.generation) + ")";
-}
-
 }  // namespace
 
 std::string World::saveState() const {
@@ -350,10 +427,15 @@ Status World::restoreState(const std::string& bytes) {
     return makeError("world state version " + std::to_string(v) + ", this build reads " + std::to_string(kStateVersion));
   const auto settings = r.pod<WorldSettings>();
   const auto slots = r.pod<std::uint64_t>();
-  if (!r.ok() || slots > kMaxSlots) return makeError("world state: damaged (body slots)");
+  // Each slot takes at least its SlotShape and SlotState bytes: a damaged
+  // count cannot allocate more than the bytes could hold (a 3.5 kB state
+  // whose count was changed by one byte asked for 16 million slots, 9 s of
+  // allocation, before this check).
+  if (!r.ok() || slots > kMaxSlots || slots > r.remaining() / (sizeof(SlotShape) + sizeof(SlotState)))
+    return makeError("world state: damaged (body slots)");
   std::vector<SlotShape> shapes(slots);
   std::vector<SlotState> states(slots);
-  std::vector<Shape> madeShapes(slots);  // hull and compound shapes for the slots made again
+  std::vector<Shape> madeShapes(slots);  // hull, compound and mesh shapes for the slots made again
   for (std::size_t i = 0; i < slots; ++i) {
     shapes[i] = r.pod<SlotShape>();
     states[i] = r.pod<SlotState>();
@@ -361,20 +443,20 @@ Status World::restoreState(const std::string& bytes) {
     const SlotShape here = i < m_bodies.size() ? shapeOf(m_bodies[i]) : SlotShape{};
     const SlotShape& saved = shapes[i];
     const ShapeType type = ShapeType(saved.shape);
-    if (saved.alive && (type == ShapeType::Hull || type == ShapeType::Compound)) {
+    if (saved.alive && (type == ShapeType::Hull || type == ShapeType::Compound || type == ShapeType::Mesh)) {
       Shape& made = madeShapes[i];
       made.radius_m = saved.radius_m;
       made.halfHeight_m = saved.halfHeight_m;
       made.halfExtents_m = saved.halfExtents_m;
       if (Status st = readShapeData(r, type, made); !st) return st;
-      if (saved.type > std::uint8_t(BodyType::Dynamic))
+      if (saved.type > std::uint8_t(BodyType::Dynamic) ||
+          (type == ShapeType::Mesh && BodyType(saved.type) != BodyType::Static))  // as World::createBody refuses
         return makeError("world state: damaged (body " + std::to_string(i) + ")");
       continue;
     }
-    if (saved.alive && !sameShape(saved, here) && !primitive(saved))
-      return makeError("body slot " + std::to_string(i) + " holds " + describe(here) + " here, a " + describe(saved) +
-                       " in the saved world (a body made after on_start comes back with any shape but a static "
-                       "triangle mesh: a mesh's tree is not in the snapshot)");
+    if (saved.alive && !primitive(saved))
+      return makeError("world state: damaged (body " + std::to_string(i) + ": shape type " +
+                       std::to_string(int(saved.shape)) + ")");
     if (saved.alive && !sameShape(saved, here) &&
         (saved.type > std::uint8_t(BodyType::Dynamic) || !validSize(saved) ||
          (ShapeType(saved.shape) == ShapeType::Plane && BodyType(saved.type) != BodyType::Static)))

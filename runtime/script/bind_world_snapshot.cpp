@@ -59,14 +59,12 @@ int worldSnapshot(lua_State* L) {
 /// @function world.restore
 /// Puts the scene back to a snapshot exactly: stepping on from it gives the
 /// same bits as stepping on from the moment it was taken. Bodies, joints
-/// and emitters made since are removed; ones removed since come back, with
-/// any shape but a static triangle mesh (a mesh removed since is an error
-/// naming its body slot). Vehicles spawned, re-tuned or removed since come
-/// back as they were; the scene must still have the same ropes and cloth.
-/// An error leaves the scene as it was, except after
-/// removing a mesh body made since (it cannot be made again), which the
-/// error says. Handles to what came back are valid again.
-/// Lua state is not touched.
+/// and emitters made since are removed; ones removed since come back with
+/// their shapes (static models too, from their triangles). Vehicles
+/// spawned, re-tuned or removed since come back as they were; the scene
+/// must still have the same ropes and cloth. An error leaves the scene as
+/// it was. Handles to what came back are valid again. Lua state is not
+/// touched.
 /// @param snapshot WorldSnapshot from world.snapshot
 /// @example world.restore(before)
 int worldRestore(lua_State* L) {
@@ -78,10 +76,9 @@ int worldRestore(lua_State* L) {
   if (!unpack(std::string(p, lua_rawlen(L, 1)), saved)) throw LuaArgError("world.restore: a damaged WorldSnapshot");
   SceneSystems& scene = ScenarioHost::from(L)->scene();
   // All or nothing: a part refused after others were restored puts back
-  // the state from before the call. That fails only when the first restore
-  // removed a body made since whose shape a snapshot cannot hold (a static
-  // triangle mesh): the error then says the scene is the snapshot's world
-  // with the rest as it was.
+  // the state from before the call, saved from this very scene, so every
+  // part of it goes back (every shape is stored whole). Should that fail
+  // all the same, the error says what the scene is left with.
   const SystemsState now = saveSystems(scene);
   const std::map<std::string, std::string>& modDirs = ScenarioHost::from(L)->options().modDirs;
   auto inMods = [&](const std::string& file) { return isFileInMods(file, modDirs); };

@@ -198,7 +198,8 @@ Status Presentation::restoreState(ByteReader& r, const std::function<Result<std:
     if (t < -1 || t >= kGroundTextures) return damaged("ground textures");
   std::map<int, Eigen::Vector3f> deformableColors;
   const auto deformables = r.pod<std::uint64_t>();
-  if (!r.ok() || deformables > kMaxStatics) return damaged("rope and cloth colours");
+  if (!r.ok() || deformables > kMaxStatics || deformables > r.remaining() / sizeof(Eigen::Vector3f))
+    return damaged("rope and cloth colours");
   for (std::uint64_t i = 0; i < deformables; ++i) {
     const auto id = r.pod<std::int32_t>();
     const auto rgb = r.pod<Eigen::Vector3f>();
@@ -211,8 +212,12 @@ Status Presentation::restoreState(ByteReader& r, const std::function<Result<std:
     if (!f) return makeError(std::string("presentation: ") + what + ": " + f.error());
     return f;
   };
-  std::vector<ModelAttachment> attached(std::size_t(std::min<std::uint64_t>(r.pod<std::uint64_t>(), bodySlots + 1)));
-  if (!r.ok() || attached.size() > bodySlots) return damaged("models on bodies");
+  // Counts are checked against the bytes left (each entry takes at least
+  // its fixed-size fields) before anything is allocated for them.
+  const auto attachedCount = r.pod<std::uint64_t>();
+  if (!r.ok() || attachedCount > bodySlots || attachedCount > r.remaining() / sizeof(physics::BodyId))
+    return damaged("models on bodies");
+  std::vector<ModelAttachment> attached(attachedCount);
   for (ModelAttachment& a : attached) {
     a.body = r.pod<physics::BodyId>();
     auto f = file(r.text(kMaxPath), "models on bodies");
@@ -224,8 +229,10 @@ Status Presentation::restoreState(ByteReader& r, const std::function<Result<std:
     if (!r.ok() || !bodyKnown(a.body) || !finite(a.offset_m) || !unitQuat(a.rotation) || !finite(a.scale))
       return damaged("models on bodies");
   }
-  std::vector<StaticModel> placed(std::size_t(std::min<std::uint64_t>(r.pod<std::uint64_t>(), kMaxStatics + 1)));
-  if (!r.ok() || placed.size() > kMaxStatics) return damaged("static models");
+  const auto placedCount = r.pod<std::uint64_t>();
+  if (!r.ok() || placedCount > kMaxStatics || placedCount > r.remaining() / sizeof(Vec3))
+    return damaged("static models");
+  std::vector<StaticModel> placed(placedCount);
   for (StaticModel& m : placed) {
     auto f = file(r.text(kMaxPath), "static models");
     if (!f) return makeError(f.error());

@@ -328,7 +328,8 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
     m.kind = MessageKind(kind);
   }
   const auto expectationCount = r.pod<std::uint64_t>();
-  if (!r.ok() || expectationCount > kMaxNodes) return fail("damaged (truncated)");
+  if (!r.ok() || expectationCount > kMaxNodes || expectationCount > r.remaining() / sizeof(double))
+    return fail("damaged (truncated)");
   std::vector<Expectation> expectations(expectationCount);
   for (Expectation& e : expectations) {
     e.name = r.text(kMaxText);

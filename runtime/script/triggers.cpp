@@ -114,7 +114,9 @@ void TriggerSet::saveState(ByteWriter& w) const {
 Status TriggerSet::restoreState(ByteReader& r, std::size_t bodySlots) {
   const auto nextId = r.pod<std::uint32_t>();
   const auto slots = r.pod<std::uint64_t>();
-  if (!r.ok() || slots > (std::uint64_t(1) << 20)) return makeError("damaged (trigger slots)");
+  // Each slot takes at least its id: a damaged count allocates no more than the bytes could hold.
+  if (!r.ok() || slots > (std::uint64_t(1) << 20) || slots > r.remaining() / sizeof(std::uint32_t))
+    return makeError("damaged (trigger slots)");
   // Read and checked whole before anything changes.
   std::vector<std::uint32_t> ids(slots);
   std::vector<std::vector<physics::BodyId>> inside(slots);

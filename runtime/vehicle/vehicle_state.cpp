@@ -239,7 +239,10 @@ Status VehicleSystem::restoreState(const std::string& bytes,
     return makeError("vehicle state version " + std::to_string(v) + ", this build reads " +
                      std::to_string(kStateVersion));
   const auto count = r.pod<std::uint64_t>();
-  if (!r.ok() || count > kMaxVehicles) return makeError("vehicle state: damaged (vehicle slots)");
+  // Each slot takes at least its Layout bytes: a damaged count allocates no
+  // more than the bytes could hold.
+  if (!r.ok() || count > kMaxVehicles || count > r.remaining() / sizeof(Layout))
+    return makeError("vehicle state: damaged (vehicle slots)");
   // Read and checked whole before anything changes.
   struct Saved {
     Layout layout;

@@ -1830,14 +1830,12 @@ function world.snapshot() end
 
 ---Puts the scene back to a snapshot exactly: stepping on from it gives the
 ---same bits as stepping on from the moment it was taken. Bodies, joints
----and emitters made since are removed; ones removed since come back, with
----any shape but a static triangle mesh (a mesh removed since is an error
----naming its body slot). Vehicles spawned, re-tuned or removed since come
----back as they were; the scene must still have the same ropes and cloth.
----An error leaves the scene as it was, except after
----removing a mesh body made since (it cannot be made again), which the
----error says. Handles to what came back are valid again.
----Lua state is not touched.
+---and emitters made since are removed; ones removed since come back with
+---their shapes (static models too, from their triangles). Vehicles
+---spawned, re-tuned or removed since come back as they were; the scene
+---must still have the same ropes and cloth. An error leaves the scene as
+---it was. Handles to what came back are valid again. Lua state is not
+---touched.
 ---
 ---```lua
 ---world.restore(before)

@@ -1,5 +1,6 @@
 // World::saveState / restoreState with bodies whose shape data is stored
-// whole (convex hulls and compounds): a body a script made after the world
+// whole (convex hulls, compounds and static triangle meshes): a body a
+// script made after the world
 // was set up comes back in a world that never had it, and the run goes on
 // bit for bit; damaged shape bytes are refused or give a state the next
 // step runs from, never a crash or a read outside an array (the sanitizer
@@ -13,6 +14,7 @@
 
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
+#include "physics/mesh_shape.h"
 #include "physics/world.h"
 
 namespace tumble::physics {
@@ -37,15 +39,27 @@ std::vector<BodyId> setUp(World& w) {
   return {addBody(w, Shape::box(Vec3(Real(0.5), Real(0.5), Real(0.5))), Vec3(0, Real(0.5), 0))};
 }
 
-/// What was made later: a wedge (hull) and a hammer (a box and a hull pyramid).
+/// What was made later: a static slope (a triangle mesh of two triangles,
+/// as a model placed by a script), a wedge (hull) falling onto it and a
+/// hammer (a box and a hull pyramid).
 std::vector<BodyId> makeLater(World& w) {
+  MeshTreeInput slope;
+  slope.nodes.push_back({-1,
+                         {{1, Real(0.3), -1}, {3, Real(0.9), -1}, {3, Real(0.9), 2}, {1, Real(0.3), 2}},
+                         {{0, 2, 1}, {0, 3, 2}},
+                         "slope"});
+  BodyDef ramp;
+  ramp.type = BodyType::Static;
+  ramp.shape = makeMeshShape(slope).value();
+  const BodyId slopeBody = w.createBody(ramp).value();
   const std::vector<Vec3> wedge = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 0}, {0, 1, 1}};
   const BodyId wedgeBody = addBody(w, makeHullShape(wedge).value(), Vec3(2, 2, 0), Vec3(1, 2, 3));
   const std::vector<Vec3> pyramid = {{Real(-0.3), 0, Real(-0.2)}, {Real(0.3), 0, Real(-0.2)},
                                      {Real(-0.3), 0, Real(0.2)},  {Real(0.3), 0, Real(0.2)}, {0, Real(0.4), 0}};
   CompoundChild handle{Shape::box(Vec3(Real(0.1), Real(0.6), Real(0.1))), Vec3::Zero(), Quat::Identity()};
   CompoundChild head{makeHullShape(pyramid).value(), Vec3(0, Real(0.6), 0), Quat::Identity()};
-  return {wedgeBody, addBody(w, makeCompoundShape({handle, head}).value(), Vec3(Real(-1.5), 3, Real(0.5)), Vec3(0, 2, 5))};
+  return {wedgeBody, addBody(w, makeCompoundShape({handle, head}).value(), Vec3(Real(-1.5), 3, Real(0.5)), Vec3(0, 2, 5)),
+          slopeBody};
 }
 
 std::string poses(const World& w, const std::vector<BodyId>& ids) {
@@ -58,7 +72,7 @@ std::string poses(const World& w, const std::vector<BodyId>& ids) {
   return s;
 }
 
-TEST(WorldState, HullsAndCompoundsMadeLaterComeBackInAWorldThatNeverHadThem) {
+TEST(WorldState, HullsCompoundsAndMeshesMadeLaterComeBackInAWorldThatNeverHadThem) {
   World a;
   std::vector<BodyId> ids = setUp(a);
   const std::vector<BodyId> later = makeLater(a);
@@ -70,10 +84,12 @@ TEST(WorldState, HullsAndCompoundsMadeLaterComeBackInAWorldThatNeverHadThem) {
   ASSERT_EQ(b.bodyCount(), 2);
   const Status st = b.restoreState(bytes);
   ASSERT_TRUE(st) << st.error();
-  ASSERT_EQ(b.bodyCount(), 4);
-  ASSERT_TRUE(b.isValid(later[0]) && b.isValid(later[1]));
+  ASSERT_EQ(b.bodyCount(), 5);
+  ASSERT_TRUE(b.isValid(later[0]) && b.isValid(later[1]) && b.isValid(later[2]));
   EXPECT_EQ(b.body(later[0]).shape.type, ShapeType::Hull);
   EXPECT_EQ(b.body(later[1]).shape.type, ShapeType::Compound);
+  ASSERT_EQ(b.body(later[2]).shape.type, ShapeType::Mesh);
+  EXPECT_EQ(b.body(later[2]).shape.mesh->triangles.size(), 2u);
   EXPECT_EQ(poses(b, ids), poses(a, ids));
   for (int i = 0; i < 80; ++i) {
     a.step(Real(1.0 / 60));
@@ -81,12 +97,14 @@ TEST(WorldState, HullsAndCompoundsMadeLaterComeBackInAWorldThatNeverHadThem) {
   }
   EXPECT_EQ(poses(b, ids), poses(a, ids)) << "the run from the restored world ends elsewhere";
   EXPECT_LT(a.body(later[1]).position_m.y(), Real(1)) << "the hammer fell";
+  EXPECT_GT(a.body(later[0]).position_m.x(), Real(1.2)) << "the wedge rests on the slope, not beside it";
+  EXPECT_GT(a.body(later[0]).position_m.y(), Real(0.3)) << "the wedge rests on the slope, not on the ground";
   EXPECT_TRUE(a.body(later[1]).position_m.allFinite());
 }
 
 // Every cut is refused; single changed bytes anywhere (most of the state is
-// the hull and compound data) are refused or restored and stepped.
-TEST(WorldState, DamagedHullAndCompoundBytesAreRefusedOrRunNeverCrash) {
+// the hull, compound and mesh data) are refused or restored and stepped.
+TEST(WorldState, DamagedShapeBytesAreRefusedOrRunNeverCrash) {
   World a;
   setUp(a);
   makeLater(a);
