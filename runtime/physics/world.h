@@ -272,6 +272,15 @@ class World {
   /// threads (a step with fewer than about a hundred contact manifolds runs
   /// on the caller alone: waking the threads would cost more).
   std::uint64_t stepsOnThreads() const { return m_stepsOnThreads; }
+  /// Wall time of the last step's parts, measured only while
+  /// setPhaseTiming(true) (tools/compare; a clock read costs about 20 ns,
+  /// some 80 per step, too much for a step of one body).
+  struct PhaseTimes {
+    double collide_ms = 0;       ///< broad and narrow phase, manifolds
+    double contactSolver_ms = 0; ///< every pass of the contact solver over the step's substeps, prepare and store
+  };
+  void setPhaseTiming(bool on) { m_phaseTiming = on; }
+  const PhaseTimes& lastPhaseTimes() const { return m_phaseTimes; }
   /// Overlapping pairs the cost cap left out of the last step's collisions
   /// (WorldSettings::maxContactPairsPerBody).
   long contactPairsSkippedLastStep() const { return m_lastContactPairsSkipped; }
@@ -306,12 +315,11 @@ class World {
   /// body's pose, velocities, mass, material and sleep state, the contact
   /// cache with its warm-start impulses, the broad phase's order, sleep
   /// islands, the collision filter, island links, springs and settings.
-  /// Shapes: the primitive ones' sizes and hulls and compounds whole (a
-  /// mesh's tree is not stored): restoreState puts the state back into a
-  /// world with the same bodies (as the same scenario makes them); a body it
-  /// lacks is made again, one the saved world lacks is removed, and a
-  /// missing mesh body, or damaged bytes, are refused with a message naming
-  /// the slot (the world is then unchanged).
+  /// Shapes: the primitive ones' sizes, and hulls, compounds and triangle
+  /// meshes whole: restoreState puts the state back into a world with the
+  /// same bodies (as the same scenario makes them); a body it lacks is made
+  /// again, one the saved world lacks is removed, and damaged bytes are
+  /// refused with a message (the world is then unchanged).
   std::string saveState() const;
   Status restoreState(const std::string& bytes);
   const ErrorStats& errorStats() const { return m_error; }
@@ -392,6 +400,8 @@ class World {
   std::vector<BodyPair> m_islandLinks;  ///< sorted; see setIslandLinks
   int m_lastContactPoints = 0;
   std::uint64_t m_stepsOnThreads = 0;
+  bool m_phaseTiming = false;
+  PhaseTimes m_phaseTimes;
   long m_lastContactPairsSkipped = 0;
   ErrorStats m_error;
   mutable MeshStats m_meshStats;  ///< see meshStats (rays, which are const, count too)

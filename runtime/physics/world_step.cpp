@@ -54,6 +54,7 @@
 // once per step, a box top's precession was 2.5 % slow at 200 rad/s and
 // 22 % at 50 rad/s, at any number of substeps.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "physics/constraint_solver.h"
@@ -128,15 +129,42 @@ Quat turnTorqueFree(const Quat& orientation, const Vec3& principal, Vec3& w, Rea
 
 }  // namespace
 
+namespace {
+
+/// Adds the time from its construction to its destruction to *sum_ms, when
+/// sum_ms is not null (World::setPhaseTiming).
+class PhaseClock {
+ public:
+  explicit PhaseClock(double* sum_ms) : m_sum(sum_ms) {
+    if (m_sum) m_t0 = std::chrono::steady_clock::now();
+  }
+  ~PhaseClock() {
+    if (m_sum) *m_sum += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m_t0).count();
+  }
+  PhaseClock(const PhaseClock&) = delete;
+  PhaseClock& operator=(const PhaseClock&) = delete;
+
+ private:
+  double* m_sum;
+  std::chrono::steady_clock::time_point m_t0;
+};
+
+}  // namespace
+
 void World::step(Real dt) {
   if (!(dt > 0) || !std::isfinite(dt)) return;
+  m_phaseTimes = PhaseTimes{};
+  double* const solverClock = m_phaseTiming ? &m_phaseTimes.contactSolver_ms : nullptr;
   if (!m_trackingStarted) resetErrorStats();
   freezeNonFinite();  // catches non-finite values set from outside (scripts)
   for (std::uint32_t i = 0; i < m_bodies.size(); ++i) {
     m_stepStartPosition[i] = m_bodies[i].position_m;
     m_stepStartOrientation[i] = m_bodies[i].orientation;
   }
-  collide(dt);
+  {
+    PhaseClock clock(m_phaseTiming ? &m_phaseTimes.collide_ms : nullptr);
+    collide(dt);
+  }
   const int substeps = std::max(1, m_settings.substeps);
   const SolverSettings ss = solverSettings(m_settings, dt / Real(substeps));
   gatherVelocities();
@@ -146,7 +174,10 @@ void World::step(Real dt) {
   if (threads == 1) pool.reset();
   else if (!pool || pool->threads() != threads) pool = std::make_unique<WorkerPool>(threads);
   contacts.setPool(pool.get());
-  contacts.prepare(m_manifolds, m_bodies);
+  {
+    PhaseClock clock(solverClock);
+    contacts.prepare(m_manifolds, m_bodies);
+  }
   if (contacts.threadedLevels() > 0) ++m_stepsOnThreads;
   m_inStep = true;
   ConstraintSolver* joints = m_constraintSolver;  // the joint hook (constraint_solver.h), usually null
@@ -155,7 +186,10 @@ void World::step(Real dt) {
   for (std::uint32_t i = 0; i < m_bodies.size(); ++i) m_scratch->vel[i].angular += wide(m_scratch->turn[i]);
   m_inStep = false;
   scatterVelocities();
-  contacts.store(m_manifolds);
+  {
+    PhaseClock clock(solverClock);
+    contacts.store(m_manifolds);
+  }
   if (joints) joints->finish(*this);
   if (m_settings.continuousStatic) clampToStatic();
   for (Body& b : m_bodies)
@@ -191,31 +225,47 @@ void World::substep(const SolverSettings& ss, ConstraintSolver* joints) {
   StepScratch& st = *m_scratch;
   ContactSolver& contacts = st.contacts;
   const Real tol2 = m_settings.solverTolerance * m_settings.solverTolerance;
+  double* const solverClock = m_phaseTiming ? &m_phaseTimes.contactSolver_ms : nullptr;
   // Separations now, for the solve and for the approach speeds.
-  contacts.updateSeparations(st.pose);
-  contacts.recordFreeVelocities(st.vel);
+  {
+    PhaseClock clock(solverClock);
+    contacts.updateSeparations(st.pose);
+    contacts.recordFreeVelocities(st.vel);
+  }
   integrateVelocities(ss.h);
   for (auto& [id, hook] : m_substepHooks) hook(*this, ss.h);
-  contacts.captureApproachSpeeds(st.vel, ss.h);
-  contacts.warmStart(st.vel);
+  {
+    PhaseClock clock(solverClock);
+    contacts.captureApproachSpeeds(st.vel, ss.h);
+    contacts.warmStart(st.vel);
+  }
   if (joints) joints->warmStart(st.vel.data(), m_bodies.data());
-  // Rolling and split impulses are per substep (not warm started), so
-  // each substep can apply its full share again.
-  contacts.resetSubstepImpulses();
+  {
+    // Rolling and split impulses are per substep (not warm started), so
+    // each substep can apply its full share again.
+    PhaseClock clock(solverClock);
+    contacts.resetSubstepImpulses();
+  }
   // Positions change only in integratePositions, so separations are
   // updated once per phase, not once per iteration.
   for (int it = 0; it < m_settings.velocityIterations; ++it) {
     const Real jr = joints ? joints->solve(st.vel.data(), m_bodies.data(), true) : Real(0);
+    PhaseClock clock(solverClock);
     const Real r = contacts.solve(st.vel, st.pseudo, ss, true);
     if (r <= tol2 * contacts.lastMagnitude() && jr <= tol2) break;  // converged: see WorldSettings::solverTolerance
   }
   if (joints) joints->beforeIntegrate(st.vel.data(), m_bodies.data());
   integratePositions(ss.h);
-  if (m_settings.relaxIterations > 0) contacts.updateSeparations(st.pose);
+  if (m_settings.relaxIterations > 0) {
+    PhaseClock clock(solverClock);
+    contacts.updateSeparations(st.pose);
+  }
   for (int it = 0; it < m_settings.relaxIterations; ++it) {
     const Real jr = joints ? joints->solve(st.vel.data(), m_bodies.data(), false) : Real(0);
+    PhaseClock clock(solverClock);
     if (contacts.solve(st.vel, st.pseudo, ss, false) == 0 && jr == 0) break;
   }
+  PhaseClock clock(solverClock);
   // Impulses from static, kinematic or sleeping bodies are external to the
   // moving set; between two moving bodies they cancel exactly.
   m_externalImpulse += contacts.externalImpulse();

@@ -44,6 +44,19 @@ json measured(const RunResult& r) {
   j["kinetic_energy_ratio"] = r.kineticEnergyStart_J > 0 ? json(r.kineticEnergyEnd_J / r.kineticEnergyStart_J) : json(nullptr);
   j["sleeping_at_end"] = r.sleepingAtEnd;
   j["joint_error_max_m"] = r.jointErrorMax_m;
+  if (!r.contactSolverMs.empty()) {
+    // The contact solver's cost per contact point and substep: each step's
+    // solver time over its points times substeps, the median over the
+    // steps that had contacts.
+    std::vector<double> perPoint;
+    for (std::size_t i = 0; i < r.contactSolverMs.size(); ++i)
+      if (r.contactPoints[i] > 0 && r.substeps > 0)
+        perPoint.push_back(r.contactSolverMs[i] * 1e6 / (r.contactPoints[i] * r.substeps));
+    j["collide_ms_median"] = median(r.collideMs);
+    j["contact_solver_ms_median"] = median(r.contactSolverMs);
+    j["contact_points_median"] = median(r.contactPoints);
+    j["contact_solver_ns_per_point_substep"] = perPoint.empty() ? json(nullptr) : json(median(perPoint));
+  }
   return j;
 }
 

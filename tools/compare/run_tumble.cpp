@@ -87,6 +87,8 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, const TumbleCo
 
   RunResult r;
   r.kineticEnergyStart_J = kineticEnergy(world, ids);
+  world.setPhaseTiming(true);
+  r.substeps = world.settings().substeps;
   r.stepMs.reserve(steps);
   r.stepCpuMs.reserve(steps);
   const Real h = Real(dt);
@@ -102,6 +104,9 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, const TumbleCo
     auto t1 = std::chrono::steady_clock::now();
     r.stepCpuMs.push_back(cpuMs() - c0);
     r.stepMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    r.collideMs.push_back(world.lastPhaseTimes().collide_ms);
+    r.contactSolverMs.push_back(world.lastPhaseTimes().contactSolver_ms);
+    r.contactPoints.push_back(world.contactPointCount());
     if (joints) r.jointErrorMax_m = std::max(r.jointErrorMax_m, joints->anchorError_m());
   }
   r.penetrationMax_m = world.errorStats().penetrationMax_m;

@@ -88,6 +88,11 @@ struct RunResult {
   int sleepingAtEnd = 0;          ///< dynamic bodies asleep / deactivated at the end
   int nanEvents = 0;              ///< Tumble only: bodies frozen for non-finite state
   double jointErrorMax_m = 0;     ///< largest anchor separation after any step (scenes with joints)
+  // Tumble only (World::setPhaseTiming), per step: wall time of the
+  // collision pass and of the contact solver's passes, the contact points
+  // the step solved, and its substeps.
+  std::vector<double> collideMs, contactSolverMs, contactPoints;
+  int substeps = 0;
 };
 
 /// Bullet solver configuration for one run.

@@ -3,8 +3,10 @@
 # Runs `tumble_compare pyramid_20 --quick --report REPORT` and checks that
 # the report names the scene, that both engines stepped every step (wall and
 # CPU time), that the default Bullet peer sweeps as often per step as Tumble,
-# that every figure the issue asks for is present on both sides, and that the
-# pyramid did not fall apart in 20 steps (physics, not printed text).
+# that every figure the issue asks for is present on both sides, that
+# Tumble's collision and contact-solver times are there and within the step,
+# and that the pyramid did not fall apart in 20 steps (physics, not printed
+# text).
 file(REMOVE ${REPORT})
 execute_process(COMMAND ${EXE} pyramid_20 --quick --no-bullet-default --report ${REPORT}
                 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
@@ -69,4 +71,19 @@ foreach(side tumble bullet)
     message(FATAL_ERROR "${side}: pyramid moved (drift ${drift} m, penetration ${pen} m)")
   endif()
 endforeach()
+# Tumble's parts of a step (World::setPhaseTiming): the pyramid rests on
+# contacts from the first step, so the contact solver ran and took time, and
+# each part took no longer than the whole step.
+foreach(field collide_ms_median contact_solver_ms_median contact_points_median contact_solver_ns_per_point_substep)
+  string(JSON value ERROR_VARIABLE missing GET "${json}" tumble ${field})
+  if(missing OR NOT value GREATER 0)
+    message(FATAL_ERROR "tumble.${field} is '${value}' ${missing}: expected > 0")
+  endif()
+endforeach()
+string(JSON stepMs GET "${json}" tumble step_ms_median)
+string(JSON collideMs GET "${json}" tumble collide_ms_median)
+string(JSON solverMs GET "${json}" tumble contact_solver_ms_median)
+if(solverMs GREATER stepMs OR collideMs GREATER stepMs)
+  message(FATAL_ERROR "a part of Tumble's step took longer than the step: collide ${collideMs} ms, contact solver ${solverMs} ms, step ${stepMs} ms")
+endif()
 message(STATUS "report ok: tumble/bullet step ratio ${ratio}")
