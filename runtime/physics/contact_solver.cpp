@@ -442,6 +442,8 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   }
   m_permutedConstraints.resize(n);
   m_permutedPoints.resize(m_points.size());
+  m_permutedGeometry.resize(m_points.size());
+  m_permutedSeparation.resize(m_points.size());
   m_permutedPred.resize(n);
   // Each thread's first point, then each thread copies its own share (and
   // finds it in its cache in the first pass).
@@ -458,6 +460,8 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
       const std::uint32_t si = storageOf[ci];
       Constraint c = m_constraints[ci];
       std::copy_n(m_points.begin() + c.firstPoint, c.count, m_permutedPoints.begin() + nextPoint);
+      std::copy_n(m_geometry.begin() + c.firstPoint, c.count, m_permutedGeometry.begin() + nextPoint);
+      std::copy_n(m_separation.begin() + c.firstPoint, c.count, m_permutedSeparation.begin() + nextPoint);
       c.firstPoint = nextPoint;
       nextPoint += c.count;
       m_permutedConstraints[si] = c;
@@ -468,6 +472,8 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   for (std::size_t ci = 0; ci < n; ++ci) m_logical[ci] = storageOf[ci];
   m_constraints.swap(m_permutedConstraints);
   m_points.swap(m_permutedPoints);
+  m_geometry.swap(m_permutedGeometry);
+  m_separation.swap(m_permutedSeparation);
   m_pred.swap(m_permutedPred);
   for (std::uint32_t& ci : m_external) ci = storageOf[ci];
   for (RoundOffsetRows& r : m_roundOffset) r.constraint = storageOf[r.constraint];
@@ -525,6 +531,8 @@ void ContactSolver::forEachShare(Visit&& visit) const {
 void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::vector<Body>& bodies) {
   m_constraints.clear();
   m_points.clear();
+  m_geometry.clear();
+  m_separation.clear();
   m_rolling.clear();
   m_blocks.clear();
   m_roundOffset.clear();
@@ -578,22 +586,23 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
     for (int i = 0; i < m.count; ++i) {
       const ContactPoint& mp = m.points[i];
       ConstraintPoint p;
-      p.rA = mp.point_m - a.position_m;
-      p.rB = mp.point_m - b.position_m;
+      PointGeometry g;
+      g.rA = mp.point_m - a.position_m;
+      g.rB = mp.point_m - b.position_m;
       // A sphere is touched on its surface along the normal through its
       // centre: its lever arm is the radius along n (a frictionless contact
       // never spins it). The manifold's point lies midway between the
       // surfaces, so a speculative contact's point is outside the sphere
       // and would give a longer arm: the ball then stops slipping at
       // v = w (r + s/2) and rolls too slowly after an impact.
-      if (a.shape.type == ShapeType::Sphere) p.rA = n * a.shape.radius_m;
-      if (b.shape.type == ShapeType::Sphere) p.rB = -n * b.shape.radius_m;
+      if (a.shape.type == ShapeType::Sphere) g.rA = n * a.shape.radius_m;
+      if (b.shape.type == ShapeType::Sphere) g.rB = -n * b.shape.radius_m;
       // The same for a round child off the centre of mass: the lever runs
       // from its rolling centre (the manifold point lies midway between the
       // surfaces: a radius and half the gap inside) out by its radius.
-      if (c.roundOffsetA) p.rA -= n * (mp.separation_m / 2);
-      if (c.roundOffsetB) p.rB += n * (mp.separation_m / 2);
-      const Vec3 rnA = p.rA.cross(n), rnB = p.rB.cross(n);
+      if (c.roundOffsetA) g.rA -= n * (mp.separation_m / 2);
+      if (c.roundOffsetB) g.rB += n * (mp.separation_m / 2);
+      const Vec3 rnA = g.rA.cross(n), rnB = g.rB.cross(n);
       const Vec3 inA = IA * rnA, inB = IB * rnB;
       p.rnA = wide(rnA);
       p.rnB = wide(rnB);
@@ -602,7 +611,7 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
       Real k = mass + rnA.dot(inA) + rnB.dot(inB);
       p.normalMass = k > 0 ? 1 / k : 0;
       for (int j = 0; j < 2; ++j) {
-        const Vec3 rtA = p.rA.cross(t[j]), rtB = p.rB.cross(t[j]);
+        const Vec3 rtA = g.rA.cross(t[j]), rtB = g.rB.cross(t[j]);
         const Vec3 itA = IA * rtA, itB = IB * rtB;
         p.rtA[j] = wide(rtA);
         p.rtB[j] = wide(rtB);
@@ -613,12 +622,13 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
         p.tangentImpulse[j] = mp.tangentImpulse[j];
       }
       // See roundOffsetA: rA / rB now hold the rolling centre.
-      if (c.roundOffsetA) p.rA -= n * radiusA;
-      if (c.roundOffsetB) p.rB += n * radiusB;
+      if (c.roundOffsetA) g.rA -= n * radiusA;
+      if (c.roundOffsetB) g.rB += n * radiusB;
       p.normalImpulse = mp.normalImpulse;
-      p.separation0_m = mp.separation_m;
-      p.separation_m = mp.separation_m;
+      g.separation0_m = mp.separation_m;
       m_points.push_back(p);
+      m_geometry.push_back(g);
+      m_separation.push_back(mp.separation_m);
     }
     if (m.rollingArm_m > 0) {
       RollingRows r;
@@ -777,10 +787,12 @@ void ContactSolver::turnRoundOffsetLevers(const std::vector<SolverPose>& pose) {
     const Vec3 t[2] = {narrow(c.tangent[0]), narrow(c.tangent[1])};
     const Real mass = c.invMassA + c.invMassB;
     ConstraintPoint* pts = &m_points[c.firstPoint];
+    const PointGeometry* geo = &m_geometry[c.firstPoint];
     for (int i = 0; i < c.count; ++i) {
       ConstraintPoint& p = pts[i];
+      const PointGeometry& g = geo[i];
       if (c.roundOffsetA) {
-        const Vec3 lever = pose[c.a].dq * p.rA + n * r.radiusA_m;
+        const Vec3 lever = pose[c.a].dq * g.rA + n * r.radiusA_m;
         p.rnA = wide(Vec3(lever.cross(n)));
         p.inA = wide(Vec3(r.invInertiaA * narrow(p.rnA)));
         for (int j = 0; j < 2; ++j) {
@@ -789,7 +801,7 @@ void ContactSolver::turnRoundOffsetLevers(const std::vector<SolverPose>& pose) {
         }
       }
       if (c.roundOffsetB) {
-        const Vec3 lever = pose[c.b].dq * p.rB - n * r.radiusB_m;
+        const Vec3 lever = pose[c.b].dq * g.rB - n * r.radiusB_m;
         p.rnB = wide(Vec3(lever.cross(n)));
         p.inB = wide(Vec3(r.invInertiaB * narrow(p.rnB)));
         for (int j = 0; j < 2; ++j) {
@@ -815,19 +827,20 @@ void ContactSolver::turnRimRows(const std::vector<SolverPose>& pose) {
     const Vec3 t[2] = {narrow(c.tangent[0]), narrow(c.tangent[1])};
     const Real mass = c.invMassA + c.invMassB;
     ConstraintPoint& p = m_points[c.firstPoint];
+    const PointGeometry& g = m_geometry[c.firstPoint];
     const Mat3 RA = pose[c.a].dq.toRotationMatrix(), RB = pose[c.b].dq.toRotationMatrix();
     const Mat3 IA = RA * r.invInertiaA * RA.transpose(), IB = RB * r.invInertiaB * RB.transpose();
     // The separation: as for any point (updateSeparations), except that a
     // rim side's point is its support, whose height follows the axis, not
     // a material point on the rim (which rises as it turns away).
-    Real gap = p.separation0_m + n.dot(pose[c.b].dp - pose[c.a].dp);
+    Real gap = g.separation0_m + n.dot(pose[c.b].dp - pose[c.a].dp);
     if (r.radiusA_m > 0) {
       const Vec3 lever = rimCylinder(RA * r.orientationA, r.radiusA_m, r.halfHeightA_m).support(n);
       gap -= n.dot(lever) - r.reachA0_m;
       p.rnA = wide(Vec3(lever.cross(n)));
       for (int j = 0; j < 2; ++j) p.rtA[j] = wide(Vec3(lever.cross(t[j])));
     } else if (!(c.roundA && !c.roundOffsetA)) {
-      gap -= n.dot(pose[c.a].dq * p.rA - p.rA);
+      gap -= n.dot(pose[c.a].dq * g.rA - g.rA);
     }
     if (r.radiusB_m > 0) {
       const Vec3 lever = rimCylinder(RB * r.orientationB, r.radiusB_m, r.halfHeightB_m).support(-n);
@@ -835,9 +848,9 @@ void ContactSolver::turnRimRows(const std::vector<SolverPose>& pose) {
       p.rnB = wide(Vec3(lever.cross(n)));
       for (int j = 0; j < 2; ++j) p.rtB[j] = wide(Vec3(lever.cross(t[j])));
     } else if (!(c.roundB && !c.roundOffsetB)) {
-      gap += n.dot(pose[c.b].dq * p.rB - p.rB);
+      gap += n.dot(pose[c.b].dq * g.rB - g.rB);
     }
-    p.separation_m = gap;
+    m_separation[c.firstPoint] = gap;
     p.inA = wide(Vec3(IA * narrow(p.rnA)));
     p.inB = wide(Vec3(IB * narrow(p.rnB)));
     const Real k = mass + narrow(p.rnA).dot(narrow(p.inA)) + narrow(p.rnB).dot(narrow(p.inB));
@@ -877,10 +890,11 @@ void ContactSolver::updateSeparations(const std::vector<SolverPose>& pose) {
       // of mass turns its rolling centre (rA / rB hold it, see roundOffsetA).
       const Vec3 nA = c.roundA && !c.roundOffsetA ? Vec3::Zero() : Vec3(PA.dq.conjugate() * n - n);
       const Vec3 nB = c.roundB && !c.roundOffsetB ? Vec3::Zero() : Vec3(PB.dq.conjugate() * n - n);
-      ConstraintPoint* pts = &m_points[c.firstPoint];
+      const PointGeometry* geo = &m_geometry[c.firstPoint];
+      Real* separation = &m_separation[c.firstPoint];
       for (int i = 0; i < c.count; ++i) {
-        ConstraintPoint& p = pts[i];
-        p.separation_m = p.separation0_m + base + nB.dot(p.rB) - nA.dot(p.rA);
+        const PointGeometry& g = geo[i];
+        separation[i] = g.separation0_m + base + nB.dot(g.rB) - nA.dot(g.rA);
       }
     }
   });
@@ -915,6 +929,7 @@ void ContactSolver::captureApproachSpeeds(const std::vector<SolverVelocity>& vel
       const SolverVelocity& A = vel[c.a];
       const SolverVelocity& B = vel[c.b];
       ConstraintPoint* pts = &m_points[c.firstPoint];
+      const Real* separation = &m_separation[c.firstPoint];
       const Vec4r dv = B.linear - A.linear;
       for (int i = 0; i < c.count; ++i) {
         ConstraintPoint& p = pts[i];
@@ -923,8 +938,8 @@ void ContactSolver::captureApproachSpeeds(const std::vector<SolverVelocity>& vel
         const Real a = (v1 - p.freeVelocity0_mps) / h;
         const Real u0 = p.freeVelocity0_mps + a * h / 2;
         Real uc = std::min<Real>(u0, 0);  // touching already: the impact is now
-        if (p.separation_m > 0) {
-          const Real reach2 = u0 * u0 - 2 * a * p.separation_m;
+        if (separation[i] > 0) {
+          const Real reach2 = u0 * u0 - 2 * a * separation[i];
           uc = (u0 < 0 || a < 0) && reach2 > 0 ? -std::sqrt(reach2) : Real(0);
         }
         p.approachAcceleration_mps2 = a;
@@ -973,6 +988,7 @@ bool ContactSolver::solveNormalBlock(const Constraint& c, Vec4r& vA, Vec4r& wA, 
   constexpr bool moveA = kFixedSide != 1, moveB = kFixedSide != 2;
   const NormalBlock& b = m_blocks[std::size_t(c.block)];
   ConstraintPoint* pts = &m_points[c.firstPoint];
+  const Real* separation = &m_separation[c.firstPoint];
   const int count = c.count;
   const Vec4r n = c.normal;
   Real r[kMaxManifoldPoints], lambda[kMaxManifoldPoints];
@@ -980,7 +996,7 @@ bool ContactSolver::solveNormalBlock(const Constraint& c, Vec4r& vA, Vec4r& wA, 
   for (int i = 0; i < count; ++i) {
     const ConstraintPoint& p = pts[i];
     const Real vn = rowDotFixed<kFixedSide>(n, vA, vB, p.rnB, wB, p.rnA, wA);
-    r[i] = vn + (p.separation_m > 0 ? p.separation_m * invH : Real(0));
+    r[i] = vn + (separation[i] > 0 ? separation[i] * invH : Real(0));
     twistPart += b.twist[i] * r[i];
     size2 += r[i] * r[i];
   }
@@ -1035,12 +1051,13 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
   const Real mA = c.invMassA, mB = c.invMassB;
   const Vec4r n = c.normal;
   ConstraintPoint* pts = &m_points[c.firstPoint];
+  const Real* separation = &m_separation[c.firstPoint];
   const int count = c.count;
   Real totalNormal = 0;
   const bool blockSolved = c.block >= 0 && !k.soft && solveNormalBlock<kFixedSide>(c, vA, wA, vB, wB, k.invH, residual);
   for (int i = 0; i < count && !blockSolved; ++i) {
     ConstraintPoint& p = pts[i];
-    const Real sep = p.separation_m;
+    const Real sep = separation[i];
     Real bias = 0, massScale = 1, impulseScale = 0;
     if (sep > 0) {
       bias = sep * k.invH;  // speculative
@@ -1119,7 +1136,7 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
   SolverVelocity& PB = pseudo[c.b];
   for (int i = 0; i < count; ++i) {
     ConstraintPoint& p = pts[i];
-    const Real depth = -(p.separation_m + k.linearSlop_m);
+    const Real depth = -(separation[i] + k.linearSlop_m);
     if (depth <= 0 && p.pseudoImpulse == 0) continue;
     const Real target = std::min(k.baumgarte * k.invH * std::max<Real>(depth, 0), k.maxPushout_mps);
     const Real pvn = rowDotFixed<kFixedSide>(n, PA.linear, PB.linear, p.rnB, PB.angular, p.rnA, PA.angular);
@@ -1211,6 +1228,7 @@ Eigen::Vector3d ContactSolver::applyRestitution(std::vector<SolverVelocity>& vel
       SolverVelocity& A = vel[c.a];
       SolverVelocity& B = vel[c.b];
       ConstraintPoint* pts = &m_points[c.firstPoint];
+      const Real* separation = &m_separation[c.firstPoint];
       const Vec4r& n = c.normal;
       for (int i = 0; i < c.count; ++i) {
         ConstraintPoint& p = pts[i];
@@ -1221,7 +1239,7 @@ Eigen::Vector3d ContactSolver::applyRestitution(std::vector<SolverVelocity>& vel
         // u^2 = e^2 u_c^2 + 2 a s; then written as the velocity that the
         // next substep's forces turn into u at the substep boundary.
         const Real a = p.approachAcceleration_mps2, e = c.restitution;
-        const Real u2 = e * e * p.relativeVelocity_mps * p.relativeVelocity_mps + 2 * a * p.separation_m;
+        const Real u2 = e * e * p.relativeVelocity_mps * p.relativeVelocity_mps + 2 * a * separation[i];
         const Real target = std::sqrt(std::max<Real>(u2, 0)) - a * s.h / 2;
         const Real vn = rowDot(n, B.linear - A.linear, p.rnB, B.angular, p.rnA, A.angular);
         const Real newImpulse = std::max<Real>(p.normalImpulse - p.normalMass * (vn - target), 0);
