@@ -444,6 +444,8 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   m_permutedPoints.resize(m_points.size());
   m_permutedGeometry.resize(m_points.size());
   m_permutedSeparation.resize(m_points.size());
+  m_permutedImpact.resize(m_points.size());
+  m_permutedPseudoImpulse.resize(m_points.size());
   m_permutedPred.resize(n);
   // Each thread's first point, then each thread copies its own share (and
   // finds it in its cache in the first pass).
@@ -462,6 +464,8 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
       std::copy_n(m_points.begin() + c.firstPoint, c.count, m_permutedPoints.begin() + nextPoint);
       std::copy_n(m_geometry.begin() + c.firstPoint, c.count, m_permutedGeometry.begin() + nextPoint);
       std::copy_n(m_separation.begin() + c.firstPoint, c.count, m_permutedSeparation.begin() + nextPoint);
+      std::copy_n(m_impact.begin() + c.firstPoint, c.count, m_permutedImpact.begin() + nextPoint);
+      std::copy_n(m_pseudoImpulse.begin() + c.firstPoint, c.count, m_permutedPseudoImpulse.begin() + nextPoint);
       c.firstPoint = nextPoint;
       nextPoint += c.count;
       m_permutedConstraints[si] = c;
@@ -474,6 +478,8 @@ void ContactSolver::buildSchedule(std::size_t bodySlots) {
   m_points.swap(m_permutedPoints);
   m_geometry.swap(m_permutedGeometry);
   m_separation.swap(m_permutedSeparation);
+  m_impact.swap(m_permutedImpact);
+  m_pseudoImpulse.swap(m_permutedPseudoImpulse);
   m_pred.swap(m_permutedPred);
   for (std::uint32_t& ci : m_external) ci = storageOf[ci];
   for (RoundOffsetRows& r : m_roundOffset) r.constraint = storageOf[r.constraint];
@@ -533,6 +539,8 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
   m_points.clear();
   m_geometry.clear();
   m_separation.clear();
+  m_impact.clear();
+  m_pseudoImpulse.clear();
   m_rolling.clear();
   m_blocks.clear();
   m_roundOffset.clear();
@@ -629,6 +637,8 @@ void ContactSolver::prepare(const std::vector<Manifold>& manifolds, const std::v
       m_points.push_back(p);
       m_geometry.push_back(g);
       m_separation.push_back(mp.separation_m);
+      m_impact.push_back(PointImpact{});
+      m_pseudoImpulse.push_back(0);
     }
     if (m.rollingArm_m > 0) {
       RollingRows r;
@@ -908,12 +918,13 @@ void ContactSolver::recordFreeVelocities(const std::vector<SolverVelocity>& vel)
       const Constraint& c = m_constraints[ci];
       const SolverVelocity& A = vel[c.a];
       const SolverVelocity& B = vel[c.b];
-      ConstraintPoint* pts = &m_points[c.firstPoint];
+      const ConstraintPoint* pts = &m_points[c.firstPoint];
+      PointImpact* impact = &m_impact[c.firstPoint];
       const Vec4r dv = B.linear - A.linear;
       for (int i = 0; i < c.count; ++i) {
-        ConstraintPoint& p = pts[i];
-        if (p.maxNormalImpulse == 0)
-          p.freeVelocity0_mps = rowDot(c.normal, dv, p.rnB, B.angular, p.rnA, A.angular);
+        const ConstraintPoint& p = pts[i];
+        if (impact[i].maxNormalImpulse == 0)
+          impact[i].freeVelocity0_mps = rowDot(c.normal, dv, p.rnB, B.angular, p.rnA, A.angular);
       }
     }
   });
@@ -928,22 +939,24 @@ void ContactSolver::captureApproachSpeeds(const std::vector<SolverVelocity>& vel
       const Constraint& c = m_constraints[ci];
       const SolverVelocity& A = vel[c.a];
       const SolverVelocity& B = vel[c.b];
-      ConstraintPoint* pts = &m_points[c.firstPoint];
+      const ConstraintPoint* pts = &m_points[c.firstPoint];
+      PointImpact* impact = &m_impact[c.firstPoint];
       const Real* separation = &m_separation[c.firstPoint];
       const Vec4r dv = B.linear - A.linear;
       for (int i = 0; i < c.count; ++i) {
-        ConstraintPoint& p = pts[i];
-        if (p.maxNormalImpulse != 0) continue;
+        const ConstraintPoint& p = pts[i];
+        PointImpact& q = impact[i];
+        if (q.maxNormalImpulse != 0) continue;
         const Real v1 = rowDot(c.normal, dv, p.rnB, B.angular, p.rnA, A.angular);
-        const Real a = (v1 - p.freeVelocity0_mps) / h;
-        const Real u0 = p.freeVelocity0_mps + a * h / 2;
+        const Real a = (v1 - q.freeVelocity0_mps) / h;
+        const Real u0 = q.freeVelocity0_mps + a * h / 2;
         Real uc = std::min<Real>(u0, 0);  // touching already: the impact is now
         if (separation[i] > 0) {
           const Real reach2 = u0 * u0 - 2 * a * separation[i];
           uc = (u0 < 0 || a < 0) && reach2 > 0 ? -std::sqrt(reach2) : Real(0);
         }
-        p.approachAcceleration_mps2 = a;
-        p.relativeVelocity_mps = uc;
+        q.approachAcceleration_mps2 = a;
+        q.relativeVelocity_mps = uc;
       }
     }
   });
@@ -954,7 +967,7 @@ void ContactSolver::resetSubstepImpulses() {
   forEachShare([&](std::size_t begin, std::size_t end) {
     for (std::size_t ci = begin; ci < end; ++ci) {
       const Constraint& c = m_constraints[ci];
-      for (int i = 0; i < c.count; ++i) m_points[c.firstPoint + i].pseudoImpulse = 0;
+      std::fill_n(m_pseudoImpulse.begin() + c.firstPoint, c.count, Real(0));
     }
   });
 }
@@ -1025,11 +1038,12 @@ bool ContactSolver::solveNormalBlock(const Constraint& c, Vec4r& vA, Vec4r& wA, 
     for (int i = 0; i < count; ++i) lambda[i] = std::max<Real>(lambda[i] + s * b.twist[i], 0);
   }
   const Real mA = c.invMassA, mB = c.invMassB;
+  PointImpact* impact = &m_impact[c.firstPoint];
   for (int i = 0; i < count; ++i) {
     ConstraintPoint& p = pts[i];
     const Real impulse = lambda[i] - p.normalImpulse;
     p.normalImpulse = lambda[i];
-    p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
+    impact[i].maxNormalImpulse = std::max(impact[i].maxNormalImpulse, impulse);
     residual += impulse * impulse;
     const Vec4r P = impulse * n;
     if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
@@ -1052,6 +1066,7 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
   const Vec4r n = c.normal;
   ConstraintPoint* pts = &m_points[c.firstPoint];
   const Real* separation = &m_separation[c.firstPoint];
+  PointImpact* impact = &m_impact[c.firstPoint];
   const int count = c.count;
   Real totalNormal = 0;
   const bool blockSolved = c.block >= 0 && !k.soft && solveNormalBlock<kFixedSide>(c, vA, wA, vB, wB, k.invH, residual);
@@ -1071,7 +1086,7 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
     const Real newImpulse = std::max<Real>(p.normalImpulse + impulse, 0);
     impulse = newImpulse - p.normalImpulse;
     p.normalImpulse = newImpulse;
-    p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
+    impact[i].maxNormalImpulse = std::max(impact[i].maxNormalImpulse, impulse);
     residual += impulse * impulse;
     const Vec4r P = impulse * n;
     if constexpr (moveA) vA -= mA * P, wA -= impulse * p.inA;
@@ -1134,15 +1149,17 @@ void ContactSolver::solveConstraint(const Constraint& c, std::vector<SolverVeloc
   // Pseudo-velocities are zero for bodies that take no impulses.
   SolverVelocity& PA = pseudo[c.a];
   SolverVelocity& PB = pseudo[c.b];
+  Real* pseudoImpulses = &m_pseudoImpulse[c.firstPoint];
   for (int i = 0; i < count; ++i) {
     ConstraintPoint& p = pts[i];
     const Real depth = -(separation[i] + k.linearSlop_m);
-    if (depth <= 0 && p.pseudoImpulse == 0) continue;
+    Real& pseudoImpulse = pseudoImpulses[i];
+    if (depth <= 0 && pseudoImpulse == 0) continue;
     const Real target = std::min(k.baumgarte * k.invH * std::max<Real>(depth, 0), k.maxPushout_mps);
     const Real pvn = rowDotFixed<kFixedSide>(n, PA.linear, PB.linear, p.rnB, PB.angular, p.rnA, PA.angular);
-    const Real newImpulse = std::max<Real>(p.pseudoImpulse + p.normalMass * (target - pvn), 0);
-    const Real dl = newImpulse - p.pseudoImpulse;
-    p.pseudoImpulse = newImpulse;
+    const Real newImpulse = std::max<Real>(pseudoImpulse + p.normalMass * (target - pvn), 0);
+    const Real dl = newImpulse - pseudoImpulse;
+    pseudoImpulse = newImpulse;
     residual += dl * dl;
     if (moveA && c.movesA) {
       PA.linear -= (mA * dl) * n;
@@ -1208,11 +1225,11 @@ Eigen::Vector3d ContactSolver::applyRestitution(std::vector<SolverVelocity>& vel
   bool any = false;
   for (const Constraint& c : m_constraints) {
     if (c.restitution == 0) continue;
-    ConstraintPoint* pts = &m_points[c.firstPoint];
+    PointImpact* impact = &m_impact[c.firstPoint];
     for (int i = 0; i < c.count; ++i) {
-      ConstraintPoint& p = pts[i];
-      p.bouncing = !p.bounced && p.maxNormalImpulse > 0 && p.relativeVelocity_mps < -s.restitutionThreshold_mps;
-      any = any || p.bouncing;
+      PointImpact& q = impact[i];
+      q.bouncing = !q.bounced && q.maxNormalImpulse > 0 && q.relativeVelocity_mps < -s.restitutionThreshold_mps;
+      any = any || q.bouncing;
     }
   }
   if (!any) return external;
@@ -1229,17 +1246,19 @@ Eigen::Vector3d ContactSolver::applyRestitution(std::vector<SolverVelocity>& vel
       SolverVelocity& B = vel[c.b];
       ConstraintPoint* pts = &m_points[c.firstPoint];
       const Real* separation = &m_separation[c.firstPoint];
+      const PointImpact* impact = &m_impact[c.firstPoint];
       const Vec4r& n = c.normal;
       for (int i = 0; i < c.count; ++i) {
         ConstraintPoint& p = pts[i];
-        if (!p.bouncing) continue;
+        const PointImpact& q = impact[i];
+        if (!q.bouncing) continue;
         // Newton's law at the instant of impact (-e u_c leaving the
         // surface), carried by the free motion to where the point is now
         // (separation s, at most a substep's travel from touching):
         // u^2 = e^2 u_c^2 + 2 a s; then written as the velocity that the
         // next substep's forces turn into u at the substep boundary.
-        const Real a = p.approachAcceleration_mps2, e = c.restitution;
-        const Real u2 = e * e * p.relativeVelocity_mps * p.relativeVelocity_mps + 2 * a * separation[i];
+        const Real a = q.approachAcceleration_mps2, e = c.restitution;
+        const Real u2 = e * e * q.relativeVelocity_mps * q.relativeVelocity_mps + 2 * a * separation[i];
         const Real target = std::sqrt(std::max<Real>(u2, 0)) - a * s.h / 2;
         const Real vn = rowDot(n, B.linear - A.linear, p.rnB, B.angular, p.rnA, A.angular);
         const Real newImpulse = std::max<Real>(p.normalImpulse - p.normalMass * (vn - target), 0);
@@ -1280,10 +1299,12 @@ Eigen::Vector3d ContactSolver::applyRestitution(std::vector<SolverVelocity>& vel
   // The impact is over: the next substep must not warm start its impulse
   // (it would push the separating bodies apart again before the solve takes
   // it back). The event keeps the impact's size.
-  for (ConstraintPoint& p : m_points) {
-    if (!p.bouncing) continue;
-    p.bouncing = false;
-    p.bounced = true;
+  for (std::size_t i = 0; i < m_points.size(); ++i) {
+    PointImpact& q = m_impact[i];
+    if (!q.bouncing) continue;
+    ConstraintPoint& p = m_points[i];
+    q.bouncing = false;
+    q.bounced = true;
     p.impactImpulse = std::max(p.impactImpulse, p.normalImpulse);
     p.normalImpulse = 0;
     p.tangentImpulse[0] = p.tangentImpulse[1] = 0;

@@ -66,7 +66,13 @@ struct ConstraintPoint {
   Vec4r itA[2], itB[2];  ///< I^-1 of those
   Real normalMass = 0, tangentMass[2] = {0, 0};
   Real normalImpulse = 0, tangentImpulse[2] = {0, 0};  ///< accumulated (N s), warm started
-  Real pseudoImpulse = 0;     ///< split-impulse accumulator, per substep
+  Real impactImpulse = 0;  ///< largest normal impulse of one substep this step, restitution included (events)
+};
+
+/// A point's impact bookkeeping, apart from ConstraintPoint (its index):
+/// the passes at each substep's start read whether a point has pushed yet
+/// for every point, and the rows only for the few that have not.
+struct PointImpact {
   Real maxNormalImpulse = 0;  ///< largest single push this step (did it touch?)
   /// Normal velocity (m/s) before this substep's forces, while the point has
   /// not pushed yet: with the velocity after them it gives the free relative
@@ -74,7 +80,6 @@ struct ConstraintPoint {
   Real freeVelocity0_mps = 0;
   Real approachAcceleration_mps2 = 0;  ///< that acceleration, in the substep of impact
   Real relativeVelocity_mps = 0;  ///< normal velocity at the instant of impact (< 0 approaching)
-  Real impactImpulse = 0;  ///< largest normal impulse of one substep this step, restitution included (events)
   bool bounced = false;    ///< restitution applied this step (once per point per step)
   bool bouncing = false;   ///< restitution being applied in this substep
 };
@@ -212,6 +217,8 @@ class ContactSolver {
   std::vector<ConstraintPoint> m_points;
   std::vector<PointGeometry> m_geometry;  ///< per point, as m_points
   std::vector<Real> m_separation;         ///< per point: current separation, m (updated once per solve phase)
+  std::vector<PointImpact> m_impact;      ///< per point, as m_points
+  std::vector<Real> m_pseudoImpulse;      ///< per point: split-impulse accumulator (N s), per substep
   std::vector<RollingRows> m_rolling;
   std::vector<NormalBlock> m_blocks;
   /// Builds c's normal block if its rows allow one (contact_solver.cpp).
@@ -256,6 +263,8 @@ class ContactSolver {
   std::vector<ConstraintPoint> m_permutedPoints;      ///< scratch of the schedule
   std::vector<PointGeometry> m_permutedGeometry;      ///< scratch of the schedule
   std::vector<Real> m_permutedSeparation;             ///< scratch of the schedule
+  std::vector<PointImpact> m_permutedImpact;          ///< scratch of the schedule
+  std::vector<Real> m_permutedPseudoImpulse;          ///< scratch of the schedule
   std::vector<std::array<std::int32_t, 2>> m_permutedPred;  ///< scratch of the schedule
   std::vector<std::uint32_t> m_storageOf;             ///< per constraint in the sequential order: where it is stored
   std::size_t m_levels = 0;
