@@ -125,9 +125,10 @@ struct Presentation {
   /// mod, or refused).
   void saveState(ByteWriter& w, const std::function<std::string(const std::string&)>& refOf) const;
   /// Reads what saveState wrote, checked whole (every number finite and in
-  /// the range the script API allows, every body one `bodyKnown` knows,
-  /// every file resolved) before anything changes. The revisions move on,
-  /// so the app reloads models and sky.
+  /// the range the script API allows, every body one `bodyKnown` accepts:
+  /// a slot of the world, alive or not, as a model may stay attached to a
+  /// removed body; every file resolved) before anything changes. The
+  /// revisions move on, so the app reloads models and sky.
   Status restoreState(ByteReader& r, const std::function<Result<std::string>(const std::string&)>& resolve,
                       const std::function<bool(physics::BodyId)>& bodyKnown, std::size_t bodySlots);
 

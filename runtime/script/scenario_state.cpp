@@ -350,7 +350,9 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
   Presentation presentation = m_presentation;
   Status seen = presentation.restoreState(
       r, [&](const std::string& ref) { return resolveModFile(ref, m_mod, m_options.modDirs); },
-      [&](physics::BodyId id) { return world().isValid(id); }, world().bodySlotCount());
+      // A body slot of this world: a model may stay attached to a body
+      // removed since (it is not drawn), a camera may follow one.
+      [&](physics::BodyId id) { return id.index < world().bodySlotCount(); }, world().bodySlotCount());
   if (!seen) return fail(seen.error());
   if (!r.ok() || !r.atEnd()) return fail("damaged (truncated or bytes after the end)");
   if (outcome < int(Outcome::None) || outcome > int(Outcome::Lost)) return fail("damaged (outcome)");

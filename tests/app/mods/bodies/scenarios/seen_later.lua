@@ -1,9 +1,11 @@
 -- What is seen, set after on_start (tests/app/scene_state_test.cpp,
 -- SnapshotPresentation): at 0.5 s a red ball and a box drawn as a barrier
 -- model are made, a building is placed without collision, the camera
--- follows the ball and the sky turns to a cloudy evening. A run loaded from
--- a snapshot taken after that must look as the run without a split: the
--- snapshot holds colours, models, the camera and the sky.
+-- follows the ball and the sky turns to a cloudy evening; at 0.6 s a second
+-- box drawn as a model is removed (its model stays attached to the dead
+-- body, not drawn). A run loaded from a snapshot taken after that must look
+-- as the run without a split: the snapshot holds colours, models, the
+-- camera and the sky.
 return {
   title = "A ball, a model, a camera and a sky set after on_start",
   duration = 2,
@@ -20,6 +22,10 @@ return {
       world.add_static_model("base:assets/models/building.obj", {position = {-3, 0, -8}, collision = "none"})
       camera.set_mode("follow", {target = ctx.state.ball, distance = 9})
       environment.set{time_of_day = 18.5, weather = "cloudy"}
+      ctx.state.doomed = world.box{size = {1, 1, 1}, position = {-2, 0.5, -3}}
+      ctx.state.doomed:set_model("base:assets/models/rock.obj")
+    elseif ctx.step == 36 then
+      world.remove(ctx.state.doomed)
     end
   end,
   on_finish = function(ctx)
