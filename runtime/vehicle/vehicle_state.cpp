@@ -267,6 +267,10 @@ Status VehicleSystem::restoreState(const std::string& bytes,
     s.def = std::move(def.value());
     const std::string stored = bytes.substr(defStart, r.position() - defStart);
     const Vehicle* here = i < m_vehicles.size() ? &m_vehicles[i] : nullptr;
+    // Compared as written bytes. The records written whole (an axle, the
+    // chassis numbers) carry padding bytes, so an equal definition may
+    // compare unequal and be made again from the stored one: the same
+    // vehicle, as every field it has is stored or derived from them.
     s.remake = !(here && here->alive &&
                  Layout{std::uint8_t(here->alive), here->generation, here->defChanges, here->chassis,
                         std::uint32_t(here->wheels.size()), std::uint32_t(here->derived.size())} == s.layout &&
