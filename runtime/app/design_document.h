@@ -97,8 +97,8 @@ struct PlacedObject {
   bool operator==(const PlacedObject&) const = default;
 };
 
-/// "MOD:path" of every model file (.obj, .3ds, .gltf, .glb, .dae, .fbx,
-/// .ply, .stl) under assets/ of each mod found in `modFolders` (e.g.
+/// "MOD:path" of every model file (render::hasModelExtension: .obj, .gltf,
+/// .glb, .fbx, .dae, .3ds) under assets/ of each mod found in `modFolders` (e.g.
 /// modSearchDirs({})), sorted: the object palette. Thumbnails are the UI's.
 std::vector<std::string> listModelAssets(const std::vector<std::string>& modFolders);
 /// "MOD:name" of every emitter definition (emitters/NAME.lua) of those mods, sorted.

@@ -26,6 +26,7 @@
 #include "app/paths.h"
 #include "app/scene_models.h"
 #include "app/terrain_scene.h"
+#include "render/model.h"
 #include "core/file_util.h"
 #include "script/mods.h"
 #include "script/presentation.h"
@@ -500,7 +501,6 @@ void syncFolder(const fs::path& dir) {
 // ---- palettes ----------------------------------------------------------------------------------
 
 std::vector<std::string> listModelAssets(const std::vector<std::string>& modFolders) {
-  static const std::set<std::string> kModelExtensions{".obj", ".3ds", ".gltf", ".glb", ".dae", ".fbx", ".ply", ".stl"};
   std::vector<std::string> out;
   const script::ModRegistry registry = script::ModRegistry::discover(modFolders);
   for (const script::ModInfo& mod : registry.mods()) {
@@ -509,9 +509,7 @@ std::vector<std::string> listModelAssets(const std::vector<std::string>& modFold
     if (!fs::is_directory(assets, ec)) continue;
     for (auto it = fs::recursive_directory_iterator(assets, fs::directory_options::skip_permission_denied, ec);
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-      std::string ext = it->path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-      if (it->is_regular_file(ec) && kModelExtensions.count(ext))
+      if (it->is_regular_file(ec) && render::hasModelExtension(it->path().string()))
         out.push_back(mod.name + ":" + fs::relative(it->path(), mod.dir, ec).generic_string());
     }
   }

@@ -1,7 +1,7 @@
 #pragma once
 // Models as plain data: a node tree with transforms, triangle meshes,
 // materials and decoded texture images. Loaded with assimp (model_loader.cpp:
-// .3ds, .obj + .mtl, .gltf / .glb, .dae and whatever else assimp reads), but
+// .obj + .mtl, .gltf / .glb, .fbx, .dae and .3ds: only those importers), but
 // nothing in this header is assimp or OpenGL, so the app can compute mass
 // properties or collision boxes from a Model without a GL context, and tests
 // can check bounds and culling without one.
@@ -115,6 +115,9 @@ struct ModelLoadOptions {
 /// file inside the model's folder: paths such as "../../etc/passwd" in a
 /// material are not read (the texture counts as missing).
 Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const ModelLoadOptions& options = {});
+/// True if the file's name ends in the extension of a format loadModel
+/// reads (.obj, .gltf, .glb, .fbx, .dae, .3ds; any case): what palettes list.
+bool hasModelExtension(const std::string& path);
 
 /// Recomputes toModel and every node's tight and covering bounds (the loader
 /// calls it; call it again after editing a Model by hand).

@@ -7,8 +7,10 @@
 #include <stb_image.h>  // libstb provides the implementation
 
 #include <algorithm>
+#include <assimp/BaseImporter.h>
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -48,6 +50,56 @@ float srgbToLinear(float c) {
   c = std::min(c, 1.0f);
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
+
+// The formats a model may be in: what modelling tools export for games.
+// Only these importers of assimp's ~40 are kept. Debian's assimp 5.2.5 PLY
+// importer loops for ever on a header whose list property has an unknown
+// count type ("property list uchar int10 ..."; found by the model fuzzer),
+// and assimp picks an importer by content when none claims the name, so a
+// mod's "tree.obj" holding that text reached it. Fewer importers, less of
+// third-party parsing a mod's file can reach.
+constexpr const char* kModelFormats[] = {"obj", "gltf", "glb", "fbx", "dae", "3ds"};
+constexpr const char* kModelFormatList = ".obj (+ .mtl), .gltf / .glb, .fbx, .dae or .3ds";
+
+bool isModelFormat(const std::string& extension) {
+  for (const char* f : kModelFormats)
+    if (lower(extension) == f) return true;
+  return false;
+}
+
+// Removes (and frees: UnregisterLoader does not) every importer that reads
+// none of kModelFormats.
+void keepModelImporters(Assimp::Importer& importer) {
+  std::vector<Assimp::BaseImporter*> others;
+  for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    const aiImporterDesc* desc = importer.GetImporterInfo(i);
+    bool keep = false;
+    std::string extension;
+    for (const char* c = desc && desc->mFileExtensions ? desc->mFileExtensions : "";; ++c) {
+      if (*c == ' ' || *c == '\0') {
+        keep = keep || isModelFormat(extension);
+        extension.clear();
+        if (*c == '\0') break;
+      } else {
+        extension += *c;
+      }
+    }
+    if (!keep) others.push_back(importer.GetImporter(i));
+  }
+  for (Assimp::BaseImporter* other : others) {
+    importer.UnregisterLoader(other);
+    delete other;
+  }
+}
+
+}  // namespace
+
+bool hasModelExtension(const std::string& path) {
+  const std::string extension = fs::path(path).extension().string();
+  return extension.size() > 1 && isModelFormat(extension.substr(1));
+}
+
+namespace {
 
 // True if `path` (resolved, symlinks followed) lies inside `root` (resolved).
 bool isInside(const fs::path& root, const fs::path& path) {
@@ -305,6 +357,7 @@ Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const Mo
     return makeError(path + ": scale must be a positive number, got " + std::to_string(options.scale));
   }
   Assimp::Importer importer;
+  keepModelImporters(importer);
   importer.SetIOHandler(new ConfinedIOSystem(fs::absolute(path).parent_path()));  // the importer owns it
   // Lines and points are dropped: models here are surfaces.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_LINE | aiPrimitiveType_POINT);
@@ -315,7 +368,7 @@ Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const Mo
     std::string why = importer.GetErrorString();
     if (why.empty()) why = "assimp could not read it";
     return makeError(path + ": not a readable model (" + why +
-                     "); expected .3ds, .obj, .gltf/.glb, .dae or another format assimp reads");
+                     "); expected " + kModelFormatList);
   }
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mRootNode == nullptr) {
     return makeError(path + ": the model is incomplete (no scene graph or no meshes); is the file truncated?");

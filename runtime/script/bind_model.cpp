@@ -7,7 +7,7 @@
 //   world.add_static_model("base:assets/models/rock.obj", {position = {5, 0, 3}, scale = 1.5})
 //
 // Paths are "MOD:path/in/mod" or a path inside the calling mod. Files are
-// .obj (+ .mtl), .3ds, .gltf / .glb, .dae or anything else assimp reads.
+// .obj (+ .mtl), .gltf / .glb, .fbx, .dae or .3ds (render/model.h).
 #include <algorithm>
 #include <optional>
 #include <set>
