@@ -102,9 +102,14 @@ struct Model {
 
 struct ModelLoadOptions {
   float scale = 1.0f;  // uniform factor applied to the root (file units -> m)
+  /// The importer process is stopped after this long, s (a file assimp
+  /// loops on); the largest models the loader takes import in a few seconds.
+  double importTimeout_s = 60.0;
 };
 
-/// Loads a model with assimp. Textures are decoded with stb_image: files next
+/// Loads a model with assimp, in a process of its own (tumble_model_import,
+/// render/internal/model_import.h): a file that crashes or hangs assimp is
+/// an error naming it, never a crash or a hang of the game. Textures are decoded with stb_image: files next
 /// to the model (names matched case-insensitively, as old 3DS files store
 /// them upper-case) and textures embedded in .glb / .gltf / .3ds. A missing or
 /// unreadable texture is not an error: the material keeps its colour and a

@@ -18,7 +18,7 @@
 #include <map>
 #include <optional>
 
-#include "core/log.h"
+#include "render/internal/model_import.h"
 #include "render/model.h"
 
 namespace tumble::render {
@@ -94,6 +94,14 @@ void keepModelImporters(Assimp::Importer& importer) {
 
 }  // namespace
 
+Status checkModelRequest(const std::string& path, const ModelLoadOptions& options) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return makeError(path + ": no such model file");
+  if (!(options.scale > 0) || !std::isfinite(options.scale))
+    return makeError(path + ": scale must be a positive number, got " + std::to_string(options.scale));
+  return Ok{};
+}
+
 bool hasModelExtension(const std::string& path) {
   const std::string extension = fs::path(path).extension().string();
   return extension.size() > 1 && isModelFormat(extension.substr(1));
@@ -117,12 +125,13 @@ bool isInside(const fs::path& root, const fs::path& path) {
 // never reads "../../../../etc/passwd", a FIFO or /dev/zero.
 class ConfinedIOSystem : public Assimp::DefaultIOSystem {
  public:
-  explicit ConfinedIOSystem(fs::path root) : m_root(std::move(root)) {}
+  ConfinedIOSystem(fs::path root, std::vector<std::string>* warnings)
+      : m_root(std::move(root)), m_warnings(warnings) {}
   bool Exists(const char* file) const override { return allowed(file) && DefaultIOSystem::Exists(file); }
   Assimp::IOStream* Open(const char* file, const char* mode = "rb") override {
     if (!allowed(file)) {
-      log::warn(std::string("model file refers to \"") + file + "\", outside " + m_root.string() +
-                " or not a regular file; not read");
+      m_warnings->push_back(std::string("model file refers to \"") + (file ? file : "") + "\", outside " +
+                            m_root.string() + " or not a regular file; not read");
       return nullptr;
     }
     return DefaultIOSystem::Open(file, mode);
@@ -134,6 +143,7 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
     return file && isInside(m_root, file) && fs::is_regular_file(file, ec);
   }
   fs::path m_root;
+  std::vector<std::string>* m_warnings;
 };
 
 // A texture path as stored in the file ("C:\\MAPS\\JEEP1.JPG", "tex/a.png")
@@ -235,7 +245,6 @@ class Converter {
       if (source.GetTextureCount(aiTextureType_EMISSIVE) > 0) {
         std::string warning = m_path + ": material \"" + material.name +
                               "\": its emissive texture is not drawn; the surface does not glow";
-        log::warn(warning);
         m_model.warnings.push_back(std::move(warning));
       } else if (source.Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS) {
         material.emissive = {srgbToLinear(emissive.r), srgbToLinear(emissive.g), srgbToLinear(emissive.b)};
@@ -334,7 +343,6 @@ class Converter {
     } else {
       std::string warning = m_path + ": material \"" + materialName + "\": " + decoded.error() +
                             "; drawing it in its material colour";
-      log::warn(warning);
       m_model.warnings.push_back(std::move(warning));
     }
     m_imageIndex[stored] = index;
@@ -350,15 +358,12 @@ class Converter {
 
 }  // namespace
 
-Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const ModelLoadOptions& options) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return makeError(path + ": no such model file");
-  if (!(options.scale > 0) || !std::isfinite(options.scale)) {
-    return makeError(path + ": scale must be a positive number, got " + std::to_string(options.scale));
-  }
+Result<std::shared_ptr<const Model>> loadModelInThisProcess(const std::string& path, const ModelLoadOptions& options) {
+  if (Status st = checkModelRequest(path, options); !st) return makeError(st.error());
   Assimp::Importer importer;
   keepModelImporters(importer);
-  importer.SetIOHandler(new ConfinedIOSystem(fs::absolute(path).parent_path()));  // the importer owns it
+  std::vector<std::string> fileWarnings;
+  importer.SetIOHandler(new ConfinedIOSystem(fs::absolute(path).parent_path(), &fileWarnings));  // the importer owns it
   // Lines and points are dropped: models here are surfaces.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_LINE | aiPrimitiveType_POINT);
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
@@ -375,6 +380,7 @@ Result<std::shared_ptr<const Model>> loadModel(const std::string& path, const Mo
   }
   auto model = std::make_shared<Model>();
   model->source = path;
+  model->warnings = std::move(fileWarnings);
   Converter converter(path, *scene, *model);
   converter.materials();
   if (Status s = converter.meshes(); !s) return makeError(s.error());

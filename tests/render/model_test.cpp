@@ -13,6 +13,7 @@
 #include <stb_image_write.h>
 
 #include "render/internal/camera_math.h"
+#include "render/internal/model_import.h"
 #include "render/model.h"
 #include "shared_assets.h"
 
@@ -285,6 +286,122 @@ TEST(ModelLoad, APlyHeaderThatHangsAssimpIsRefusedUnderAnyName) {
         << model.error();
   }
   fs::remove_all(dir);
+}
+
+// Debian's assimp 5.2.5 dereferences a null material when an .mtl has a
+// texture line before its first newmtl (found by the model fuzzer). The
+// import runs in its own process, so the game gets an error naming the
+// file instead of dying with it.
+TEST(ModelLoad, AnMtlThatCrashesAssimpIsAnErrorAndTheGameGoesOn) {
+  const fs::path dir = scratchDir("crash");
+  std::ofstream(dir / "crate.obj") << "mtllib crate.mtl\no crate\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "crate.mtl") << "map_Kd wood.png\nnewmtl wood\nKd 1 1 1\n";
+  auto model = loadModel((dir / "crate.obj").string());
+  ASSERT_FALSE(model.ok());
+  EXPECT_NE(model.error().find("crate.obj: the model importer crashed on this file"), std::string::npos)
+      << model.error();
+  // The same files with the texture inside the material load.
+  std::ofstream(dir / "crate.mtl") << "newmtl wood\nKd 1 1 1\nmap_Kd wood.png\n";
+  auto fixed = loadModel((dir / "crate.obj").string());
+  ASSERT_TRUE(fixed.ok()) << fixed.error();
+  EXPECT_EQ((*fixed)->triangleCount(), 1u);
+  fs::remove_all(dir);
+}
+
+// An importer that never answers is stopped at the model's time limit, and
+// one that answers nonsense is refused, with messages naming the file.
+TEST(ModelLoad, AnImporterThatHangsIsStoppedAndADamagedAnswerIsRefused) {
+  const fs::path dir = scratchDir("hang");
+  std::ofstream(dir / "box.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const fs::path hang = dir / "hang.sh", garbage = dir / "garbage.sh";
+  std::ofstream(hang) << "#!/bin/sh\nexec sleep 30\n";
+  std::ofstream(garbage) << "#!/bin/sh\nprintf 'TIM1 this is not a model'\n";
+  fs::permissions(hang, fs::perms::owner_all);
+  fs::permissions(garbage, fs::perms::owner_all);
+  ModelLoadOptions quick;
+  quick.importTimeout_s = 1;
+  ::setenv("TUMBLE_MODEL_IMPORTER", hang.c_str(), 1);
+  auto hung = loadModel((dir / "box.obj").string(), quick);
+  ::setenv("TUMBLE_MODEL_IMPORTER", garbage.c_str(), 1);
+  auto damaged = loadModel((dir / "box.obj").string(), quick);
+  ::setenv("TUMBLE_MODEL_IMPORTER", (dir / "missing").c_str(), 1);
+  auto missing = loadModel((dir / "box.obj").string(), quick);
+  ::unsetenv("TUMBLE_MODEL_IMPORTER");
+  ASSERT_FALSE(hung.ok());
+  EXPECT_NE(hung.error().find("box.obj: the model importer did not finish within 1 s"), std::string::npos)
+      << hung.error();
+  ASSERT_FALSE(damaged.ok());
+  EXPECT_NE(damaged.error().find("box.obj: the model importer's answer is damaged"), std::string::npos)
+      << damaged.error();
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().find("cannot start the model importer"), std::string::npos) << missing.error();
+  auto real = loadModel((dir / "box.obj").string(), quick);
+  ASSERT_TRUE(real.ok()) << real.error();
+  fs::remove_all(dir);
+}
+
+// The importer's answer carries the whole model: what the game gets through
+// it is what the loader made, field for field; every cut of the answer and
+// every changed byte is refused or gives a model whose indices all hold.
+TEST(ModelImport, TheAnswerCarriesTheModelAndDamagedAnswersAreRefused) {
+  const std::string path = sharedAsset("models/cube_with_diffuse_texture.3DS");
+  if (path.empty()) GTEST_SKIP() << "../shared/assets/third_party not found";
+  auto here = loadModelInThisProcess(path, {});
+  ASSERT_TRUE(here.ok()) << here.error();
+  auto there = loadModel(path);
+  ASSERT_TRUE(there.ok()) << there.error();
+  const Model &a = **here, &b = **there;
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  ASSERT_EQ(a.meshes.size(), b.meshes.size());
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  ASSERT_EQ(a.images.size(), b.images.size());
+  EXPECT_EQ(a.warnings, b.warnings);
+  for (std::size_t i = 0; i < a.meshes.size(); ++i) {
+    EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
+    EXPECT_EQ(a.meshes[i].normals, b.meshes[i].normals);
+    EXPECT_EQ(a.meshes[i].uvs, b.meshes[i].uvs);
+    EXPECT_EQ(a.meshes[i].triangles, b.meshes[i].triangles);
+    EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
+  }
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    EXPECT_EQ(a.nodes[i].toModel, b.nodes[i].toModel);
+    EXPECT_EQ(a.nodes[i].children, b.nodes[i].children);
+    EXPECT_EQ(a.nodes[i].coverBox.min, b.nodes[i].coverBox.min);
+    EXPECT_EQ(a.nodes[i].coverBox.max, b.nodes[i].coverBox.max);
+  }
+  for (std::size_t i = 0; i < a.images.size(); ++i) EXPECT_EQ(a.images[i].rgba, b.images[i].rgba);
+  for (std::size_t i = 0; i < a.materials.size(); ++i) EXPECT_EQ(a.materials[i].image, b.materials[i].image);
+
+  // Damaged answers: cuts and changed bytes (the image's pixels are most of
+  // the bytes; steps keep this quick while every field is hit).
+  const std::string bytes = encodeImportResult(here);
+  int taken = 0, refused = 0;
+  auto check = [&](const std::string& changed) {
+    auto m = decodeImportResult(changed, "x");
+    if (!m.ok()) {
+      ++refused;
+      EXPECT_NE(m.error().find("x: "), std::string::npos) << m.error();
+      return;
+    }
+    ++taken;
+    const Model& model = **m;
+    for (const ModelNode& node : model.nodes)
+      for (int c : node.children) ASSERT_LT(std::size_t(c), model.nodes.size());
+    for (const ModelMesh& mesh : model.meshes) {
+      ASSERT_LT(std::size_t(mesh.material), model.materials.size());
+      for (const auto& t : mesh.triangles)
+        for (std::uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
+    }
+  };
+  for (std::size_t cut = 0; cut < bytes.size(); cut += 1 + cut / 64) check(bytes.substr(0, cut));
+  for (std::size_t at = 0; at < bytes.size(); at += 1 + at / 256)
+    for (unsigned char v : {0x00, 0x01, 0x7f, 0x80, 0xff}) {
+      std::string changed = bytes;
+      changed[at] = char(v);
+      check(changed);
+    }
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(taken, 0);  // pixel and coordinate bytes may take any value
 }
 
 TEST(ModelLoad, MissingTextureFallsBackToTheMaterialColourWithAWarning) {
