@@ -56,6 +56,9 @@ json measured(const RunResult& r) {
     j["contact_solver_ms_median"] = median(r.contactSolverMs);
     j["contact_points_median"] = median(r.contactPoints);
     j["contact_solver_ns_per_point_substep"] = perPoint.empty() ? json(nullptr) : json(median(perPoint));
+    // Bodies the world froze for a non-finite state (Tumble's errorStats;
+    // the peers do not count theirs).
+    j["nan_events"] = r.nanEvents;
   }
   return j;
 }

@@ -57,6 +57,9 @@ btCollisionShape* shapeFor(BulletWorld& bw, const BodySpec& s) {
   }
   if (s.shape == BodyShape::Capsule)  // not shared: rag-doll parts differ in size anyway
     bw.shapes.push_back(std::make_unique<btCapsuleShape>(btScalar(s.radius_m), btScalar(2 * s.halfHeight_m)));
+  else if (s.shape == BodyShape::Cylinder)  // axis Y, as the scene's; its margin lies inside the half extents
+    bw.shapes.push_back(std::make_unique<btCylinderShape>(
+        btVector3(btScalar(s.radius_m), btScalar(s.halfHeight_m), btScalar(s.radius_m))));
   else if (s.shape == BodyShape::Box)
     bw.shapes.push_back(std::make_unique<btBoxShape>(
         btVector3(btScalar(s.halfExtents_m.x()), btScalar(s.halfExtents_m.y()), btScalar(s.halfExtents_m.z()))));

@@ -165,20 +165,24 @@ RunResult runOde(const SceneSpec& scene, int steps, double dt, const OdeConfig& 
         g = dCreateCapsule(s.space, b.radius_m, 2 * b.halfHeight_m);
         if (!b.isStatic()) dMassSetCapsuleTotal(&m, b.mass_kg, 2 /* y */, b.radius_m, 2 * b.halfHeight_m);
         break;
+      case BodyShape::Cylinder:
+        g = dCreateCylinder(s.space, b.radius_m, 2 * b.halfHeight_m);
+        if (!b.isStatic()) dMassSetCylinderTotal(&m, b.mass_kg, 2 /* y */, b.radius_m, 2 * b.halfHeight_m);
+        break;
     }
     if (!b.isStatic()) {
       dBodyID body = dBodyCreate(s.world);
       dBodySetMass(body, &m);
       dGeomSetBody(g, body);
-      if (b.shape == BodyShape::Capsule) {  // ODE's capsule axis is local Z; the scene's is Y
+      if (b.shape == BodyShape::Capsule || b.shape == BodyShape::Cylinder) {  // ODE's axis is local Z; the scene's is Y
         dMatrix3 R;
         dRFromAxisAndAngle(R, 1, 0, 0, -M_PI / 2);
         dGeomSetOffsetRotation(g, R);
       }
       dBodySetLinearVel(body, b.velocity_mps.x(), b.velocity_mps.y(), b.velocity_mps.z());
       bodies[i] = body;
-    } else if (b.shape == BodyShape::Capsule) {
-      TUMBLE_ASSERT(false, "static capsules are not used by any comparison scene");
+    } else if (b.shape == BodyShape::Capsule || b.shape == BodyShape::Cylinder) {
+      TUMBLE_ASSERT(false, "static capsules and cylinders are not used by any comparison scene");
     }
     setPose(g, bodies[i], b);
   }

@@ -48,9 +48,10 @@ RunResult runTumble(const SceneSpec& scene, int steps, double dt, const TumbleCo
   for (const BodySpec& s : scene.bodies) {
     BodyDef def;
     def.type = s.isStatic() ? BodyType::Static : BodyType::Dynamic;
-    def.shape = s.shape == BodyShape::Box      ? Shape::box(s.halfExtents_m.cast<Real>())
-                : s.shape == BodyShape::Sphere ? Shape::sphere(Real(s.radius_m))
-                                               : Shape::capsule(Real(s.radius_m), Real(s.halfHeight_m));
+    def.shape = s.shape == BodyShape::Box        ? Shape::box(s.halfExtents_m.cast<Real>())
+                : s.shape == BodyShape::Sphere   ? Shape::sphere(Real(s.radius_m))
+                : s.shape == BodyShape::Cylinder ? Shape::cylinder(Real(s.radius_m), Real(s.halfHeight_m))
+                                                 : Shape::capsule(Real(s.radius_m), Real(s.halfHeight_m));
     def.position_m = s.position_m.cast<Real>();
     def.orientation = s.orientation.cast<Real>();
     def.linearVelocity_mps = s.velocity_mps.cast<Real>();

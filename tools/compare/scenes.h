@@ -16,13 +16,13 @@ namespace tumble::compare {
 
 using V3 = Eigen::Vector3d;
 
-enum class BodyShape { Box, Sphere, Capsule };
+enum class BodyShape { Box, Sphere, Capsule, Cylinder };
 
 struct BodySpec {
   BodyShape shape = BodyShape::Box;
   V3 halfExtents_m = V3::Constant(0.5);  ///< Box
-  double radius_m = 0.5;                 ///< Sphere, Capsule
-  double halfHeight_m = 0.5;             ///< Capsule: half length of the core along local Y
+  double radius_m = 0.5;                 ///< Sphere, Capsule, Cylinder
+  double halfHeight_m = 0.5;             ///< Capsule: half length of the core along local Y; Cylinder: half its height (axis local Y)
   V3 position_m = V3::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   V3 velocity_mps = V3::Zero();
