@@ -72,8 +72,14 @@ int worldSpring(lua_State* L) {
 /// @param id integer what world.spring returned
 /// @return boolean true if the spring was still there
 int worldRemoveSpring(lua_State* L) {
-  const double v = checkNumber(L, 1, "spring id");
-  const auto packed = lua_Integer(v);
+  // The id is an integer (a float with an integer value too); any other
+  // number is no spring's, and converting one such as -1e308 to an
+  // integer would be undefined (found by the scenario fuzzer).
+  int isInteger = 0;
+  const lua_Integer packed = lua_tointegerx(L, 1, &isInteger);
+  if (!isInteger || lua_type(L, 1) != LUA_TNUMBER)
+    throw LuaArgError(std::string("world.remove_spring: expected a spring id (the integer world.spring returned), got ") +
+                      (lua_type(L, 1) == LUA_TNUMBER ? toDisplayString(L, 1) : std::string(luaL_typename(L, 1))));
   physics::SpringId id{std::uint32_t(packed & 0xffffffff), std::uint32_t(packed >> 32)};
   lua_pushboolean(L, ScenarioHost::from(L)->world().removeSpring(id));
   return 1;

@@ -55,5 +55,10 @@ return {
     fails_with("spring: a must be a body", "'a'", world.spring, {a = 3, anchor = {0, 3, 0}, stiffness = 10})
     local id = world.spring{a = ball, anchor = {0, 3, 0}, stiffness = 10}
     expect("spring: removed once", world.remove_spring(id) and not world.remove_spring(id))
+    -- Found by the scenario fuzzer: -1e308 was converted to an integer (undefined).
+    for _, bad in ipairs({-1e308, 1e308, 0.5, math.huge, 0 / 0}) do
+      fails_with("spring: id " .. tostring(bad) .. " is refused", "expected a spring id", world.remove_spring, bad)
+    end
+    fails_with("spring: a string id is refused", "got string", world.remove_spring, tostring(id))
   end,
 }
