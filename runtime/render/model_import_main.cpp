@@ -4,6 +4,7 @@
 // model, so that a file that crashes or hangs assimp takes down this
 // process, not the game (render/internal/model_import.h). SCALE is a
 // hexadecimal float ("%a").
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,6 +22,16 @@ int main(int argc, char** argv) {
                  "  tumble starts this to read a model file in a process of its own; it writes the model as bytes\n");
     return 2;
   }
+  // A damaged file can make assimp ask for tens of gigabytes (the model
+  // fuzzer found a 48 GB request inside libassimp); this process may have
+  // 8 GiB of address space, more than the largest model the loader takes
+  // needs (its answer is capped at 2 GiB), so such a file fails here
+  // instead of pushing the machine into swap. Not under AddressSanitizer,
+  // whose shadow memory is a far larger mapping.
+#if !defined(__SANITIZE_ADDRESS__) && !(defined(__has_feature) && __has_feature(address_sanitizer))
+  const rlimit space{rlim_t(8) << 30, rlim_t(8) << 30};
+  ::setrlimit(RLIMIT_AS, &space);
+#endif
   // Warnings travel in the answer (Model::warnings) and the game logs them.
   tumble::log::setLevel(tumble::log::Level::Error);
   tumble::render::ModelLoadOptions options;
