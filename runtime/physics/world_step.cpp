@@ -17,7 +17,9 @@
 // step was; after the last substep, at the end of the step): the relax
 // sweeps between work with the w the positions just moved with, and the
 // Lagrange joint solver counts the change as a known force, as it counted
-// the gyroscopic step (lagrange_substeps.cpp, "Time stepping"). Applied at
+// the gyroscopic step (lagrange_substeps.cpp, "Time stepping"), and counts
+// what the turn did to the positions in its rows' curvature
+// (addFreeTurnCurvature there). Applied at
 // once instead, the Lagrange relax pulled it back out (its rows and their
 // curvature are the substep's start): over 48 piles of rag-dolls (8-12
 // dolls, dt 1/60 and 1/30, 4 and 8 substeps, shifted by up to 2 mm) the

@@ -333,11 +333,14 @@ void tops(std::vector<AccuracyRow>& rows) {
             makeRow("top", what + ": largest opening of the joint", "m", 0, opened, 0.01,
                     "1 cm (asked of the joint solver)")};
         for (AccuracyRow& r : rows3) {
-          if (solver == physics::JointSolverKind::Lagrange && !r.pass()) {
+          // The fast spin only: at 50 rad/s the Lagrange solver must hold.
+          if (solver == physics::JointSolverKind::Lagrange && spin > 100 && !r.pass()) {
             r.knownLimit = true;
-            r.note = "known limit of the Lagrange solver with a fast spin: the joint opens by centimetres, second order "
-                     "in the substep (the sphere at 200 rad/s: 183, 51, 13, 3.6 mm at 4, 8, 16, 32 substeps); the "
-                     "impulse solver holds the same tops within 1.4 mm";
+            r.note = "known limit of the Lagrange solver at 200 rad/s (0.42 rad of spin a substep): its rows take the "
+                     "curvature J'q' at the substep's start velocity, and w turns by h alpha within the substep; the "
+                     "joint opens by centimetres, second order in the substep (square box 75, 22, 6.3, 1.8 mm and "
+                     "sphere 183, 51, 13, 3.6 mm at 4, 8, 16, 32 substeps); the impulse solver holds the same tops "
+                     "within 1.4 mm";
           }
           rows.push_back(r);
         }

@@ -48,6 +48,7 @@ struct Row {
   int a = -1, b = -1;       ///< body states; -1 = world
   V6 ja = V6::Zero(), jb = V6::Zero();
   double c = 0, cdot = 0, jdq = 0;
+  double jturn = 0;  ///< substeps: J_w alpha, the World's free turn within the substep (addFreeTurnCurvature), m/s^2 or rad/s^2
   double k = 0, d = 0;   ///< spring gains when soft
   bool limit = false;    ///< inequality row, lambda >= 0
   bool soft = false;     ///< explicit spring, not solved
@@ -188,6 +189,7 @@ struct JointSystem::Impl {
   double time_s = 0;        ///< simulated time of the substeps solved so far (the contacts' memory)
   std::vector<lagrange::V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
   std::vector<lagrange::V3> dv, dw;   ///< per state: velocity change of a projection (substepProject)
+  std::vector<lagrange::V3> freeTurn;  ///< per state: angular acceleration of the World's free turn, rad/s^2 (substepSolve)
   std::vector<double> rowImpulse;  ///< per row: impulse of a projection
   /// Per World body slot: the velocity right after the joints last changed
   /// it, and in which World step (q' of the last solve; see "Time stepping").

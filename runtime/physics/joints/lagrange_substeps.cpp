@@ -238,6 +238,46 @@ static bool keepsCurvature(const JointSystem::Impl& im, const Row& r) {
   return !r.limit && im.endVelocityMovesPositions && !r.touched;
 }
 
+/// The turn of a body within the substep, in each row's curvature. A body
+/// whose principal moments differ is turned by the World as a free rigid
+/// body (world_step.cpp, "Rotation"): its w changes within the substep by
+/// the gyroscopic acceleration alpha = -I^-1 (w x I w), and the orientation
+/// the positions end with carries h^2/2 J_w alpha of it. The World hands
+/// that change of w over at the next substep's start, where q'_J makes it a
+/// known force; the position it moved is already there. So the second
+/// derivative of C along the World's motion is kappa = J'q' + J_w alpha,
+/// not J'q' alone (lagrange_solver.cpp, which solves forces, has alpha in
+/// Q). The target takes -h/2 kappa as the chord the positions move along
+/// (and the relax keeps it), while the C' a row arrives with, measured with
+/// q'_J (the turn not yet in it), is naturally h/2 (J'q' - J_w alpha):
+/// substepSolve and substepProject, "Relax target".
+/// Without it a level top sank by h^2/2 (I3/I1 - 1) w3 wp d a substep: in
+/// the accuracy suite (8 substeps, 4.5 s) the joint of a disc spinning at
+/// 50 rad/s opened 41 mm and of a square box 74 mm (0.53 and 1.03 mm in the
+/// first step at 200 rad/s, as that predicts); with it 1.3 and 1.8 mm.
+static void addFreeTurnCurvature(const std::vector<BodyState>& st, const Body* bodies, bool gyroscopic,
+                                 std::vector<V3>& alpha, std::vector<Row>& rows) {
+  for (Row& r : rows) r.jturn = 0;
+  if (!gyroscopic) return;
+  alpha.assign(st.size(), V3::Zero());
+  bool any = false;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const BodyState& s = st[i];
+    const Vec3& I = bodies[s.id.index].inertiaLocal_kgm2;
+    // The World's test (world_step.cpp, integratePositions): equal moments
+    // turn to first order, with w unchanged.
+    if (!s.dynamic || (I.x() == I.y() && I.y() == I.z())) continue;
+    const M3 Iw = s.R * s.inertiaLocal.asDiagonal() * s.R.transpose();
+    alpha[i] = -(s.invI * s.w.cross(Iw * s.w));
+    any = true;
+  }
+  if (!any) return;
+  for (Row& r : rows) {
+    if (r.a >= 0) r.jturn += r.ja.tail<3>().dot(alpha[r.a]);
+    if (r.b >= 0) r.jturn += r.jb.tail<3>().dot(alpha[r.b]);
+  }
+}
+
 /// J q' of one row for the velocities v, w (per state; -1 = the world, at rest).
 static double rowVelocity(const Row& r, const std::vector<V3>& v, const std::vector<V3>& w) {
   double c = 0;
@@ -298,6 +338,7 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   }
   deriveStates(st, m_settings, V3::Zero(), false);  // R, W at the substep's poses
   buildRows(im.ev, st, im.rows);  // C, J, J'q', C' = J q'
+  addFreeTurnCurvature(st, bodies, m_world.settings().gyroscopic, im.freeTurn, im.rows);
   addMotorTorques(im.ev, st, m_settings);
   // The parts of Q the World does not apply: springs (soft rows, lambda =
   // -k C - c C') and hinge motors, as impulses over the substep.
@@ -327,15 +368,19 @@ void JointSystem::substepSolve(SolverVelocity* vel, const Body* bodies) {
   // the natural part kept out of the feedback, as with no feedback at all,
   // 0.01 %):
   //   J v_end = n - h J'q' + (C' - n - h k_s C) / (1 + h k_d + h^2 k_s),
-  // n = h/2 J'q'. Elsewhere (limits, touched rows, averaging integrators)
-  // the formula above.
+  // n = h/2 J'q'. For a body the World turns as a free body, J'q' becomes
+  // kappa = J'q' + J_w alpha in the chord and n = h/2 (J'q' - J_w alpha)
+  // (addFreeTurnCurvature says why):
+  //   J v_end = -h/2 kappa + (C' - n - h k_s C) / (1 + h k_d + h^2 k_s).
+  // Elsewhere (limits, touched rows, averaging integrators) the formula
+  // above.
   const double ks = m_settings.stiffness_per_s2, kd = m_settings.damping_per_s;
   const double feedback = 1 + h * kd + h * h * ks;
   markTouchedRows(im);
   for (Row& r : im.rows) {
     if (keepsCurvature(im, r)) {
-      const double natural = 0.5 * h * r.jdq;
-      r.target = natural - h * r.jdq + (r.cdot - natural - h * ks * r.c) / feedback;
+      const double natural = 0.5 * h * (r.jdq - r.jturn);
+      r.target = -0.5 * h * (r.jdq + r.jturn) + (r.cdot - natural - h * ks * r.c) / feedback;
     } else {
       const double carried = r.limit ? std::max(r.cdot, 0.0) : r.cdot;
       r.target = (carried - h * (r.jdq + ks * r.c)) / feedback;
@@ -448,7 +493,7 @@ double JointSystem::substepProject(SolverVelocity* vel, bool useBias) {
       //     10.6 cm (4.9 without).
       const double target = useBias          ? r.target
                             : r.limit          ? std::max(r.target, 0.0)
-                            : keepsCurvature(im, r) ? -0.5 * h * r.jdq
+                            : keepsCurvature(im, r) ? -0.5 * h * (r.jdq + r.jturn)
                                                     : 0.0;
       im.rhs[r.index] = target - rowVelocity(r, im.vk, im.wk);
     }
