@@ -10,6 +10,7 @@
 //     warmStart(vel, bodies)               after gravity/forces, with the contacts' warm start
 //     solve(vel, bodies, true)  x N        before each contact solve sweep (position error fed back)
 //     beforeIntegrate(vel, bodies)         after the last sweep (optional; the Lagrange joint solver)
+//     projectPushout(pseudo, bodies)       the contacts' push-out velocities onto the joints (optional; Lagrange)
 //     -- positions integrated --
 //     solve(vel, bodies, false) x M        before each contact relax sweep (no bias)
 //   finish(world)                          after the substeps, before sleep
@@ -46,6 +47,16 @@ class ConstraintSolver {
   /// nothing (the impulse joints are solved with the contacts in solve()).
   virtual void beforeIntegrate(SolverVelocity* vel, const Body* bodies) {
     (void)vel;
+    (void)bodies;
+  }
+  /// Just before the positions are integrated, after beforeIntegrate:
+  /// pseudo holds the split-impulse push-out velocities the contacts found
+  /// (contact_solver.cpp), which move the positions this substep and are
+  /// then dropped. A solver may change them so that they keep its
+  /// constraints (jointed parts pushed out of the ground together).
+  /// Default: nothing.
+  virtual void projectPushout(SolverVelocity* pseudo, const Body* bodies) {
+    (void)pseudo;
     (void)bodies;
   }
   /// After the substeps (before sleep): read back forces, breaks.

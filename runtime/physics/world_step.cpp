@@ -256,7 +256,10 @@ void World::substep(const SolverSettings& ss, ConstraintSolver* joints) {
     const Real r = contacts.solve(st.vel, st.pseudo, ss, true);
     if (r <= tol2 * contacts.lastMagnitude() && jr <= tol2) break;  // converged: see WorldSettings::solverTolerance
   }
-  if (joints) joints->beforeIntegrate(st.vel.data(), m_bodies.data());
+  if (joints) {
+    joints->beforeIntegrate(st.vel.data(), m_bodies.data());
+    joints->projectPushout(st.pseudo.data(), m_bodies.data());
+  }
   integratePositions(ss.h);
   if (m_settings.relaxIterations > 0) {
     PhaseClock clock(solverClock);

@@ -47,14 +47,15 @@ bool parseJointSolver(const std::string& text, JointSolverKind* out);
 struct JointSettings {
   /// The impulse solver by default. Measured on every base scene with
   /// joints under both (`tumble run base:SCENE --set physics.joint_solver=...
-  /// --report`, error.joint_error_max_m and the median step): the impulse
-  /// solver held the joints closer in five of seven (ragdoll_stairs 2.8 cm
-  /// against 4.7, ragdoll_hit 3.5 against 4.6, at 16 m/s 7.4 against 18,
-  /// crash_test 1.9 against 5.8, at 20 m/s 3.3 against 5.1) and cost 1.4 to
-  /// 11 times less CPU in all seven; the Lagrange solver was closer on the
-  /// chain (0.26 mm against 0.70) and the rag-doll pile (1.1 cm against
-  /// 1.6), and keeps long hanging chains far tighter (1000 links: 1.1 mm
-  /// against 6.6 cm). README "Joints and rag-dolls" has the table.
+  /// --report`, error.joint_error_max_m and the median step), 2026-11-28:
+  /// the impulse solver costs 1.6 to 10 times less CPU in all seven and
+  /// holds the joints closer in three (ragdoll_stairs 1.25 cm against 1.38,
+  /// crash_test 1.9 against 2.3, at 20 m/s 3.25 against 3.29); the Lagrange
+  /// solver in four (the chain 0.29 mm against 0.70, the rag-doll pile 2.0
+  /// mm against 1.6 cm, ragdoll_hit 1.2 against 2.6 cm, at 16 m/s 3.9
+  /// against 7.8, where the impulse solver fails "joints hold"), and keeps
+  /// long hanging chains far tighter (1000 links: 1.1 mm against 6.6 cm).
+  /// README "Joints and rag-dolls" has the table and why the cost decides.
   JointSolverKind solver = JointSolverKind::Impulse;
   /// Impulse solver: stiffness (Hz) and damping ratio of the soft position
   /// correction of the hard rows (Box2D v3 uses 60 Hz, 2; we use 120 Hz,
@@ -295,6 +296,7 @@ class JointSystem {
   void substepPrepare(double h_s);
   void substepSolve(SolverVelocity* vel, const Body* bodies);
   double substepProject(SolverVelocity* vel, bool useBias);
+  void substepProjectPushout(SolverVelocity* pseudo);
   void substepFinish();
   void postStabilize();  ///< lagrange_solver.cpp
   void prepare();  ///< joint order (when dirty), body states, evaluation lists (lagrange_solver.cpp)
