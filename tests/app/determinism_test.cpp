@@ -52,10 +52,16 @@ struct HashCase {
 // move only spheres, cubes, particles or points. Each scenario's
 // expectations still hold (tumble run, all 11); base:spin's T-handle keeps
 // its energy and |L| closer than before (8e-5 and 8e-6).
+// RagdollPileLagrange changed when the Lagrange joints began to project the
+// contacts' push-out velocities (lagrange_substeps.cpp, "Push-out"): the
+// dolls' parts pushed out of the ground and of each other now move with
+// the bodies they hang on. Its expectations still hold (pile at rest, joints
+// together) and its largest joint opening went from 11.9 to 2.0 mm; no
+// other case has Lagrange joints touching contacts.
 constexpr HashCase kCases[] = {
     {"Drop", "base:drop", "a40056f79e507047"},
     {"Pyramid", "base:pyramid", "ecd087b9bc83a7a4"},
-    {"RagdollPileLagrange", "base:ragdoll_pile --set physics.joint_solver=lagrange", "7cb1f896a4703202"},
+    {"RagdollPileLagrange", "base:ragdoll_pile --set physics.joint_solver=lagrange", "20291bb5dcdebd2b"},
     {"RagdollPileImpulse", "base:ragdoll_pile --set physics.joint_solver=impulse", "382532910686c578"},
     {"Drive", "base:drive --set autopilot=1", "c417c7a7bbd656cf"},
     {"Cloth", "base:cloth", "28da0f5e77239499"},
