@@ -464,7 +464,7 @@ void saveOdeSystems(lua_State* L, int made, ByteWriter& w) {
   }
 }
 
-Status restoreOdeSystems(lua_State* L, int made, ByteReader& r) {
+Status restoreOdeSystems(lua_State* L, int made, ByteReader& r, bool apply) {
   const auto saved = r.pod<std::int32_t>();
   if (!r.ok() || saved < 0) return makeError("damaged (ode systems)");
   // Read and checked whole, then applied: a refused restore changes nothing.
@@ -502,6 +502,7 @@ Status restoreOdeSystems(lua_State* L, int made, ByteReader& r) {
     s.y = Eigen::Map<const Eigen::VectorXd>(y.data(), Eigen::Index(y.size()));
     all.push_back(std::move(s));
   }
+  if (!apply) return Ok{};
   for (Saved& s : all) {
     s.o->y = s.y;
     s.o->t = s.t;

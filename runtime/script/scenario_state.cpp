@@ -344,9 +344,19 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
     if (hasMax) e.max = mx;
   }
   if (!r.ok()) return fail("damaged (truncated)");
-  if (Status st = restoreOdeSystems(L, m_odeSystemsMade, r); !st) return fail(st.error());
+  // Every part is read and checked before any is applied: a refused state
+  // changes nothing (the ODE systems and triggers are read again below).
+  // Before, a damaged state whose trigger part was whole removed the
+  // triggers it did not hold and was then refused for bytes further on,
+  // and the scene could not go back even to a state saved from itself
+  // (found by the snapshot fuzzer).
+  const std::size_t odeStart = r.position();
+  if (Status st = restoreOdeSystems(L, m_odeSystemsMade, r, false); !st) return fail(st.error());
+  const std::string odeBytes = r.bytesFrom(odeStart);
+  const std::size_t triggersStart = r.position();
   if (!ownsTimers)
-    if (Status st = m_triggers.restoreState(r, world().bodySlotCount()); !st) return fail(st.error());
+    if (Status st = m_triggers.restoreState(r, world().bodySlotCount(), false); !st) return fail(st.error());
+  const std::string triggerBytes = r.bytesFrom(triggersStart);
   Presentation presentation = m_presentation;
   Status seen = presentation.restoreState(
       r, [&](const std::string& ref) { return resolveModFile(ref, m_mod, m_options.modDirs); },
@@ -359,19 +369,32 @@ Status ScenarioHost::restoreState(const std::string& bytes, double time_s, std::
   if (ownsTimers != hasOnReload())
     return fail(ownsTimers ? "saved by a scenario with on_reload, this one has none"
                            : "saved by a scenario without on_reload, this one has one");
-  if (!ownsTimers && !m_timers.restoreSchedule(timers, nextId, nextSeq))
-    return fail("a timer the snapshot holds was not made by on_start here (the scenario file changed?)");
   lua_rawgeti(L, LUA_REGISTRYINDEX, m_envRef);
   const int env = lua_gettop(L);
   const std::pair<const char*, const char*> gens[] = {{"math", "random"}, {"random", "float"}};
+  void* generatorAt[2] = {nullptr, nullptr};
   for (int i = 0; i < 2; ++i) {
     std::size_t n = 0;
     void* p = nullptr;
     if (rawGetField(L, env, gens[i].first) == LUA_TTABLE) p = generatorState(L, lua_gettop(L), gens[i].second, &n);
     lua_pop(L, 1);
-    if (p && n == generators[i].size()) std::memcpy(p, generators[i].data(), n);
+    if (p && n == generators[i].size()) generatorAt[i] = p;
     else if (p || !generators[i].empty()) return fail(std::string(gens[i].first) + "." + gens[i].second +
                                                       ": the generator differs from the saved one");
+  }
+  // The last check; restoreSchedule changes nothing when it refuses.
+  if (!ownsTimers && !m_timers.restoreSchedule(timers, nextId, nextSeq))
+    return fail("a timer the snapshot holds was not made by on_start here (the scenario file changed?)");
+  // Applied: nothing below is refused.
+  for (int i = 0; i < 2; ++i)
+    if (generatorAt[i]) std::memcpy(generatorAt[i], generators[i].data(), generators[i].size());
+  {
+    ByteReader again(odeBytes);
+    (void)restoreOdeSystems(L, m_odeSystemsMade, again);
+  }
+  if (!ownsTimers) {
+    ByteReader again(triggerBytes);
+    (void)m_triggers.restoreState(again, world().bodySlotCount());
   }
   lua_rawgeti(L, LUA_REGISTRYINDEX, m_ctxRef);
   lua_pushvalue(L, state);

@@ -111,7 +111,7 @@ void TriggerSet::saveState(ByteWriter& w) const {
   }
 }
 
-Status TriggerSet::restoreState(ByteReader& r, std::size_t bodySlots) {
+Status TriggerSet::restoreState(ByteReader& r, std::size_t bodySlots, bool apply) {
   const auto nextId = r.pod<std::uint32_t>();
   const auto slots = r.pod<std::uint64_t>();
   // Each slot takes at least its id: a damaged count allocates no more than the bytes could hold.
@@ -136,6 +136,7 @@ Status TriggerSet::restoreState(ByteReader& r, std::size_t bodySlots) {
   for (std::size_t i = slots; i < m_triggers.size(); ++i)
     if (m_triggers[i].id != 0)
       return makeError("trigger " + std::to_string(m_triggers[i].id) + " was made here but is not in the snapshot");
+  if (!apply) return Ok{};
   for (std::size_t i = 0; i < slots; ++i) {
     if (i >= m_triggers.size()) m_triggers.emplace_back();  // a slot of a trigger made and removed since
     if (ids[i] == 0 && m_triggers[i].id != 0) remove(m_triggers[i].id);  // removed since

@@ -54,7 +54,9 @@ class TriggerSet {
   /// trigger this set does not have in that slot is refused; triggers
   /// removed since the start are removed again.
   void saveState(ByteWriter& w) const;
-  Status restoreState(ByteReader& r, std::size_t bodySlots);
+  /// apply = false: reads and checks only (nothing changes), so that a
+  /// caller can check every part of a state before it applies any.
+  Status restoreState(ByteReader& r, std::size_t bodySlots, bool apply = true);
 
  private:
   struct Trigger {

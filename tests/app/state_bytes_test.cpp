@@ -124,5 +124,45 @@ TEST(SnapshotBytes, CutOrChangedBytesAreRefusedOrRunNeverCrash) {
   EXPECT_EQ(stateHashText(*scene), expected);
 }
 
+// A refused script state changes nothing. The scenario's Lua state holds
+// a trigger made in on_start, a timer, both generators and ctx.state
+// (tests/app/mods/bodies/scenarios/script_state.lua). Eight bytes (zeros,
+// then 0xff) are inserted at every offset, so each part reads a shifted
+// tail and the state is refused somewhere after it. Each time the good state
+// must go back, and at the end it must give the reference hash. Before, the
+// trigger part was applied as soon as it was read: a shifted trigger id of
+// 0 removed the trigger, the state was then refused for its trailing bytes,
+// and the scene could not go back even to its own saved state ("trigger 1
+// is in the snapshot but on_start did not make it here"; found by the
+// snapshot fuzzer).
+TEST(SnapshotBytes, ARefusedScriptStateLeavesTheSceneAsItWas) {
+  auto scene = startScene("bodies:script_state");
+  ASSERT_TRUE(scene);
+  for (int i = 0; i < 20; ++i) step(*scene, i);
+  Saved good{script::saveSystems(*scene), {}};
+  auto script = scene->host().saveState();
+  ASSERT_TRUE(script) << script.error();
+  good.script = *script;
+  ASSERT_TRUE(restore(*scene, good));
+  for (int i = 0; i < 10; ++i) step(*scene, 20 + i);
+  const std::string expected = stateHashText(*scene);
+
+  int refused = 0;
+  for (const char fill : {'\0', '\xff'})
+    for (std::size_t at = 0; at <= good.script.size(); ++at) {
+      Saved trial = good;
+      trial.script.insert(at, 8, fill);
+      if (!restore(*scene, trial)) ++refused;
+      const Status back = restore(*scene, good);
+      ASSERT_TRUE(back) << "after 8 bytes inserted at " << at << ": " << back.error();
+    }
+  std::printf("[snapshot bytes] script state %zu bytes: %d of %zu insertions refused\n", good.script.size(), refused,
+              2 * (good.script.size() + 1));
+  EXPECT_GT(refused, 0);
+  ASSERT_TRUE(restore(*scene, good));
+  for (int i = 0; i < 10; ++i) step(*scene, 20 + i);
+  EXPECT_EQ(stateHashText(*scene), expected);
+}
+
 }  // namespace
 }  // namespace tumble::app

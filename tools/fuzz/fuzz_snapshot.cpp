@@ -167,12 +167,14 @@ void step(tumble::app::Scene& scene, long long from, int n) {
     tumble::app::stepScene(scene, tumble::app::StepTime{double(i) * scene.dt_s(), i}, timings);
 }
 
-bool restore(Fixture& f, const Parts& p) {
+/// Restores p; a refusal's message in *why.
+bool restore(Fixture& f, const Parts& p, std::string* why = nullptr) {
   const auto& modDirs = f.scene->host().options().modDirs;
-  if (!tumble::script::restoreSystems(
-          *f.scene, p.systems, [&](const std::string& file) { return tumble::script::isFileInMods(file, modDirs); }))
-    return false;
-  return bool(f.scene->host().restoreState(p.script, f.time_s, f.step));
+  tumble::Status st = tumble::script::restoreSystems(
+      *f.scene, p.systems, [&](const std::string& file) { return tumble::script::isFileInMods(file, modDirs); });
+  if (st) st = f.scene->host().restoreState(p.script, f.time_s, f.step);
+  if (!st && why) *why = st.error();
+  return bool(st);
 }
 
 Fixture& fixture() {
@@ -218,8 +220,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   // Every input starts from the saved scene; a refused part may have left
   // the parts before it restored, as world.restore puts the state back.
-  if (!restore(f, f.saved)) {
-    std::fprintf(stderr, "fuzz: the saved state could not be put back\n");
+  if (std::string why; !restore(f, f.saved, &why)) {
+    std::fprintf(stderr, "fuzz: the saved state could not be put back: %s\n", why.c_str());
     std::abort();
   }
   return 0;

@@ -53,7 +53,8 @@ void openOdeBindings(lua_State* L, int envIndex);
 /// refuses a live saved one this run has not made (made after on_start) or
 /// one of another size or method.
 void saveOdeSystems(lua_State* L, int made, ByteWriter& w);
-Status restoreOdeSystems(lua_State* L, int made, ByteReader& r);
+/// apply = false: reads and checks only (nothing changes).
+Status restoreOdeSystems(lua_State* L, int made, ByteReader& r, bool apply = true);
 /// world.spring and world.remove_spring (bind_spring.cpp); after openWorldBindings.
 void openSpringBindings(lua_State* L, int envIndex);
 /// world.snapshot and world.restore (bind_world_snapshot.cpp); after openWorldBindings.
