@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "grid_field.h"
 #include "physics/compound_shape.h"
 #include "physics/convex_hull.h"
+#include "physics/internal/manifold.h"
 #include "physics_fixture.h"
 
 namespace tumble::physics::test {
@@ -37,6 +39,22 @@ Shape puck(Real r, Real hh, int sides = 8) {
     p.emplace_back(r * std::cos(a), hh, r * std::sin(a));
   }
   return makeHullShape(p).value();
+}
+
+// Contact reduction of a face's points to four: points a body so far out
+// that its corners overflow give no distance that compares. The snapshot
+// fuzzer reached this through collideHullPlane and read c[-1]; now the
+// deepest point alone is kept, and finite points still give four.
+TEST(ContactReduction, NonFinitePointsKeepTheDeepestAloneAndFinitePointsKeepFour) {
+  const Real inf = std::numeric_limits<Real>::infinity();
+  ContactCandidate c[6];
+  for (int i = 0; i < 6; ++i) c[i] = {Vec3(inf, Real(i), -inf), Real(-0.01 * i), std::uint32_t(i)};
+  ASSERT_EQ(reduceToFourCandidates(c, 6, Vec3::UnitY()), 1);
+  EXPECT_EQ(c[0].id, 5u);  // the deepest
+  ContactCandidate f[6];
+  for (int i = 0; i < 6; ++i)
+    f[i] = {Vec3(std::cos(Real(i)), 0, std::sin(Real(i))), Real(-0.001 * i), std::uint32_t(i)};
+  EXPECT_EQ(reduceToFourCandidates(f, 6, Vec3::UnitY()), 4);
 }
 
 TEST(Hull, RestsOnThePlaneABoxAndAnotherHull) {

@@ -80,6 +80,13 @@ inline int reduceToFourCandidates(ContactCandidate* c, int k, const Vec3& normal
   Real best = -1;
   for (int i = 0; i < k; ++i)
     if (Real d2 = (c[i].p - c[i0].p).squaredNorm(); i != i0 && d2 > best) best = d2, i1 = i;
+  // No distance compares (non-finite points: a body so far out that its
+  // corners overflow, or damaged state): the deepest point alone. Found by
+  // the snapshot fuzzer, which read c[-1] here.
+  if (i1 < 0) {
+    c[0] = c[i0];
+    return 1;
+  }
   int i2 = -1, i3 = -1;
   Real maxPos = 0, maxNeg = 0;
   const Vec3 e = c[i1].p - c[i0].p;
