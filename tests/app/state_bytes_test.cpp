@@ -64,23 +64,35 @@ Status restore(Scene& scene, const Saved& s) {
   return scene.host().restoreState(s.script, 0, 0);
 }
 
+/// The scene's state after its first 20 steps (all its parts).
+Result<Saved> saveAfterTwentySteps(Scene& scene) {
+  for (int i = 0; i < 20; ++i) step(scene, i);
+  auto script = scene.host().saveState();
+  if (!script) return makeError(script.error());
+  return Saved{script::saveSystems(scene), *script};
+}
+
+/// The state hash 10 steps after restoring `good` (empty when refused).
+std::string hashTenStepsAfter(Scene& scene, const Saved& good) {
+  if (!restore(scene, good)) return {};
+  for (int i = 0; i < 10; ++i) step(scene, 20 + i);
+  return stateHashText(scene);
+}
+
 TEST(SnapshotBytes, CutOrChangedBytesAreRefusedOrRunNeverCrash) {
   auto scene = startScene("bodies:world_snapshot_systems");
   ASSERT_TRUE(scene);
-  for (int i = 0; i < 20; ++i) step(*scene, i);
-  Saved good{script::saveSystems(*scene), {}};
-  auto script = scene->host().saveState();
-  ASSERT_TRUE(script) << script.error();
-  good.script = *script;
+  auto saved = saveAfterTwentySteps(*scene);
+  ASSERT_TRUE(saved) << saved.error();
+  const Saved& good = *saved;
   ASSERT_FALSE(good.systems.joints.empty());
   ASSERT_FALSE(good.systems.vehicles.empty());
   ASSERT_FALSE(good.systems.ropesAndCloth.empty());
   ASSERT_FALSE(good.systems.particles.empty());
 
   // The reference: 10 steps from the good state.
-  ASSERT_TRUE(restore(*scene, good));
-  for (int i = 0; i < 10; ++i) step(*scene, 20 + i);
-  const std::string expected = stateHashText(*scene);
+  const std::string expected = hashTenStepsAfter(*scene, good);
+  ASSERT_FALSE(expected.empty());
 
   std::mt19937 rng(7);
   struct Part {
@@ -119,9 +131,7 @@ TEST(SnapshotBytes, CutOrChangedBytesAreRefusedOrRunNeverCrash) {
   }
 
   // The good state still gives the reference.
-  ASSERT_TRUE(restore(*scene, good));
-  for (int i = 0; i < 10; ++i) step(*scene, 20 + i);
-  EXPECT_EQ(stateHashText(*scene), expected);
+  EXPECT_EQ(hashTenStepsAfter(*scene, good), expected);
 }
 
 // A refused script state changes nothing. The scenario's Lua state holds
@@ -138,14 +148,11 @@ TEST(SnapshotBytes, CutOrChangedBytesAreRefusedOrRunNeverCrash) {
 TEST(SnapshotBytes, ARefusedScriptStateLeavesTheSceneAsItWas) {
   auto scene = startScene("bodies:script_state");
   ASSERT_TRUE(scene);
-  for (int i = 0; i < 20; ++i) step(*scene, i);
-  Saved good{script::saveSystems(*scene), {}};
-  auto script = scene->host().saveState();
-  ASSERT_TRUE(script) << script.error();
-  good.script = *script;
-  ASSERT_TRUE(restore(*scene, good));
-  for (int i = 0; i < 10; ++i) step(*scene, 20 + i);
-  const std::string expected = stateHashText(*scene);
+  auto saved = saveAfterTwentySteps(*scene);
+  ASSERT_TRUE(saved) << saved.error();
+  const Saved& good = *saved;
+  const std::string expected = hashTenStepsAfter(*scene, good);
+  ASSERT_FALSE(expected.empty());
 
   int refused = 0;
   for (const char fill : {'\0', '\xff'})
@@ -159,9 +166,7 @@ TEST(SnapshotBytes, ARefusedScriptStateLeavesTheSceneAsItWas) {
   std::printf("[snapshot bytes] script state %zu bytes: %d of %zu insertions refused\n", good.script.size(), refused,
               2 * (good.script.size() + 1));
   EXPECT_GT(refused, 0);
-  ASSERT_TRUE(restore(*scene, good));
-  for (int i = 0; i < 10; ++i) step(*scene, 20 + i);
-  EXPECT_EQ(stateHashText(*scene), expected);
+  EXPECT_EQ(hashTenStepsAfter(*scene, good), expected);
 }
 
 }  // namespace

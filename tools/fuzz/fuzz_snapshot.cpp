@@ -178,25 +178,23 @@ bool restore(Fixture& f, const Parts& p, std::string* why = nullptr) {
 }
 
 Fixture makeFixture() {
-  {
-    Fixture x;
-    x.scene = tumble::fuzz::sceneFor("snapshot_scene", kScenario);
-    if (!x.scene) std::abort();
-    x.scene->start();
-    step(*x.scene, 0, kStepsBeforeSave);
-    x.step = kStepsBeforeSave;
-    x.time_s = double(kStepsBeforeSave) * x.scene->dt_s();
-    auto script = x.scene->host().saveState();
-    if (!script) {
-      std::fprintf(stderr, "fuzz: the scene cannot be saved: %s\n", script.error().c_str());
-      std::abort();
-    }
-    x.saved = {tumble::script::saveSystems(*x.scene), *script};
-    step(*x.scene, x.step, kStepsAfter);
-    x.hashAfter = tumble::app::stateHashText(*x.scene);
-    if (!restore(x, x.saved)) std::abort();
-    return x;
+  Fixture x;
+  x.scene = tumble::fuzz::sceneFor("snapshot_scene", kScenario);
+  if (!x.scene) std::abort();
+  x.scene->start();
+  step(*x.scene, 0, kStepsBeforeSave);
+  x.step = kStepsBeforeSave;
+  x.time_s = double(kStepsBeforeSave) * x.scene->dt_s();
+  auto script = x.scene->host().saveState();
+  if (!script) {
+    std::fprintf(stderr, "fuzz: the scene cannot be saved: %s\n", script.error().c_str());
+    std::abort();
   }
+  x.saved = {tumble::script::saveSystems(*x.scene), *script};
+  step(*x.scene, x.step, kStepsAfter);
+  x.hashAfter = tumble::app::stateHashText(*x.scene);
+  if (!restore(x, x.saved)) std::abort();
+  return x;
 }
 
 Fixture& fixture() {

@@ -189,7 +189,7 @@ struct JointSystem::Impl {
   double time_s = 0;        ///< simulated time of the substeps solved so far (the contacts' memory)
   std::vector<lagrange::V3> vk, wk;   ///< per state: the velocity as the World hands it over (v_k)
   std::vector<lagrange::V3> dv, dw;   ///< per state: velocity change of a projection (substepProject)
-  std::vector<lagrange::V6> pushout;   ///< per state: W^-1-weighted change of its push-out velocity (substepProjectPushout)
+  std::vector<lagrange::V6> pushout;   ///< per state: J^T mu, the generalized impulse that changes its push-out velocity (substepProjectPushout)
   std::vector<lagrange::V3> freeTurn;  ///< per state: angular acceleration of the World's free turn, rad/s^2 (substepSolve)
   std::vector<double> rowImpulse;  ///< per row: impulse of a projection
   /// Per World body slot: the velocity right after the joints last changed

@@ -149,7 +149,6 @@
 // impulse solver's soft rows damp it). Joint friction would be the fix.
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 
