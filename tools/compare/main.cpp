@@ -159,6 +159,8 @@ int main(int argc, char** argv) {
     SweepOptions options;
     options.outDir = outDir;
     options.quick = quick;
+    options.jointSolver = jointSolver;
+    options.threads = threads;
     json report;
     try {
       report = runSweep(scene, steps, dt, options);

@@ -13,6 +13,8 @@ namespace tumble::compare {
 struct SweepOptions {
   std::string outDir = ".";  ///< where SCENE_sweep.csv, .gp, .png and the front files go
   bool quick = false;        ///< a small grid (2 x 2 per engine) for smoke tests
+  std::string jointSolver = "impulse";  ///< Tumble's joint solver: "impulse" or "lagrange"
+  int threads = 1;                      ///< Tumble's WorldSettings::threads (the peers use one)
 };
 
 /// Runs every setting of every engine on the scene (`steps` of `dt` each),

@@ -10,7 +10,11 @@
 #   joint's anchors stay within 10 cm;
 # - the CSV has a header and one row per run; each engine has a non-empty
 #   Pareto front for the scene's quality metric, and the headline names
-#   both peers; the PNG is drawn when gnuplot is installed.
+#   both peers; the PNG is drawn when gnuplot is installed;
+# - `--joint-solver` reaches the sweep: the report names the solver, and the
+#   same grid with `--joint-solver lagrange` gives Tumble other joint errors
+#   (the two solvers never agree to the last bit; a sweep that dropped the
+#   option ran the impulse solver twice).
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 execute_process(COMMAND ${EXE} ragdolls_100 --sweep --quick --out ${OUT} --report ${OUT}/report.json
@@ -77,4 +81,34 @@ find_program(GNUPLOT gnuplot)
 if(GNUPLOT AND NOT EXISTS ${OUT}/ragdolls_100_sweep.png)
   message(FATAL_ERROR "gnuplot is installed but no PNG was drawn")
 endif()
-message(STATUS "sweep ok: ${n} runs")
+string(JSON solver GET "${json}" joint_solver)
+if(NOT solver STREQUAL "impulse")
+  message(FATAL_ERROR "the sweep's report names joint solver '${solver}', expected impulse (the default)")
+endif()
+execute_process(COMMAND ${EXE} ragdolls_100 --sweep --quick --joint-solver lagrange --out ${OUT}/lagrange
+                        --report ${OUT}/lagrange/report.json
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "tumble_compare --sweep --joint-solver lagrange exited with ${rc}: ${err}")
+endif()
+file(READ ${OUT}/lagrange/report.json lagrange_json)
+string(JSON solver GET "${lagrange_json}" joint_solver)
+if(NOT solver STREQUAL "lagrange")
+  message(FATAL_ERROR "--joint-solver lagrange: the report names joint solver '${solver}'")
+endif()
+set(same 0)
+foreach(i RANGE ${last})
+  string(JSON engine GET "${json}" runs ${i} engine)
+  if(engine STREQUAL "tumble")
+    string(JSON a GET "${json}" runs ${i} joint_error_max_m)
+    string(JSON b GET "${lagrange_json}" runs ${i} joint_error_max_m)
+    if(a STREQUAL b)
+      math(EXPR same "${same} + 1")
+    endif()
+  endif()
+endforeach()
+if(same EQUAL expected_tumble)
+  message(FATAL_ERROR "--joint-solver lagrange gave Tumble the impulse solver's joint errors in every run: "
+                      "the sweep did not use it")
+endif()
+message(STATUS "sweep ok: ${n} runs, and the Lagrange joint solver's")
