@@ -9,8 +9,9 @@
 //   per substep:
 //     warmStart(vel, bodies)               after gravity/forces, with the contacts' warm start
 //     solve(vel, bodies, true)  x N        before each contact solve sweep (position error fed back)
+//       solvePushout(pseudo)               after each contact solve sweep: the push-out velocities (optional; impulse)
 //     beforeIntegrate(vel, bodies)         after the last sweep (optional; the Lagrange joint solver)
-//     projectPushout(pseudo, bodies)       the contacts' push-out velocities onto the joints (optional; Lagrange)
+//     projectPushout(pseudo, bodies)       the contacts' push-out velocities onto the joints at once (optional; Lagrange)
 //     -- positions integrated --
 //     solve(vel, bodies, false) x M        before each contact relax sweep (no bias)
 //   finish(world)                          after the substeps, before sleep
@@ -49,6 +50,13 @@ class ConstraintSolver {
     (void)vel;
     (void)bodies;
   }
+  /// After each of the solve phase's contact sweeps: pseudo holds the
+  /// split-impulse push-out velocities (contact_solver.cpp) the sweeps have
+  /// built so far, which move the positions this substep and are then
+  /// dropped. A solver may sweep its rows over them, so that contacts and
+  /// constraints converge together on a push-out that keeps the constraints
+  /// (jointed parts pushed out of the ground together). Default: nothing.
+  virtual void solvePushout(SolverVelocity* pseudo) { (void)pseudo; }
   /// Just before the positions are integrated, after beforeIntegrate:
   /// pseudo holds the split-impulse push-out velocities the contacts found
   /// (contact_solver.cpp), which move the positions this substep and are

@@ -252,8 +252,12 @@ void World::substep(const SolverSettings& ss, ConstraintSolver* joints) {
   // updated once per phase, not once per iteration.
   for (int it = 0; it < m_settings.velocityIterations; ++it) {
     const Real jr = joints ? joints->solve(st.vel.data(), m_bodies.data(), true) : Real(0);
-    PhaseClock clock(solverClock);
-    const Real r = contacts.solve(st.vel, st.pseudo, ss, true);
+    Real r = 0;
+    {
+      PhaseClock clock(solverClock);
+      r = contacts.solve(st.vel, st.pseudo, ss, true);
+    }
+    if (joints) joints->solvePushout(st.pseudo.data());
     if (r <= tol2 * contacts.lastMagnitude() && jr <= tol2) break;  // converged: see WorldSettings::solverTolerance
   }
   if (joints) {

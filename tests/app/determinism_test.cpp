@@ -62,7 +62,7 @@ constexpr HashCase kCases[] = {
     {"Drop", "base:drop", "a40056f79e507047"},
     {"Pyramid", "base:pyramid", "ecd087b9bc83a7a4"},
     {"RagdollPileLagrange", "base:ragdoll_pile --set physics.joint_solver=lagrange", "20291bb5dcdebd2b"},
-    {"RagdollPileImpulse", "base:ragdoll_pile --set physics.joint_solver=impulse", "382532910686c578"},
+    {"RagdollPileImpulse", "base:ragdoll_pile --set physics.joint_solver=impulse", "1241f5e488aa7557"},
     {"Drive", "base:drive --set autopilot=1", "c417c7a7bbd656cf"},
     {"Cloth", "base:cloth", "28da0f5e77239499"},
     {"ChainLagrange", "base:chain --set physics.joint_solver=lagrange", "1a45cae25a3609cd"},

@@ -26,6 +26,7 @@ class ImpulseJoints final : public ConstraintSolver {
   void prepare(const World& world, Real dt_s, int substeps) override;
   void warmStart(SolverVelocity* vel, const Body* bodies) override;
   Real solve(SolverVelocity* vel, const Body* bodies, bool useBias) override;
+  void solvePushout(SolverVelocity* pseudo) override;
   void finish(const World& world) override;
 
   /// What the last step measured for one joint slot.

@@ -359,6 +359,54 @@ Real ImpulseJoints::solve(SolverVelocity* vel, const Body* bodies, bool useBias)
   return change / std::max(total, std::numeric_limits<Real>::min());
 }
 
+// ---- Push-out ----------------------------------------------------------------
+// The contacts remove overlap with split-impulse pseudo-velocities that move
+// the positions in this substep and are then dropped (contact_solver.cpp).
+// When the joints never saw them, a limb pushed out of the ground moved
+// without the part it hangs on, and the joint opened by the push; more
+// substeps push out faster than the joints' feedback closes, so it grew
+// with them: a rag-doll dropped flat from 0.3 m (tests/physics/joints/
+// ragdoll_test.cpp) opened a joint by 2.2, 4.0, 6.6 and 11.3 mm at 4, 8, 16
+// and 32 substeps. So after each contact solve sweep (which adds to the
+// push-out), the hard equality rows (the point block and the angular block;
+// springs are forces, and limits keep what the push gives them) sweep the
+// push-out velocities too, with the solve phase's rows and no bias: one
+// Gauss-Seidel iteration over contacts and joints together, whose contact
+// rows push (never pull) and whose joint rows keep the parts together. The
+// jointed parts are then pushed out together. The Lagrange solver projects
+// the push-out once, with its factorization (JointSystem::substepProjectPushout).
+void ImpulseJoints::solvePushout(SolverVelocity* pseudo) {
+  // Equality rows need no accumulated impulse: each sweep's change is
+  // found from the velocities alone (no clamping, no warm start).
+  for (const Joint& j : m_joints) {
+    if (j.soft) continue;
+    Vec4r vA = Vec4r::Zero(), wA = Vec4r::Zero(), vB = Vec4r::Zero(), wB = Vec4r::Zero();
+    if (j.movesA) vA = pseudo[j.a].linear, wA = pseudo[j.a].angular;
+    if (j.movesB) vB = pseudo[j.b].linear, wB = pseudo[j.b].angular;
+    if (vA == Vec4r::Zero() && wA == Vec4r::Zero() && vB == Vec4r::Zero() && wB == Vec4r::Zero())
+      continue;  // nothing pushed either part: every row's change is 0
+    if (j.angularRows > 0) {
+      const Vec4r dw = wB - wA;
+      Vec4r rhs = Vec4r::Zero();
+      for (int r = 0; r < j.angularRows; ++r) rhs[r] = dw.dot(j.ax[r]);
+      const Vec4r dl = -(j.angKinv * rhs);
+      for (int r = 0; r < j.angularRows; ++r) {
+        wA -= j.axA[r] * dl[r];
+        wB += j.axB[r] * dl[r];
+      }
+    }
+    if (j.pointOk) {
+      const Vec4r P = -(j.pointKinv * (vB - vA + j.SA * wA - j.SB * wB));
+      vA -= j.mA * P;
+      wA -= j.MA * P;
+      vB += j.mB * P;
+      wB += j.MB * P;
+    }
+    if (j.movesA) pseudo[j.a].linear = vA, pseudo[j.a].angular = wA;
+    if (j.movesB) pseudo[j.b].linear = vB, pseudo[j.b].angular = wB;
+  }
+}
+
 void ImpulseJoints::finish(const World&) {
   for (const Joint& j : m_joints) {
     const JointDef& d = *j.def;
