@@ -9,8 +9,10 @@
 // prepare once per step (bodies, masses, inverse world inertia at the start
 // of the step, as the contact rows take them), then in every substep of
 // length h: warm start (apply last substep's accumulated impulses), one
-// sweep before each of the contacts' solve sweeps (with position feedback),
-// positions integrated, one sweep before each relax sweep (no feedback).
+// sweep before each of the contacts' solve sweeps (with position feedback)
+// and one over the contacts' push-out velocities after each ("Push-out"
+// below), positions integrated, one sweep before each relax sweep (no
+// feedback).
 // Joints and contacts thus see each other's impulses within a substep: a
 // limb pressed into the ground by its neighbours is held by the contact, not
 // by a stretched joint.
